@@ -1,0 +1,15 @@
+#pragma once
+// Each subcommand of `rangefit` lives in its own file and registers itself here.
+// Exit codes shared by all subcommands: 0 found/success, 2 not found, 1 bad input or error.
+
+#include <CLI/CLI.hpp>
+
+namespace rangefit::cli {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitBadInput = 1;
+inline constexpr int kExitNotFound = 2;
+
+// Each add_* function adds one subcommand to app; the subcommand's callback stores its exit code
+// in *exit_code.
+}  // namespace rangefit::cli

@@ -1,0 +1,25 @@
+// rangefit: offline detection on scan files, simulation and replay of spooled scans.
+#include <exception>
+#include <iostream>
+
+#include "daemon/cli/commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "rangefit - find bore holes and objects in range scans by fitting geometric models.\n"
+      "Units: millimetres and radians. Exit codes: 0 found, 2 not found, 1 bad input."};
+  app.require_subcommand(1);
+  int exit_code = rangefit::cli::kExitOk;
+  // Subcommands (one file each in daemon/cli/):
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : rangefit::cli::kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "rangefit: " << e.what() << "\n";
+    return rangefit::cli::kExitBadInput;
+  }
+  return exit_code;
+}

@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Installs dependencies, builds everything (Release) and runs the whole test suite with ctest.
+# Usage: bash scripts/test.sh [BUILD_DIR]   (default: build)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/deps.sh
+build=${1:-build}
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release
+cmake --build "$build" -j"$(nproc)"
+ctest --test-dir "$build" --output-on-failure -j"$(nproc)"
