@@ -1,0 +1,62 @@
+#pragma once
+// Principal component analysis of small point sets (thesis eq. 4.1-4.3): centroid, covariance,
+// eigenvectors, and the plane fit built from them. Shared by normal estimation, the bore axis
+// line fit (largest eigenvector) and the superquadric initialisation.
+
+#include <Eigen/Core>
+#include <span>
+
+namespace rangefit::pca {
+
+// Running sums for a covariance, so callers can add points one by one without storing them.
+struct Moments {
+  double count = 0.0;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d sum_outer = Eigen::Matrix3d::Zero();
+
+  void add(const Eigen::Vector3d& p) {
+    count += 1.0;
+    sum += p;
+    sum_outer.noalias() += p * p.transpose();
+  }
+  Eigen::Vector3d mean() const { return sum / count; }
+  // Sample covariance with the 1/(n-1) normalisation of eq. 4.2; zero for fewer than two points.
+  Eigen::Matrix3d covariance() const;
+};
+
+// Eq. 4.1. Zero for an empty set.
+Eigen::Vector3d centroid(std::span<const Eigen::Vector3d> points);
+
+// Eq. 4.2/4.3 about `mean`, normalised by n-1. Zero for fewer than two points.
+Eigen::Matrix3d covariance(std::span<const Eigen::Vector3d> points, const Eigen::Vector3d& mean);
+
+// Eigen decomposition of a symmetric 3x3 matrix: values ascending, vectors as unit columns.
+struct Eigen3 {
+  Eigen::Vector3d values = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d vectors = Eigen::Matrix3d::Identity();
+};
+Eigen3 eigen_symmetric(const Eigen::Matrix3d& cov);
+
+// C n = lambda_min n: the normal of a surface patch (sign arbitrary).
+Eigen::Vector3d smallest_eigenvector(const Eigen::Matrix3d& cov);
+// C v = lambda_max v: the direction of a line-like set, e.g. the bore axis points.
+Eigen::Vector3d largest_eigenvector(const Eigen::Matrix3d& cov);
+
+struct Plane {
+  bool valid = false;                                 // false: fewer than 3 points or collinear
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();    // centroid of the fitted points, mm
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // unit, sign arbitrary
+  double rms = 0.0;                                   // rms point-to-plane distance, mm
+};
+// Total least-squares plane through the points (smallest eigenvector of the covariance).
+Plane fit_plane(std::span<const Eigen::Vector3d> points);
+
+// Line through the points: centroid and largest eigenvector (thesis 4.1.3, axis pose).
+struct Line {
+  bool valid = false;  // false: fewer than 2 points or all coincident
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
+};
+Line fit_line(std::span<const Eigen::Vector3d> points);
+
+}  // namespace rangefit::pca
