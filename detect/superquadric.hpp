@@ -1,0 +1,55 @@
+#pragma once
+// The tapered superquadric part model (thesis 2.1.3) and its inside-outside function.
+//
+// Part frame: the superquadric centre is the origin, z is its main axis (a3 along z). A part in a
+// scene is this model plus a pose T_world_part. Tapering (eq. 2.19-2.23) scales x and y linearly
+// along z, so kx = ky = -1 turns a cylinder into a cone whose tip is at z = +a3.
+//
+// F (eq. 2.15) is < 1 inside, 1 on the surface, > 1 outside (eq. 2.16-2.18). The fit metric is
+// G = F^eps1 (eq. 5.1): for eps2 = 1 it is the squared normalised radius, so G - 1 behaves like a
+// distance for every shape. Everything is evaluated in the log domain so that eps near 0.1
+// (exponents of 20) cannot overflow, and points on the axis, at the poles, at the centre or far
+// away give finite values and finite gradients.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace rangefit {
+
+struct Superquadric {
+  double a1 = 1.0, a2 = 1.0, a3 = 1.0;  // half sizes along x, y, z of the part frame, mm
+  double eps1 = 1.0;                    // north-south shape exponent, valid [0.1, 2]
+  double eps2 = 1.0;                    // east-west shape exponent, valid [0.1, 2]
+  double kx = 0.0, ky = 0.0;            // taper along z (eq. 2.22-2.23), valid (-1, 1]
+
+  double min_size() const;
+  double max_size() const;
+  // True when sizes are positive and finite, eps in [0.1, 2] and taper in [-1, 1].
+  bool valid() const;
+};
+
+// G = F^eps1 (eq. 2.15 with tapering undone, raised to eps1 as in eq. 5.1) at a point given in
+// the part frame, mm. Finite for every finite input; G < 1 inside, = 1 on the surface.
+double metric(const Superquadric& sq, const Eigen::Vector3d& p_part);
+
+// G and its gradient dG/dp_part (1/mm). The gradient is finite everywhere (zero at the centre).
+double metric_and_gradient(const Superquadric& sq, const Eigen::Vector3d& p_part,
+                           Eigen::Vector3d& gradient);
+
+// F itself (eq. 2.15, tapering undone), saturated at 1e300 instead of overflowing.
+double inside_outside(const Superquadric& sq, const Eigen::Vector3d& p_part);
+
+// The explicit surface point (eq. 2.14, then tapered with eq. 2.19-2.21) at latitude eta in
+// [-pi/2, pi/2] and longitude omega in [-pi, pi), in the part frame, mm.
+Eigen::Vector3d surface_point(const Superquadric& sq, double eta, double omega);
+
+// Conservative axis-aligned bounds of the tapered part in its own frame, mm.
+Eigen::AlignedBox3d part_bounds(const Superquadric& sq);
+
+// Metric of a world point for a posed part: metric(sq, T_world_part^-1 * p_world).
+inline double metric_world(const Superquadric& sq, const Eigen::Isometry3d& T_world_part,
+                           const Eigen::Vector3d& p_world) {
+  return metric(sq, T_world_part.inverse() * p_world);
+}
+
+}  // namespace rangefit
