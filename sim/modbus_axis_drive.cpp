@@ -140,6 +140,11 @@ void SimFhppDrive::disconnected(int client) {
   if (controller_ == client) controller_ = -1;
 }
 
+void SimFhppDrive::tick(hal::Timestamp t) {
+  std::lock_guard lock(mutex_);
+  update(t);
+}
+
 void SimFhppDrive::inject_fault(hal::Timestamp t, const std::string& reason) {
   std::lock_guard lock(mutex_);
   latch_fault(t, reason);

@@ -36,6 +36,8 @@ class SimFhppDrive {
   // The input telegram as seen by `client` (FCT/MMI set when another master holds control).
   drivers::fhpp::InputTelegram read(hal::Timestamp t, int client);
   void disconnected(int client);
+  // Advances time without a request: the connection timeout and homing completion.
+  void tick(hal::Timestamp t);
 
   // Ground truth for tests: the commanded trajectory, exact at any past or present time.
   double position_at(hal::Timestamp t) const;

@@ -92,7 +92,9 @@ void SimAxisServer::run() {
   while (running_) {
     std::vector<pollfd> fds{{listen_fd_, POLLIN, 0}};
     for (const auto& [fd, c] : clients) fds.push_back({fd, POLLIN, 0});
-    if (::poll(fds.data(), fds.size(), 5) <= 0) continue;
+    const int ready = ::poll(fds.data(), fds.size(), 5);
+    drive_.tick(now());  // the drive's timers run without requests too
+    if (ready <= 0) continue;
     if (fds[0].revents & POLLIN) {
       int lfd = listen_fd_;
       const int fd = modbus_tcp_accept(listen_ctx, &lfd);
