@@ -7,6 +7,7 @@ packages=(
   libeigen3-dev libnanoflann-dev libembree-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libspdlog-dev libfmt-dev libsystemd-dev libgtest-dev libgmock-dev libbenchmark-dev
   cyclonedds-dev cyclonedds-tools libmodbus-dev libusb-1.0-0-dev
+  python3-pymodbus python3-serial-asyncio mbpoll  # independent Modbus peers for the drivers tests
 )
 
 missing=()
