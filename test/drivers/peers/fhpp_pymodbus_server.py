@@ -10,6 +10,7 @@ Usage: fhpp_pymodbus_server.py [increments_per_mm] [max_speed_mm_s]
 Prints "PORT <n>" once listening on 127.0.0.1 (a free port); exits when stdin closes.
 """
 import asyncio
+import logging
 import struct
 import sys
 import time
@@ -110,6 +111,7 @@ class FhppBlock(ModbusSequentialDataBlock):
 
 
 async def main():
+    logging.getLogger("pymodbus").setLevel(logging.CRITICAL)  # client hang-ups are routine
     inc_per_mm = float(sys.argv[1]) if len(sys.argv) > 1 else 1000.0
     max_speed = float(sys.argv[2]) if len(sys.argv) > 2 else 500.0
     block = FhppBlock(FhppDrive(inc_per_mm, max_speed))
