@@ -48,12 +48,12 @@ TEST(FhppAxisFaults, LateRepliesAreNeverTakenForLaterOnes) {
   rig.axis->read(samples, 0ms);  // homing ran at another speed
   samples.clear();
   ASSERT_TRUE(rig.axis->move_to(400.0, 250.0).ok);
-  // Replies arrive 60 ms late, after the 40 ms response timeout.
-  rig.proxy->set_reply_delay(60ms);
+  // Replies arrive 150 ms late, after the 100 ms response timeout.
+  rig.proxy->set_reply_delay(150ms);
   ASSERT_TRUE(wait_until([&] { return rig.axis->health().counters.timeouts >= 2; }, 2s));
   rig.proxy->set_reply_delay(0ms);
   EXPECT_TRUE(rig.polls_again(20)) << joined_events(*rig.axis);
-  EXPECT_TRUE(any_event_contains(*rig.axis, "within the response timeout (40 ms); reconnecting"))
+  EXPECT_TRUE(any_event_contains(*rig.axis, "within the response timeout (100 ms); reconnecting"))
       << joined_events(*rig.axis);
   EXPECT_GE(rig.axis->health().counters.reconnects, 2u);
   rig.axis->read(samples, 0ms);
@@ -97,7 +97,7 @@ TEST(FhppAxisFaults, TheDrivesConnectionTimeoutFaultIsNamedAndAcknowledged) {
   rig.start_streaming();
   rig.enable_and_home();
   rig.proxy->set_black_hole(true);
-  ASSERT_TRUE(wait_until([&] { return rig.drive.fault(); }, 2s));  // 300 ms without a request
+  ASSERT_TRUE(wait_until([&] { return rig.drive.fault(); }, 2s));  // 600 ms without a request
   EXPECT_NE(rig.drive.fault_reason().find("connection timeout"), std::string::npos);
   rig.proxy->set_black_hole(false);
   ASSERT_TRUE(wait_until([&] { return rig.axis->stats().comm_timeout_faults == 1; }, 2s))
@@ -174,7 +174,7 @@ TEST(FhppAxisFaults, PositionsWithTheWrongByteOrderAreMarkedImplausible) {
 TEST(FhppAxisFaults, SamplesWithATooLongRoundTripAreMarkedInvalid) {
   ModbusRig rig(true);
   rig.start_streaming();
-  rig.proxy->set_reply_delay(25ms);  // over the 20 ms limit, under the 40 ms timeout
+  rig.proxy->set_reply_delay(50ms);  // over the 30 ms limit, under the 100 ms timeout
   ASSERT_TRUE(wait_until([&] { return rig.axis->stats().late_round_trips >= 3; }, 2s));
   EXPECT_FALSE(rig.axis->latest()->valid);
   EXPECT_GT(rig.axis->latest()->uncertainty, rig.config.max_round_trip);

@@ -28,22 +28,22 @@ inline sim::SimAxisConfig sim_axis_config() {
   c.max_mm = 500.0;
   c.initial_mm = 100.0;
   c.homing_speed_mm_s = 500.0;
-  c.comm_timeout = 300ms;
+  c.comm_timeout = 600ms;
   return c;
 }
 
 inline drivers::FhppAxisConfig fast_axis_config(int port) {
   drivers::FhppAxisConfig c;
   c.link.port = port;
-  c.link.response_timeout = 40ms;
+  c.link.response_timeout = 100ms;
   c.link.byte_timeout = 20ms;
   c.scale = {.increments_per_mm = 1000.0, .max_speed_mm_s = 500.0};
   c.travel = {.min_mm = 0.0, .max_mm = 500.0, .margin_mm = 2.0, .max_speed_mm_s = 500.0};
   c.poll_period = 5ms;
-  c.max_round_trip = 20ms;
+  c.max_round_trip = 30ms;
   c.backoff_initial = 5ms;
   c.backoff_max = 80ms;
-  c.drive_comm_timeout = 300ms;
+  c.drive_comm_timeout = 600ms;
   c.command_timeout = 500ms;
   return c;
 }
