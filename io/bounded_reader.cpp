@@ -122,7 +122,7 @@ bool parse_int64(std::string_view token, std::int64_t& value) {
   return ec == std::errc() && ptr == token.data() + token.size();
 }
 
-std::string quoted(std::string_view text) {
+std::string printable(std::string_view text) {
   constexpr std::size_t kMaxShown = 40;  // hostile headers may carry megabyte words
   std::string out = "'";
   for (std::size_t i = 0; i < text.size() && i < kMaxShown; ++i) {

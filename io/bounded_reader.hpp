@@ -61,6 +61,6 @@ bool parse_double(std::string_view token, double& value);
 bool parse_int64(std::string_view token, std::int64_t& value);
 
 // Untrusted text for a message: quoted, non-printables replaced, cut after 40 characters.
-std::string quoted(std::string_view text);
+std::string printable(std::string_view text);
 
 }  // namespace rangefit::io::detail

@@ -79,7 +79,7 @@ double ascii_number(detail::BoundedReader& reader) {
   double value = 0.0;
   if (!token) reader.fail_at_line("truncated: expected a number, found the end of the file");
   if (!detail::parse_double(*token, value) || !std::isfinite(value)) {
-    reader.fail_at_line("expected a finite number, found " + detail::quoted(*token));
+    reader.fail_at_line("expected a finite number, found " + detail::printable(*token));
   }
   return value;
 }
@@ -101,7 +101,7 @@ TriangleMesh read_ascii(detail::BoundedReader& reader) {
       in_solid = false;
       reader.next_line();
     } else if (word == "facet" || word == "normal") {
-      if (!in_solid) reader.fail_at_line(detail::quoted(word) + " outside a solid");
+      if (!in_solid) reader.fail_at_line(detail::printable(word) + " outside a solid");
       if (word == "normal") {
         for (int k = 0; k < 3; ++k) ascii_number(reader);  // recomputed from the vertex order
       }
@@ -125,7 +125,7 @@ TriangleMesh read_ascii(detail::BoundedReader& reader) {
     } else if (word == "endfacet") {
       if (corner_count != -1) reader.fail_at_line("'endfacet' before 'endloop'");
     } else {
-      reader.fail_at_line("unexpected word " + detail::quoted(word));
+      reader.fail_at_line("unexpected word " + detail::printable(word));
     }
   }
   if (in_solid || corner_count != -1) reader.fail("truncated: ASCII STL ends inside a solid");

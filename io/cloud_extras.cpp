@@ -1,0 +1,78 @@
+#include "io/cloud_extras.hpp"
+
+#include <cmath>
+
+#include "io/io_error.hpp"
+
+namespace rangefit::io::detail {
+
+StampWords split_stamp(std::chrono::nanoseconds stamp) {
+  const auto bits = static_cast<std::uint64_t>(stamp.count());
+  return {static_cast<std::int32_t>(static_cast<std::uint32_t>(bits >> 32)),
+          static_cast<std::uint32_t>(bits & 0xffffffffu)};
+}
+
+std::optional<std::chrono::nanoseconds> join_stamp(double hi, double lo) {
+  // Range checks first: converting an out-of-range double to an integer is undefined.
+  if (!(hi >= -2147483648.0 && hi <= 2147483647.0 && lo >= 0.0 && lo <= 4294967295.0)) {
+    return std::nullopt;
+  }
+  if (hi != std::floor(hi) || lo != std::floor(lo)) return std::nullopt;
+  const auto high =
+      static_cast<std::uint64_t>(static_cast<std::uint32_t>(static_cast<std::int32_t>(hi)));
+  const std::uint64_t bits = (high << 32) | static_cast<std::uint64_t>(lo);
+  return std::chrono::nanoseconds(static_cast<std::int64_t>(bits));
+}
+
+std::vector<std::int32_t> checked_cells(const std::filesystem::path& file,
+                                        const PointCloud& cloud) {
+  const std::size_t n = cloud.size();
+  if (!cloud.normals.empty() && cloud.normals.size() != n) {
+    throw IoError(file, "cannot write: " + std::to_string(cloud.normals.size()) + " normals for " +
+                            std::to_string(n) + " points");
+  }
+  if (!cloud.stamps.empty() && cloud.stamps.size() != n) {
+    throw IoError(file, "cannot write: " + std::to_string(cloud.stamps.size()) + " stamps for " +
+                            std::to_string(n) + " points");
+  }
+  if (n > 0x7fffffffu) throw IoError(file, "cannot write: more than 2^31 points");
+  if (!cloud.organised()) return {};
+  const GridLayout& grid = cloud.grid;
+  if (grid.rows < 0 || grid.cols < 0 ||
+      grid.index.size() !=
+          static_cast<std::size_t>(grid.rows) * static_cast<std::size_t>(grid.cols)) {
+    throw IoError(file, "cannot write: grid " + std::to_string(grid.rows) + "x" +
+                            std::to_string(grid.cols) + " has " +
+                            std::to_string(grid.index.size()) + " cells");
+  }
+  if (grid.index.size() > 0x7fffffffu) throw IoError(file, "cannot write: grid over 2^31 cells");
+  std::vector<std::int32_t> cells(n, -1);
+  for (std::size_t cell = 0; cell < grid.index.size(); ++cell) {
+    const std::int32_t point = grid.index[cell];
+    if (point < -1 || point >= static_cast<std::int64_t>(n)) {
+      throw IoError(file, "cannot write: grid cell " + std::to_string(cell) + " refers to point " +
+                              std::to_string(point) + " of " + std::to_string(n));
+    }
+    if (point == -1) continue;
+    if (cells[static_cast<std::size_t>(point)] != -1) {
+      throw IoError(file, "cannot write: point " + std::to_string(point) + " is in two grid cells");
+    }
+    cells[static_cast<std::size_t>(point)] = static_cast<std::int32_t>(cell);
+  }
+  return cells;
+}
+
+std::size_t max_grid_cells(std::size_t file_bytes) {
+  constexpr std::size_t kFloor = std::size_t{1} << 20;  // 4 MiB of index whatever the file
+  return std::max(kFloor, 4 * file_bytes);
+}
+
+bool is_safe_frame_id(std::string_view frame_id) {
+  if (frame_id.empty() || frame_id.size() > 256) return false;
+  for (char c : frame_id) {
+    if (c <= ' ' || c >= 0x7f) return false;
+  }
+  return true;
+}
+
+}  // namespace rangefit::io::detail
