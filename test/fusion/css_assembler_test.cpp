@@ -63,9 +63,8 @@ TEST(CssAssembler, JointStampJitterOfOneMillisecondStaysWithinTheErrorItImplies)
     return omega_error * std::hypot(p.x(), p.z()) + 1e-5;
   };
   EXPECT_LE(max_error(scan, truth, bound), 1.0);
-              max_error(scan, truth), max_error(scan, truth, bound));
-              // The jitter does matter: without it the error is far below the bound.
-              EXPECT_GT(max_error(scan, truth), 0.001);
+  // The jitter does matter: the error exceeds what exact stamps give (< 0.001 mm).
+  EXPECT_GT(max_error(scan, truth), 0.001);
 }
 
 TEST(CssAssembler, StartEndStampFallbackMatchesTheTruthWithoutAJointStream) {
