@@ -2,70 +2,30 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace rangefit {
 namespace {
 
-// Normalised coordinates below this are treated as this (keeps logs and 1/x finite on the axis
-// and at the centre; the value error is far below any measurement).
-constexpr double kTinyNorm = 1e-12;
-// Largest exponent passed to exp(): results stay below ~1e299, so products cannot overflow.
-constexpr double kMaxLog = 690.0;
 // Tapering factors are clamped here: beyond the tip of a cone the part does not exist.
 constexpr double kMinTaperFactor = 1e-9;
-
-double log_sum_exp(double a, double b) {
-  const double m = std::max(a, b);
-  return m + std::log1p(std::exp(-std::abs(a - b)));
-}
-
-double safe_exp(double x) { return std::exp(std::min(x, kMaxLog)); }
+// Normalised coordinates below this (relative to the largest one) count as zero for gradients.
+constexpr double kTinyRatio = 1e-12;
+// G saturates here instead of overflowing (finite points farther than ~1e150 part sizes).
+constexpr double kMaxScale = 1e150;
 
 double sign_of(double v) { return v < 0.0 ? -1.0 : 1.0; }
 
 // Signed power used by the explicit form (eq. 2.14).
 double spow(double c, double e) { return sign_of(c) * std::pow(std::abs(c), e); }
 
-struct Untapered {
-  double x, y, z;
-  double fx, fy;
-  bool fx_clamped, fy_clamped;
-};
-
-// Undoes eq. 2.19-2.21: X = fx(z) x, Y = fy(z) y, Z = z.
-Untapered untaper(const Superquadric& sq, const Eigen::Vector3d& p) {
-  Untapered u{};
-  const double fx = 1.0 + sq.kx / sq.a3 * p.z();
-  const double fy = 1.0 + sq.ky / sq.a3 * p.z();
-  u.fx_clamped = fx < kMinTaperFactor;
-  u.fy_clamped = fy < kMinTaperFactor;
-  u.fx = std::max(fx, kMinTaperFactor);
-  u.fy = std::max(fy, kMinTaperFactor);
-  u.x = p.x() / u.fx;
-  u.y = p.y() / u.fy;
-  u.z = p.z();
-  return u;
-}
-
-// Log-domain pieces of eq. 2.15: lx = (2/e2) ln|x/a1|, u = (e2/e1) ln A, v = (2/e1) ln|z/a3|.
-struct LogTerms {
-  double lx, ly, log_a, u, v, log_f;
-  double nx, ny, nz;  // clamped normalised magnitudes
-};
-
-LogTerms log_terms(const Superquadric& sq, double x, double y, double z) {
-  LogTerms t{};
-  t.nx = std::max(std::abs(x) / sq.a1, kTinyNorm);
-  t.ny = std::max(std::abs(y) / sq.a2, kTinyNorm);
-  t.nz = std::max(std::abs(z) / sq.a3, kTinyNorm);
-  t.lx = 2.0 / sq.eps2 * std::log(t.nx);
-  t.ly = 2.0 / sq.eps2 * std::log(t.ny);
-  t.log_a = log_sum_exp(t.lx, t.ly);
-  t.u = sq.eps2 / sq.eps1 * t.log_a;
-  t.v = 2.0 / sq.eps1 * std::log(t.nz);
-  t.log_f = log_sum_exp(t.u, t.v);
-  return t;
+double integer_power(double x, int n) {
+  double r = 1.0;
+  while (n > 0) {
+    if (n & 1) r *= x;
+    x *= x;
+    n >>= 1;
+  }
+  return r;
 }
 
 }  // namespace
@@ -82,42 +42,81 @@ bool Superquadric::valid() const {
          in(eps2, 0.1, 2.0) && in(kx, -1.0, 1.0) && in(ky, -1.0, 1.0);
 }
 
-double inside_outside(const Superquadric& sq, const Eigen::Vector3d& p_part) {
-  const Untapered u = untaper(sq, p_part);
-  const LogTerms t = log_terms(sq, u.x, u.y, u.z);
-  return std::exp(std::min(t.log_f, 690.0));
+double SuperquadricMetric::Power::operator()(double x) const {
+  return n >= 0 ? integer_power(x, n) : std::pow(x, e);
+}
+
+SuperquadricMetric::SuperquadricMetric(const Superquadric& sq) : sq_(sq) {
+  const auto make = [](double e) {
+    Power p;
+    p.e = e;
+    const double r = std::round(e);
+    if (std::abs(e - r) < 1e-9 && r >= 0.0 && r <= 64.0) p.n = static_cast<int>(r);
+    return p;
+  };
+  p_xy_ = make(2.0 / sq.eps2);
+  p_a_ = make(sq.eps2 / sq.eps1);
+  p_z_ = make(2.0 / sq.eps1);
+  p_g_ = make(sq.eps1);
+}
+
+double SuperquadricMetric::value(const Eigen::Vector3d& p) const {
+  Eigen::Vector3d unused;
+  return value_and_gradient(p, unused);
+}
+
+double SuperquadricMetric::value_and_gradient(const Eigen::Vector3d& p,
+                                              Eigen::Vector3d& gradient) const {
+  gradient.setZero();
+  // Undo eq. 2.19-2.21: X = fx(z) x, Y = fy(z) y, Z = z.
+  const double fx_raw = 1.0 + sq_.kx / sq_.a3 * p.z();
+  const double fy_raw = 1.0 + sq_.ky / sq_.a3 * p.z();
+  const double fx = std::max(fx_raw, kMinTaperFactor);
+  const double fy = std::max(fy_raw, kMinTaperFactor);
+  const double x = p.x() / fx, y = p.y() / fy, z = p.z();
+  const double nx = std::abs(x) / sq_.a1, ny = std::abs(y) / sq_.a2, nz = std::abs(z) / sq_.a3;
+  const double s = std::max({nx, ny, nz});
+  if (!(s > 0.0)) return 0.0;  // the centre (or NaN input, which gives 0 rather than NaN)
+  if (!std::isfinite(s) || s > kMaxScale) return kMaxScale * kMaxScale;
+  // Eq. 2.15 on the scaled point: every term is in [0, 1], F' in [1, 1 + 2^(eps2/eps1)].
+  const double sx = nx / s, sy = ny / s, sz = nz / s;
+  const double ax = p_xy_(sx), ay = p_xy_(sy);
+  const double a = ax + ay;
+  const double u = a > 0.0 ? p_a_(a) : 0.0;
+  const double v = p_z_(sz);
+  const double f = u + v;
+  const double g = s * s * p_g_(f);  // eq. 5.1: G = F^eps1 = s^2 F'^eps1
+  // dG/dx = 2 G (u/F)(ax/A) / x and dG/dz = 2 G (v/F) / z, written with the scaled terms.
+  const double gx = (a > 0.0 && sx > kTinyRatio)
+                        ? sign_of(x) * 2.0 * g * (u / f) * (ax / a) / (sx * s * sq_.a1)
+                        : 0.0;
+  const double gy = (a > 0.0 && sy > kTinyRatio)
+                        ? sign_of(y) * 2.0 * g * (u / f) * (ay / a) / (sy * s * sq_.a2)
+                        : 0.0;
+  const double gz = sz > kTinyRatio ? sign_of(z) * 2.0 * g * (v / f) / (sz * s * sq_.a3) : 0.0;
+  // Chain rule through the inverse taper: x = X / fx(Z), dx/dZ = -x kx / (a3 fx).
+  const double dx_dz = fx_raw < kMinTaperFactor ? 0.0 : -x * sq_.kx / (sq_.a3 * fx);
+  const double dy_dz = fy_raw < kMinTaperFactor ? 0.0 : -y * sq_.ky / (sq_.a3 * fy);
+  gradient.x() = gx / fx;
+  gradient.y() = gy / fy;
+  gradient.z() = gz + gx * dx_dz + gy * dy_dz;
+  if (!gradient.allFinite()) gradient.setZero();
+  return g;
 }
 
 double metric(const Superquadric& sq, const Eigen::Vector3d& p_part) {
-  const Untapered u = untaper(sq, p_part);
-  const LogTerms t = log_terms(sq, u.x, u.y, u.z);
-  return safe_exp(sq.eps1 * t.log_f);
+  return SuperquadricMetric(sq).value(p_part);
 }
 
 double metric_and_gradient(const Superquadric& sq, const Eigen::Vector3d& p_part,
                            Eigen::Vector3d& gradient) {
-  const Untapered u = untaper(sq, p_part);
-  const LogTerms t = log_terms(sq, u.x, u.y, u.z);
-  const double log_g = sq.eps1 * t.log_f;
-  // dG/dx = 2 G w_u w_x / x with w_u = e^(u - lnF), w_x = e^(lx - lnA); dG/dz = 2 G w_v / z.
-  // Summed in the log domain so that huge G and tiny weights never meet as separate numbers.
-  const double log2 = std::log(2.0);
-  const double gx = sign_of(u.x) * safe_exp(log_g + log2 + (t.u - t.log_f) + (t.lx - t.log_a) -
-                                            std::log(t.nx * sq.a1));
-  const double gy = sign_of(u.y) * safe_exp(log_g + log2 + (t.u - t.log_f) + (t.ly - t.log_a) -
-                                            std::log(t.ny * sq.a2));
-  const double gz =
-      sign_of(u.z) * safe_exp(log_g + log2 + (t.v - t.log_f) - std::log(t.nz * sq.a3));
-  // Chain rule through the inverse taper: x = X / fx(Z), dx/dZ = -x kx / (a3 fx).
-  const double dx_dz = u.fx_clamped ? 0.0 : -u.x * sq.kx / (sq.a3 * u.fx);
-  const double dy_dz = u.fy_clamped ? 0.0 : -u.y * sq.ky / (sq.a3 * u.fy);
-  gradient.x() = gx / u.fx;
-  gradient.y() = gy / u.fy;
-  gradient.z() = gz + gx * dx_dz + gy * dy_dz;
-  for (int i = 0; i < 3; ++i) {
-    if (!std::isfinite(gradient[i])) gradient[i] = 0.0;
-  }
-  return safe_exp(log_g);
+  return SuperquadricMetric(sq).value_and_gradient(p_part, gradient);
+}
+
+double inside_outside(const Superquadric& sq, const Eigen::Vector3d& p_part) {
+  const double g = metric(sq, p_part);
+  // F = G^(1/eps1), computed through the log so it saturates instead of overflowing.
+  return std::exp(std::min(std::log(g) / sq.eps1, 690.0));
 }
 
 Eigen::Vector3d surface_point(const Superquadric& sq, double eta, double omega) {

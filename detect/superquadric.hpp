@@ -7,9 +7,9 @@
 //
 // F (eq. 2.15) is < 1 inside, 1 on the surface, > 1 outside (eq. 2.16-2.18). The fit metric is
 // G = F^eps1 (eq. 5.1): for eps2 = 1 it is the squared normalised radius, so G - 1 behaves like a
-// distance for every shape. Everything is evaluated in the log domain so that eps near 0.1
-// (exponents of 20) cannot overflow, and points on the axis, at the poles, at the centre or far
-// away give finite values and finite gradients.
+// distance for every shape (G grows like the squared distance far away). The evaluation is
+// scaled so that eps near 0.1 (exponents of 20) cannot overflow, and points on the axis, at the
+// poles, at the centre or far away give finite values and finite gradients.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -26,6 +26,28 @@ struct Superquadric {
   double max_size() const;
   // True when sizes are positive and finite, eps in [0.1, 2] and taper in [-1, 1].
   bool valid() const;
+};
+
+// Precomputed exponents of one part for fast repeated evaluation (the pose fit calls this per
+// point and iteration). Uses the homogeneity F(s p) = s^(2/eps1) F(p) of the untapered function:
+// the point is scaled so its largest normalised coordinate is 1, which keeps every power in
+// [0, 1] (no overflow for eps = 0.1), and integer exponents (eps = 0.1, 0.5, 1, 2) are
+// multiplied out instead of calling pow().
+class SuperquadricMetric {
+ public:
+  explicit SuperquadricMetric(const Superquadric& sq);
+  double value(const Eigen::Vector3d& p_part) const;
+  double value_and_gradient(const Eigen::Vector3d& p_part, Eigen::Vector3d& gradient) const;
+  const Superquadric& model() const { return sq_; }
+
+ private:
+  struct Power {
+    double e = 1.0;
+    int n = -1;  // >= 0: e is this integer
+    double operator()(double x) const;
+  };
+  Superquadric sq_;
+  Power p_xy_, p_a_, p_z_, p_g_;  // 2/eps2, eps2/eps1, 2/eps1, eps1
 };
 
 // G = F^eps1 (eq. 2.15 with tapering undone, raised to eps1 as in eq. 5.1) at a point given in

@@ -51,7 +51,8 @@ std::optional<double> intersect_superquadric(const Superquadric& sq,
   double lo = t_min;
   double hi = std::isfinite(t_max) ? t_max : std::numeric_limits<double>::max();
   if (!clip_to_bounds(box, o, d, lo, hi)) return std::nullopt;
-  const auto g = [&](double t) { return metric(sq, o + t * d); };
+  const SuperquadricMetric sqm(sq);
+  const auto g = [&](double t) { return sqm.value(o + t * d); };
   if (g(lo) <= 1.0) {
     // Starts inside: a ray leaving the part does not hit it from outside.
     if (lo > t_min) return lo;
@@ -108,7 +109,7 @@ std::optional<double> intersect_superquadric(const Superquadric& sq,
   const double dir_norm = d.norm();
   for (int i = 0; i < kMaxRootSteps && (t_in - t_out) * dir_norm > 1e-9; ++i) {
     Eigen::Vector3d grad;
-    const double gt = metric_and_gradient(sq, o + t * d, grad) - 1.0;
+    const double gt = sqm.value_and_gradient(o + t * d, grad) - 1.0;
     if (gt > 0.0) {
       t_out = t;
     } else {
