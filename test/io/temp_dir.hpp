@@ -30,9 +30,13 @@ class TempDir {
 
   std::filesystem::path write(std::string_view name, std::string_view bytes) const {
     const auto file = path(name);
-    std::ofstream out(file, std::ios::binary);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    write_to(file, bytes);
     return file;
+  }
+
+  static void write_to(const std::filesystem::path& file, std::string_view bytes) {
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   }
 
   static std::string read(const std::filesystem::path& file) {
