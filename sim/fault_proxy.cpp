@@ -82,6 +82,7 @@ void FaultProxy::run() {
   const auto drop_pipe = [&](std::list<Pipe>::iterator it, bool rst) {
     if (rst) {
       reset_socket(it->client), reset_socket(it->upstream), ++resets_;
+      last_reset_ns_ = hal::monotonic_now().count();
     } else {
       ::close(it->client), ::close(it->upstream);
     }

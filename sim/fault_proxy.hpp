@@ -39,6 +39,8 @@ class FaultProxy {
 
   int connections() const { return connections_; }
   std::uint64_t resets() const { return resets_; }
+  // CLOCK_MONOTONIC instant of the last reset done by reset_next_request().
+  hal::Timestamp last_reset_at() const { return hal::Timestamp(last_reset_ns_.load()); }
 
  private:
   void run();
@@ -55,6 +57,7 @@ class FaultProxy {
   std::atomic<bool> listening_{true};
   std::atomic<int> connections_{0};
   std::atomic<std::uint64_t> resets_{0};
+  std::atomic<long long> last_reset_ns_{0};
   std::atomic<bool> running_{false};
   std::thread thread_;
 };

@@ -91,34 +91,34 @@ void FhppAxis::schedule_retry(hal::Timestamp now) {
 }
 
 void FhppAxis::cycle() {
-  const hal::Timestamp now = clock_->now();
-  if (now < retry_at_) return;
-  if (!link_.is_open()) {
-    const LinkResult r = link_.open();
-    if (!r.ok()) {
+  // A connection lost mid-request (reset, closed) fails at once: retry within the same slot, so a
+  // reset costs one reconnect rather than a period. Timeouts have used up their slot already.
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    if (clock_->now() < retry_at_) return;
+    if (!link_.is_open()) {
+      const LinkResult r = link_.open();
       std::lock_guard lock(mutex_);
-      report(hal::DeviceState::kDisconnected, r.message + " (retrying with back-off)");
-      schedule_retry(clock_->now());
-      return;
+      if (!r.ok()) {
+        report(hal::DeviceState::kDisconnected, r.message + " (retrying with back-off)");
+        schedule_retry(clock_->now());
+        return;
+      }
+      if (ever_connected_) ++health_.counters.reconnects;
+      ever_connected_ = true;
+      connected_ = true;
+      spdlog::info("{}: connected to {}", config_.name, link_.endpoint());
     }
-    std::lock_guard lock(mutex_);
-    if (ever_connected_) ++health_.counters.reconnects;
-    ever_connected_ = true;
-    connected_ = true;
-    spdlog::info("{}: connected to {}", config_.name, link_.endpoint());
-  }
-  fhpp::OutputTelegram out;
-  {
-    std::lock_guard lock(mutex_);
-    out = commander_.next_output();
-  }
-  fhpp::Registers in{};
-  const LinkResult r = link_.exchange(fhpp::encode(out, config_.byte_order), in);
-  if (!r.ok()) {
+    fhpp::OutputTelegram out;
+    {
+      std::lock_guard lock(mutex_);
+      out = commander_.next_output();
+    }
+    fhpp::Registers in{};
+    const LinkResult r = link_.exchange(fhpp::encode(out, config_.byte_order), in);
+    if (r.ok()) return on_reply(r, *fhpp::decode_input(in, config_.byte_order));
     on_link_error(r);
-    return;
+    if (r.error != LinkError::kConnectionLost) return;
   }
-  on_reply(r, *fhpp::decode_input(in, config_.byte_order));
 }
 
 void FhppAxis::on_link_error(const LinkResult& r) {
