@@ -98,6 +98,7 @@ void FhppAxis::cycle() {
     if (!link_.is_open()) {
       const LinkResult r = link_.open();
       std::lock_guard lock(mutex_);
+      ++stats_.connect_attempts;
       if (!r.ok()) {
         report(hal::DeviceState::kDisconnected, r.message + " (retrying with back-off)");
         schedule_retry(clock_->now());

@@ -44,6 +44,7 @@ struct FhppAxisConfig {
 // Driver-specific counters beside hal::StreamCounters.
 struct FhppAxisStats {
   std::uint64_t exchanges = 0;            // successful telegram exchanges
+  std::uint64_t connect_attempts = 0;     // link opens tried (the back-off spaces them out)
   std::uint64_t late_round_trips = 0;     // samples marked invalid: round trip over the limit
   std::uint64_t implausible = 0;          // samples marked invalid: position implausible
   std::uint64_t bad_replies = 0;          // late/foreign replies caught by transaction id or length

@@ -40,6 +40,33 @@ TEST(FhppAxisFaults, ConnectionRefusedIsRetriedUntilTheDeviceListens) {
   EXPECT_TRUE(rig.axis->health().message.empty());
 }
 
+TEST(FhppAxisFaults, ConnectAttemptsBackOffExponentiallyUpToTheCap) {
+  ModbusRig rig(true);
+  rig.proxy->set_listening(false);
+  rig.make_axis();  // 5 ms period; back-off 5 ms doubling to 80 ms
+  ASSERT_TRUE(rig.axis->start().ok);
+  std::this_thread::sleep_for(400ms);
+  // Without back-off 400 ms would be 80 attempts; with it they start at 0, 5, 10, 20, 40, 80,
+  // 160, 240, 320 and 400 ms.
+  const auto attempts = rig.axis->stats().connect_attempts;
+  EXPECT_GE(attempts, 4u);
+  EXPECT_LE(attempts, 14u);  // 10 on an idle machine
+  rig.proxy->set_listening(true);
+  EXPECT_TRUE(rig.polls_again());  // at most one cap (80 ms) later
+}
+
+TEST(FhppAxisFaults, AWrongUnitIdIsAConfigurationError) {
+  ModbusRig rig(false);
+  rig.config.link.unit_id = 7;  // the drive is unit 1
+  rig.make_axis();
+  ASSERT_TRUE(rig.axis->start().ok);
+  ASSERT_TRUE(wait_until([&] { return rig.axis->health().state == hal::DeviceState::kFault; }, 2s));
+  EXPECT_NE(rig.axis->health().message.find("configuration error: exception 11"), std::string::npos)
+      << rig.axis->health().message;
+  EXPECT_NE(rig.axis->health().message.find("from unit 7"), std::string::npos);
+  EXPECT_EQ(rig.axis->health().counters.reconnects, 0u);
+}
+
 TEST(FhppAxisFaults, LateRepliesAreNeverTakenForLaterOnes) {
   ModbusRig rig(true);
   rig.start_streaming();
