@@ -1,0 +1,317 @@
+#include "detect/object_detector.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <thread>
+
+#include "detect/object_hypotheses.hpp"
+#include "detect/object_vote.hpp"
+
+namespace rangefit {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+bool model_ok(const ObjectModel& model) {
+  if (model.parts.empty()) return false;
+  for (const ModelPart& p : model.parts) {
+    if (!p.shape.valid()) return false;
+  }
+  for (const PartLink& l : model.links) {
+    if (l.first >= model.parts.size() || l.second >= model.parts.size() || l.first == l.second ||
+        !std::isfinite(l.angle_rad) || !std::isfinite(l.distance_mm)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool options_ok(const ObjectDetectOptions& o) {
+  return o.hypotheses >= 1 && o.trials >= 1 && o.sample_points >= 6 && o.iterations >= 1 &&
+         o.init_iterations >= 1 && o.refine_rounds >= 0 && o.gamma > 0.0 && o.gamma < 1.0 &&
+         o.neighbourhood_factor > 0.0 && o.instances >= 1 && o.batch >= 1 && o.confirmations >= 1 &&
+         o.refine_trim >= 0.0;
+}
+
+// Same physical pose: the centres agree to 5% of the smallest size.
+bool same_place(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, const Superquadric& sq) {
+  return (a.translation() - b.translation()).norm() < 0.05 * sq.min_size();
+}
+
+// Single-part vote over the evaluated hypotheses: index of the lowest rank sum (or smallest M).
+std::vector<int> part_rank_sums(const std::vector<PartHypothesis>& hyps, Selection selection) {
+  std::vector<double> m, in, s;
+  for (const PartHypothesis& h : hyps) {
+    m.push_back(h.scores.measure);
+    in.push_back(static_cast<double>(h.scores.interior));
+    s.push_back(static_cast<double>(h.scores.surface));
+  }
+  const std::vector<int> rm = ranks(m), ri = ranks(in), rs = ranks(s, true);
+  std::vector<int> sum(hyps.size());
+  for (std::size_t i = 0; i < hyps.size(); ++i) {
+    sum[i] = selection == Selection::kMeasure ? rm[i] : rm[i] + ri[i] + rs[i];
+  }
+  return sum;
+}
+
+// Runs hypotheses [begin, end) of one part on the worker threads; results by index.
+void run_batch(const HypothesisContext& ctx, const Superquadric& part, std::size_t part_index,
+               std::size_t begin, std::size_t end, int threads, std::vector<PartHypothesis>& out) {
+  const auto work = [&](std::size_t first, std::size_t step) {
+    for (std::size_t h = first; h < end; h += step) {
+      out[h] = generate_hypothesis(ctx, part, mix_seed(ctx.options->seed, part_index, h));
+    }
+  };
+  const std::size_t n = end - begin;
+  const std::size_t workers = std::min<std::size_t>(n, static_cast<std::size_t>(threads));
+  if (workers <= 1) {
+    work(begin, 1);
+    return;
+  }
+  std::vector<std::thread> pool;
+  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(work, begin + w, workers);
+  work(begin, workers);
+  for (std::thread& t : pool) t.join();
+}
+
+// Hypotheses of one part, stopping early (single-part models) once the vote leader has been
+// found again by `confirmations` hypotheses. Batches are fixed, so the stop is deterministic.
+std::vector<PartHypothesis> search_part(const HypothesisContext& ctx, const Superquadric& part,
+                                        std::size_t part_index, bool allow_early_stop) {
+  const ObjectDetectOptions& o = *ctx.options;
+  const int threads = o.threads > 0
+                          ? o.threads
+                          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const std::size_t m = static_cast<std::size_t>(o.hypotheses);
+  std::vector<PartHypothesis> all(m);
+  std::size_t done = 0;
+  while (done < m) {
+    const std::size_t end = std::min(m, done + static_cast<std::size_t>(o.batch));
+    run_batch(ctx, part, part_index, done, end, threads, all);
+    done = end;
+    if (!allow_early_stop || done >= m) continue;
+    std::vector<PartHypothesis> valid;
+    for (std::size_t i = 0; i < done; ++i) {
+      if (all[i].valid) valid.push_back(all[i]);
+    }
+    if (valid.empty()) continue;
+    const std::vector<int> sums = part_rank_sums(valid, o.selection);
+    const std::size_t lead =
+        static_cast<std::size_t>(std::min_element(sums.begin(), sums.end()) - sums.begin());
+    int agree = 0;
+    for (const PartHypothesis& h : valid) {
+      if (same_place(h.T_world_part, valid[lead].T_world_part, part)) ++agree;
+    }
+    if (agree >= o.confirmations) break;
+  }
+  all.resize(done);
+  return all;
+}
+
+// Angle between two z-axes, folded to [0, pi/2]: symmetric parts have no preferred axis sign.
+double axis_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::acos(std::clamp(std::abs(a.normalized().dot(b.normalized())), 0.0, 1.0));
+}
+
+double folded(double angle) {
+  const double a = std::fmod(std::abs(angle), std::numbers::pi);
+  return std::min(a, std::numbers::pi - a);
+}
+
+struct Combination {
+  std::vector<std::size_t> pick;  // per part, index into its valid hypotheses
+  std::vector<double> a, d;       // per link, eq. 5.5 and 5.6
+  int rank_sum = 0;
+};
+
+// All combinations of one valid hypothesis per part (the compound vote of 5.1.3). The parts'
+// criteria and the links' A and D are all ranked over the combinations.
+std::vector<Combination> vote(const ObjectModel& model,
+                              const std::vector<std::vector<PartHypothesis>>& hyps,
+                              Selection selection) {
+  std::vector<Combination> combos;
+  std::vector<std::size_t> pick(hyps.size(), 0);
+  for (const auto& h : hyps) {
+    if (h.empty()) return combos;
+  }
+  while (true) {
+    Combination c;
+    c.pick = pick;
+    for (const PartLink& l : model.links) {
+      const Eigen::Isometry3d& ti = hyps[l.first][pick[l.first]].T_world_part;
+      const Eigen::Isometry3d& tj = hyps[l.second][pick[l.second]].T_world_part;
+      c.a.push_back(
+          std::abs(folded(l.angle_rad) - axis_angle(ti.linear().col(2), tj.linear().col(2))));
+      c.d.push_back(std::abs(l.distance_mm - (ti.translation() - tj.translation()).norm()));
+    }
+    combos.push_back(std::move(c));
+    std::size_t p = 0;
+    while (p < pick.size() && ++pick[p] == hyps[p].size()) pick[p++] = 0;
+    if (p == pick.size()) break;
+  }
+  const auto add_ranks = [&](const std::vector<double>& v, bool larger_better) {
+    const std::vector<int> r = ranks(v, larger_better);
+    for (std::size_t i = 0; i < combos.size(); ++i) combos[i].rank_sum += r[i];
+  };
+  for (std::size_t p = 0; p < hyps.size(); ++p) {
+    std::vector<double> m, in, s;
+    for (const Combination& c : combos) {
+      const PartScores& sc = hyps[p][c.pick[p]].scores;
+      m.push_back(sc.measure);
+      in.push_back(static_cast<double>(sc.interior));
+      s.push_back(static_cast<double>(sc.surface));
+    }
+    add_ranks(m, false);
+    if (selection == Selection::kRankedVote) {
+      add_ranks(in, false);
+      add_ranks(s, true);
+    }
+  }
+  for (std::size_t l = 0; l < model.links.size(); ++l) {
+    std::vector<double> a, d;
+    for (const Combination& c : combos) a.push_back(c.a[l]), d.push_back(c.d[l]);
+    add_ranks(a, false);
+    add_ranks(d, false);
+  }
+  std::stable_sort(combos.begin(), combos.end(), [](const Combination& x, const Combination& y) {
+    return x.rank_sum < y.rank_sum;
+  });
+  return combos;
+}
+
+// Keeps at most `per_part` hypotheses of each part (best own rank sum first) so that the
+// combinations of a compound model stay bounded.
+std::vector<PartHypothesis> best_of(std::vector<PartHypothesis> valid, Selection selection,
+                                    std::size_t per_part) {
+  if (valid.size() <= per_part) return valid;
+  const std::vector<int> sums = part_rank_sums(valid, selection);
+  std::vector<std::size_t> order(valid.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return sums[a] < sums[b]; });
+  std::vector<PartHypothesis> out;
+  for (std::size_t i = 0; i < per_part; ++i) out.push_back(valid[order[i]]);
+  return out;
+}
+
+}  // namespace
+
+const char* to_string(DetectReason reason) {
+  switch (reason) {
+    case DetectReason::kFound:
+      return "found";
+    case DetectReason::kEmptyCloud:
+      return "empty cloud";
+    case DetectReason::kInvalidModel:
+      return "invalid model";
+    case DetectReason::kInvalidOptions:
+      return "invalid options";
+    case DetectReason::kNoHypothesis:
+      return "no hypothesis";
+  }
+  return "unknown";
+}
+
+ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen::Vector3d> points,
+                                 const ObjectDetectOptions& options) {
+  const Clock::time_point t_start = Clock::now();
+  ObjectDetectResult result;
+  if (!model_ok(model)) {
+    result.reason = DetectReason::kInvalidModel;
+    return result;
+  }
+  if (!options_ok(options)) {
+    result.reason = DetectReason::kInvalidOptions;
+    return result;
+  }
+  // Non-finite points cannot be fitted; drop them rather than fail.
+  std::vector<Eigen::Vector3d> finite;
+  finite.reserve(points.size());
+  for (const Eigen::Vector3d& p : points) {
+    if (p.allFinite()) finite.push_back(p);
+  }
+  if (finite.empty()) {
+    result.reason = DetectReason::kEmptyCloud;
+    return result;
+  }
+  // 5.1.1: dominant plane removal.
+  Clock::time_point t0 = Clock::now();
+  std::vector<Eigen::Vector3d> cloud;
+  if (options.remove_plane) {
+    result.plane = remove_dominant_plane(finite, options.plane);
+    cloud.reserve(result.plane.remaining.size());
+    for (std::uint32_t i : result.plane.remaining) cloud.push_back(finite[i]);
+  } else {
+    cloud = std::move(finite);
+  }
+  result.time.plane_ms = ms_since(t0);
+  if (cloud.empty()) {
+    result.reason = DetectReason::kEmptyCloud;
+    result.time.total_ms = ms_since(t_start);
+    return result;
+  }
+  t0 = Clock::now();
+  const KdTree tree(cloud);
+  result.time.search_index_ms = ms_since(t0);
+
+  // 5.1.2: m hypotheses per part.
+  t0 = Clock::now();
+  const HypothesisContext ctx{cloud, &tree, &options};
+  const bool single = model.parts.size() == 1;
+  std::vector<std::vector<PartHypothesis>> hyps(model.parts.size());
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    std::vector<PartHypothesis> all =
+        search_part(ctx, model.parts[p].shape, p, single && options.early_stop);
+    result.hypotheses_evaluated += static_cast<int>(all.size());
+    for (PartHypothesis& h : all) {
+      if (h.valid) hyps[p].push_back(std::move(h));
+    }
+    if (!single) hyps[p] = best_of(std::move(hyps[p]), options.selection, 40);
+  }
+  result.time.hypotheses_ms = ms_since(t0);
+
+  // Selection: ranked vote (5.1.2) extended by the links (5.1.3), then K distinct instances.
+  t0 = Clock::now();
+  const std::vector<Combination> combos = vote(model, hyps, options.selection);
+  for (const Combination& c : combos) {
+    if (static_cast<int>(result.instances.size()) >= options.instances) break;
+    bool duplicate = false;
+    for (const DetectedInstance& prev : result.instances) {
+      for (std::size_t p = 0; p < model.parts.size() && !duplicate; ++p) {
+        const Eigen::Vector3d centre = hyps[p][c.pick[p]].T_world_part.translation();
+        for (const DetectedPart& q : prev.parts) {
+          if ((q.center() - centre).norm() < 0.5 * model.parts[p].shape.min_size()) {
+            duplicate = true;
+          }
+        }
+      }
+    }
+    if (duplicate) continue;
+    DetectedInstance inst;
+    inst.rank_sum = c.rank_sum;
+    inst.link_angle_error_rad = c.a;
+    inst.link_distance_error_mm = c.d;
+    for (std::size_t p = 0; p < model.parts.size(); ++p) {
+      const PartHypothesis& h = hyps[p][c.pick[p]];
+      DetectedPart part;
+      part.name = model.parts[p].name;
+      part.T_world_part = h.T_world_part;
+      part.scores = h.scores;
+      part.scores.rank_sum = c.rank_sum;
+      inst.parts.push_back(std::move(part));
+    }
+    result.instances.push_back(std::move(inst));
+  }
+  result.time.vote_ms = ms_since(t0);
+  result.reason = result.instances.empty() ? DetectReason::kNoHypothesis : DetectReason::kFound;
+  result.time.total_ms = ms_since(t_start);
+  return result;
+}
+
+}  // namespace rangefit

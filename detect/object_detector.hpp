@@ -1,0 +1,109 @@
+#pragma once
+// Superquadric object detection in a single-view scan (thesis ch. 5): dominant plane removal,
+// m pose hypotheses per part, each the best of n RANSAC trials refined on the full-resolution
+// neighbourhood, verified by a ranked vote over M, I and S (eq. 5.2-5.4) and, for compound
+// models, over the link deviations A and D (eq. 5.5-5.6).
+//
+// Beyond the thesis: hypotheses run on all cores in fixed batches, each with its own seed, so
+// the result depends only on options.seed and not on thread timing; the search stops early once
+// the leading hypothesis has been found again by independent hypotheses; and several instances
+// of the object can be returned without duplicates.
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "detect/object_model.hpp"
+#include "detect/plane_removal.hpp"
+
+namespace rangefit {
+
+// How the final pose is chosen from the hypotheses (thesis 5.2.2, table 5.5).
+enum class Selection {
+  kMeasure,     // smallest M only (methods A and B)
+  kRankedVote,  // lowest rank sum over M, I and S (methods C and D, and ours)
+};
+
+struct ObjectDetectOptions {
+  int hypotheses = 10;       // m per part
+  int trials = 10;           // n RANSAC trials per hypothesis
+  int sample_points = 30;    // points of each RANSAC sample (thesis: 20-50)
+  int iterations = 20;       // LM iterations of each fit
+  int init_iterations = 10;  // LM iterations of each of the moment-direction fits (5.1.2)
+  int refine_rounds = 5;     // at most this many refinements "until M stops improving"
+  std::size_t max_refine_points = 1500;  // even subsample of the neighbourhood per refinement
+  bool refine_each_trial = false;        // method B/D: refine every trial, not only the best
+  // Refinement uses only neighbourhood points with G < 1 + refine_trim (clutter and the remains of
+  // other objects stay out of the least squares); 0 uses all of them as the thesis does.
+  double refine_trim = 0.6;
+  double gamma = 0.2;                 // surface band of eq. 5.3-5.4
+  double neighbourhood_factor = 1.2;  // r = factor * max(a) for refinement and verification
+  Selection selection = Selection::kRankedVote;
+  int instances = 1;  // K instances wanted, best first, no two sharing a part position
+  bool early_stop = true;
+  int confirmations = 3;  // early stop: hypotheses agreeing with the leader (single-part models)
+  int batch = 4;          // hypotheses per parallel batch (fixed: results do not depend on threads)
+  int threads = 0;        // 0: all cores
+  bool remove_plane = true;
+  PlaneRemovalOptions plane;
+  std::optional<Eigen::Vector3d> viewpoint;  // sensor position, when known (speeds up 5.1.2)
+  std::uint64_t seed = 1;
+};
+
+enum class DetectReason {
+  kFound,
+  kEmptyCloud,      // no points (or none left after the plane removal)
+  kInvalidModel,    // no parts, invalid part parameters or links to missing parts
+  kInvalidOptions,  // non-positive counts or tolerances
+  kNoHypothesis,    // no RANSAC sample had enough neighbours to fit
+};
+
+const char* to_string(DetectReason reason);
+
+struct PartScores {
+  double measure = 0.0;      // M, eq. 5.2
+  std::size_t interior = 0;  // I, eq. 5.3
+  std::size_t surface = 0;   // S, eq. 5.4
+  int rank_sum = 0;          // sum of this part's ranks in the vote
+};
+
+struct DetectedPart {
+  std::string name;
+  Eigen::Isometry3d T_world_part = Eigen::Isometry3d::Identity();
+  PartScores scores;
+  Eigen::Vector3d center() const { return T_world_part.translation(); }
+  Eigen::Vector3d z_axis() const { return T_world_part.linear().col(2); }
+  Eigen::Quaterniond rotation() const { return Eigen::Quaterniond(T_world_part.linear()); }
+};
+
+struct DetectedInstance {
+  std::vector<DetectedPart> parts;             // in model order
+  int rank_sum = 0;                            // total of the vote (lower is better)
+  std::vector<double> link_angle_error_rad;    // A per link, eq. 5.5
+  std::vector<double> link_distance_error_mm;  // D per link, eq. 5.6
+};
+
+struct StageTimes {
+  double plane_ms = 0.0;
+  double search_index_ms = 0.0;
+  double hypotheses_ms = 0.0;
+  double vote_ms = 0.0;
+  double total_ms = 0.0;
+};
+
+struct ObjectDetectResult {
+  DetectReason reason = DetectReason::kEmptyCloud;
+  std::vector<DetectedInstance> instances;  // best first; empty unless found()
+  PlaneRemovalResult plane;                 // the dominant plane (removed() tells if it was)
+  int hypotheses_evaluated = 0;             // over all parts
+  StageTimes time;
+  bool found() const { return reason == DetectReason::kFound && !instances.empty(); }
+};
+
+ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen::Vector3d> points,
+                                 const ObjectDetectOptions& options = {});
+
+}  // namespace rangefit

@@ -1,0 +1,157 @@
+#include "detect/object_hypotheses.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "detect/pose_fit.hpp"
+
+namespace rangefit {
+namespace {
+
+constexpr std::size_t kMinPatchPoints = 8;
+
+std::uint64_t splitmix64(std::uint64_t& state) {
+  std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+// Uniform index in [0, n) from the generator state.
+std::size_t uniform_index(std::uint64_t& state, std::size_t n) {
+  return static_cast<std::size_t>(splitmix64(state) % static_cast<std::uint64_t>(n));
+}
+
+double verification_radius(const ObjectDetectOptions& o, const Superquadric& part) {
+  return o.neighbourhood_factor * part.max_size();
+}
+
+// Even subsample of the neighbourhood (capped), trimmed to points near or inside the surface.
+std::vector<Eigen::Vector3d> refinement_points(const HypothesisContext& ctx,
+                                               const Superquadric& part, const Eigen::Isometry3d& T,
+                                               std::vector<std::uint32_t>& scratch) {
+  const ObjectDetectOptions& o = *ctx.options;
+  ctx.tree->radius_search(T.translation(), verification_radius(o, part), scratch);
+  std::sort(scratch.begin(), scratch.end());  // tree order is not part of the contract
+  const std::size_t cap = std::max<std::size_t>(o.max_refine_points, 16);
+  const double stride =
+      scratch.size() > cap ? static_cast<double>(scratch.size()) / static_cast<double>(cap) : 1.0;
+  const SuperquadricMetric m(part);
+  const Eigen::Isometry3d inv = T.inverse();
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(std::min(cap, scratch.size()));
+  for (double f = 0.0; f < static_cast<double>(scratch.size()); f += stride) {
+    const Eigen::Vector3d& p = ctx.points[scratch[static_cast<std::size_t>(f)]];
+    if (o.refine_trim > 0.0 && m.value(inv * p) >= 1.0 + o.refine_trim) continue;
+    out.push_back(p);
+  }
+  return out;
+}
+
+// Iterative refinement on the full-resolution neighbourhood until M stops improving (5.1.2).
+Eigen::Isometry3d refine(const HypothesisContext& ctx, const Superquadric& part,
+                         Eigen::Isometry3d T, std::vector<std::uint32_t>& scratch) {
+  const ObjectDetectOptions& o = *ctx.options;
+  PoseFitOptions fit;
+  fit.max_iterations = o.iterations;
+  for (int round = 0; round < o.refine_rounds; ++round) {
+    const std::vector<Eigen::Vector3d> sel = refinement_points(ctx, part, T, scratch);
+    if (sel.size() < kMinPatchPoints) break;
+    const double before = measure_of_fit(part, T, sel);
+    const PoseFitResult r = fit_pose(part, sel, T, fit);
+    if (!r.ok() || !(r.measure < before * (1.0 - 1e-3))) break;
+    const double moved = (r.T_world_part.translation() - T.translation()).norm();
+    T = r.T_world_part;
+    if (moved < 1e-3 * part.min_size()) break;
+  }
+  return T;
+}
+
+}  // namespace
+
+std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t a, std::uint64_t b) {
+  std::uint64_t s = seed;
+  s ^= splitmix64(s) + a * 0x632BE59BD9B4E019ull;
+  s ^= splitmix64(s) + b * 0x8CB92BA72F3D8DD7ull;
+  splitmix64(s);
+  return s;
+}
+
+PartScores verify_pose(const HypothesisContext& ctx, const Superquadric& part,
+                       const Eigen::Isometry3d& T) {
+  const ObjectDetectOptions& o = *ctx.options;
+  PartScores s;
+  std::vector<std::uint32_t> nbr;
+  ctx.tree->radius_search(T.translation(), verification_radius(o, part), nbr);
+  const SuperquadricMetric m(part);
+  const Eigen::Isometry3d inv = T.inverse();
+  const double trim =
+      o.refine_trim > 0.0 ? 1.0 + o.refine_trim : std::numeric_limits<double>::max();
+  double sum_sq = 0.0;
+  std::size_t used = 0;
+  for (std::uint32_t i : nbr) {
+    const double g = m.value(inv * ctx.points[i]);
+    if (g < 1.0 - o.gamma) {
+      ++s.interior;  // eq. 5.3
+    } else if (g < 1.0 + o.gamma) {
+      ++s.surface;  // eq. 5.4
+    }
+    if (g < trim) {
+      sum_sq += (g - 1.0) * (g - 1.0);
+      ++used;
+    }
+  }
+  // Eq. 5.2 over the points the refinement fitted (all of them without trimming).
+  s.measure = used > 0 ? std::sqrt(sum_sq / static_cast<double>(used))
+                       : std::numeric_limits<double>::infinity();
+  return s;
+}
+
+PartHypothesis generate_hypothesis(const HypothesisContext& ctx, const Superquadric& part,
+                                   std::uint64_t seed) {
+  const ObjectDetectOptions& o = *ctx.options;
+  PartHypothesis best;
+  if (ctx.points.empty()) return best;
+  std::uint64_t state = seed;
+  std::vector<std::uint32_t> nbr;
+  std::vector<Eigen::Vector3d> sample;
+  MomentInitOptions init;
+  init.short_iterations = o.init_iterations;
+  init.full_iterations = o.iterations;
+  init.viewpoint = o.viewpoint;
+  double best_measure = std::numeric_limits<double>::infinity();
+  for (int trial = 0; trial < o.trials; ++trial) {
+    // A random seed point and a random patch within the smallest size parameter (5.1.2).
+    const Eigen::Vector3d& c = ctx.points[uniform_index(state, ctx.points.size())];
+    ctx.tree->radius_search(c, part.min_size(), nbr);
+    if (nbr.size() < kMinPatchPoints) continue;
+    std::sort(nbr.begin(), nbr.end());
+    const std::size_t want = std::min(nbr.size(), static_cast<std::size_t>(o.sample_points));
+    sample.clear();
+    for (std::size_t i = 0; i < want; ++i) {  // partial Fisher-Yates
+      std::swap(nbr[i], nbr[i + uniform_index(state, nbr.size() - i)]);
+      sample.push_back(ctx.points[nbr[i]]);
+    }
+    const PoseFitResult fit = fit_pose_from_moments(part, sample, init);
+    if (!fit.ok()) continue;
+    Eigen::Isometry3d T = fit.T_world_part;
+    double measure = fit.measure;
+    if (o.refine_each_trial) {
+      T = refine(ctx, part, T, nbr);
+      measure = verify_pose(ctx, part, T).measure;
+    }
+    if (measure < best_measure) {
+      best_measure = measure;
+      best.valid = true;
+      best.T_world_part = T;
+    }
+  }
+  if (!best.valid) return best;
+  if (!o.refine_each_trial) best.T_world_part = refine(ctx, part, best.T_world_part, nbr);
+  best.scores = verify_pose(ctx, part, best.T_world_part);
+  return best;
+}
+
+}  // namespace rangefit

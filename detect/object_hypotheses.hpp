@@ -1,0 +1,40 @@
+#pragma once
+// One pose hypothesis of one superquadric part (thesis 5.1.2, "Hypotheses"): n RANSAC trials
+// on small random patches, the best (smallest M) refined on the full-resolution neighbourhood,
+// then scored for the verification (I and S, eq. 5.3-5.4). Used by detect_object().
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <span>
+
+#include "detect/kdtree.hpp"
+#include "detect/object_detector.hpp"
+#include "detect/superquadric.hpp"
+
+namespace rangefit {
+
+struct PartHypothesis {
+  bool valid = false;  // false: no trial found enough neighbours
+  Eigen::Isometry3d T_world_part = Eigen::Isometry3d::Identity();
+  PartScores scores;  // M, I, S (rank_sum filled by the vote)
+};
+
+// Everything a hypothesis needs to read; shared, read-only, by all worker threads.
+struct HypothesisContext {
+  std::span<const Eigen::Vector3d> points;  // the cloud after plane removal
+  const KdTree* tree = nullptr;             // over `points`
+  const ObjectDetectOptions* options = nullptr;
+};
+
+// Deterministic: the same context, part and seed give the same hypothesis.
+PartHypothesis generate_hypothesis(const HypothesisContext& ctx, const Superquadric& part,
+                                   std::uint64_t seed);
+
+// M over the refinement selection, I and S over the neighbourhood within the verification radius.
+PartScores verify_pose(const HypothesisContext& ctx, const Superquadric& part,
+                       const Eigen::Isometry3d& T_world_part);
+
+// splitmix64: seeds per hypothesis from (seed, part, index), and the samplers' generator.
+std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t a, std::uint64_t b);
+
+}  // namespace rangefit
