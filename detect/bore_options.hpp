@@ -1,0 +1,54 @@
+#pragma once
+// Inputs of the bore detection (thesis chapter 4): the CAD prior and every step's settings, with
+// the thesis's values as defaults except where a measured improvement is marked "beyond".
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+
+#include "detect/cylinder_lsf.hpp"
+#include "detect/cylinder_rsf.hpp"
+
+namespace rangefit {
+
+// The expected bore from the CAD model, in the cloud's frame.
+struct BorePrior {
+  Eigen::Vector3d entrance = Eigen::Vector3d::Zero();  // expected entrance point, mm
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();     // expected axis (either sign)
+  double radius = 0.0;                                 // expected radius, mm
+  // Normal of the surface around the bore; nullopt: the axis (a perpendicular bore).
+  std::optional<Eigen::Vector3d> plane_normal;
+};
+
+struct BoreOptions {
+  // 4.1.1 region of interest and normals.
+  double roi_radius_factor = 2.0;  // keep points within this * radius of the expected entrance
+  double normal_keep = 1.0;        // share of ROI points that get a normal (thesis: 0.2)
+  double normal_radius = 2.0;      // R, mm
+  double normal_radius_max_share = 0.4;  // beyond: R at most this share of the CAD radius
+  double max_centroid_offset = 0.1;      // eq. 4.4, share of R
+  int min_neighbours = 6;
+  // Normal orientation toward the sensor: position, else direction; neither: the plane normal.
+  std::optional<Eigen::Vector3d> view_dir;
+  std::optional<Eigen::Vector3d> sensor_position;
+  // 4.1.2 Gaussian-image segmentation.
+  double plane_angle_deg = 5.0;  // alpha < this to the plane normal (eq. 4.5)
+  double wall_angle_deg = 5.0;   // |90 deg - beta| < this to the axis (eq. 4.6)
+  double wall_band = 0.5;  // beyond: wall points beyond (1 + this) * radius of the CAD axis drop
+  int min_plane_points = 20;
+  int min_wall_points = 20;
+  // 4.1.3 sequential cylinder fit.
+  RsfOptions rsf;
+  // 4.1.4 notches: wall points farther than this * r from the axis are dropped, then refit.
+  double notch_ratio = 1.03;
+  // Beyond the thesis: robust plane fit (drop points beyond this many rms, refit once).
+  double plane_inlier_sigmas = 3.0;
+  // Beyond the thesis: final geometric Levenberg-Marquardt fit on the wall points within
+  // refine_band of the RSF cylinder.
+  bool refine = true;
+  double refine_band = 0.5;  // mm
+  CylinderLsfOptions lsf;
+  std::uint64_t seed = 1;
+};
+
+}  // namespace rangefit

@@ -1,0 +1,55 @@
+#pragma once
+// Output of the bore detection: found or why not, the pose, and counts and times per stage.
+
+#include <Eigen/Core>
+#include <string_view>
+
+namespace rangefit {
+
+enum class BoreReason {
+  kFound,
+  kBadPrior,             // NaN/Inf or zero-length prior values, radius <= 0
+  kEmptyRoi,             // no finite point within the region of interest
+  kDegenerateNormals,    // no point passed the normal estimation (eq. 4.4)
+  kNoPlane,              // too few plane points, or they do not define a plane
+  kTooFewWallPoints,     // too few wall points after segmentation or the notch filter
+  kFitFailed,            // the cylinder fit found no axis or radius
+  kAxisParallelToPlane,  // the fitted axis does not cross the fitted plane
+};
+std::string_view to_string(BoreReason r);
+
+struct BoreCounts {
+  std::size_t input = 0;           // points in the cloud
+  std::size_t non_finite = 0;      // NaN/Inf points skipped
+  std::size_t roi = 0;             // points in the region of interest
+  std::size_t normal_queries = 0;  // after sub-sampling
+  std::size_t normals = 0;         // normals kept by eq. 4.4
+  std::size_t plane = 0;           // plane points (eq. 4.5), before the robust refit
+  std::size_t wall = 0;            // wall points (eq. 4.6)
+  std::size_t wall_final = 0;      // wall points of the last cylinder fit
+  std::size_t refine_inliers = 0;
+  int axis_pairs = 0;  // RSF samples accepted (last fit)
+  int triangles = 0;
+};
+
+// Milliseconds per stage (steady clock).
+struct BoreTimes {
+  double roi = 0, normals = 0, segmentation = 0, rsf = 0, refine = 0, entrance = 0, total = 0;
+};
+
+struct BoreResult {
+  bool found = false;
+  BoreReason reason = BoreReason::kFitFailed;
+  Eigen::Vector3d entrance = Eigen::Vector3d::Zero();  // axis meets the entrance plane, mm
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();     // unit, out of the bore toward the sensor
+  double radius = 0.0;                                 // mm
+  Eigen::Vector3d plane_normal = Eigen::Vector3d::UnitZ();  // fitted entrance plane, unit
+  double rsf_radius = 0.0;                                  // radius before the refinement, mm
+  Eigen::Vector3d rsf_axis = Eigen::Vector3d::UnitZ();
+  bool second_fit = false;  // the notch filter removed points and the RSF ran again
+  bool refined = false;     // the final least-squares refinement converged and was used
+  BoreCounts counts;
+  BoreTimes time_ms;
+};
+
+}  // namespace rangefit

@@ -1,0 +1,134 @@
+#include "detect/cylinder_lsf.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+#include "detect/pca.hpp"
+
+namespace rangefit {
+namespace {
+
+using Vector5d = Eigen::Matrix<double, 5, 1>;
+using Matrix5d = Eigen::Matrix<double, 5, 5>;
+
+double huber(double r, double delta) {
+  const double a = std::abs(r);
+  return delta <= 0.0 || a <= delta ? 0.5 * r * r : delta * (a - 0.5 * delta);
+}
+
+double cost(std::span<const Eigen::Vector3d> pts, const Cylinder& c, double delta) {
+  double s = 0.0;
+  for (const auto& q : pts) s += huber(axis_distance(c, q) - c.radius, delta);
+  return s;
+}
+
+// Parameters: axis point moved by (x, y) along b1, b2; axis tilted by (wx, wy) toward b1, b2;
+// radius changed by dr. Both b1 and b2 are normal to the current axis.
+Cylinder apply(const Cylinder& c, const Vector5d& d) {
+  const Eigen::Vector3d b1 = c.axis.unitOrthogonal(), b2 = c.axis.cross(b1);
+  Cylinder n = c;
+  n.point = c.point + d(0) * b1 + d(1) * b2;
+  n.axis = (c.axis + d(2) * b1 + d(3) * b2).normalized();
+  n.radius = c.radius + d(4);
+  return n;
+}
+
+// Gauss-Newton system J^T W J and gradient J^T W r (analytic Jacobian of r = |w| - radius).
+void normal_equations(std::span<const Eigen::Vector3d> pts, const Cylinder& c, double delta,
+                      Matrix5d& jtj, Vector5d& jtr) {
+  const Eigen::Vector3d b1 = c.axis.unitOrthogonal(), b2 = c.axis.cross(b1);
+  jtj.setZero();
+  jtr.setZero();
+  for (const auto& q : pts) {
+    const Eigen::Vector3d d = q - c.point;
+    const double h = d.dot(c.axis);
+    const Eigen::Vector3d w = d - h * c.axis;
+    const double dist = w.norm();
+    if (dist < 1e-12) continue;
+    const Eigen::Vector3d m = w / dist;
+    const double r = dist - c.radius;
+    const double mb1 = m.dot(b1), mb2 = m.dot(b2);
+    Vector5d j;
+    j << -mb1, -mb2, -h * mb1, -h * mb2, -1.0;
+    // IRLS weight of the Huber loss.
+    const double wgt = delta <= 0.0 || std::abs(r) <= delta ? 1.0 : delta / std::abs(r);
+    jtj.noalias() += wgt * j * j.transpose();
+    jtr.noalias() += wgt * r * j;
+  }
+}
+
+// Keeps the axis point at the foot of the points' centroid, so the tilt parameters act about
+// the data and stay well conditioned.
+Cylinder recentre(std::span<const Eigen::Vector3d> pts, Cylinder c) {
+  const Eigen::Vector3d m = pca::centroid(pts);
+  c.point += (m - c.point).dot(c.axis) * c.axis;
+  return c;
+}
+
+}  // namespace
+
+CylinderLsfResult fit_cylinder_lsf(std::span<const Eigen::Vector3d> pts, const Cylinder& initial,
+                                   const CylinderLsfOptions& o) {
+  CylinderLsfResult res;
+  res.cylinder = initial;
+  if (pts.size() < 5 || !(initial.radius > 0.0) || !(initial.axis.norm() > 0.0)) return res;
+  Cylinder c = initial;
+  c.axis.normalize();
+  c = recentre(pts, c);
+  double f = cost(pts, c, o.huber_delta);
+  double lambda = 1e-3;
+  double step = 1e-4;  // steepest descent step length, adapted
+  Matrix5d jtj;
+  Vector5d jtr;
+  for (res.iterations = 0; res.iterations < o.max_iterations; ++res.iterations) {
+    normal_equations(pts, c, o.huber_delta, jtj, jtr);
+    bool improved = false;
+    double f_new = f;
+    Cylinder next = c;
+    if (o.method == LsfMethod::kLevenbergMarquardt) {
+      for (int tries = 0; tries < 10 && !improved; ++tries) {
+        Matrix5d a = jtj;
+        a.diagonal() += lambda * (jtj.diagonal().array() + 1e-9).matrix();
+        const Vector5d d = -a.ldlt().solve(jtr);
+        next = recentre(pts, apply(c, d));
+        f_new = cost(pts, next, o.huber_delta);
+        improved = f_new < f;
+        lambda = improved ? std::max(lambda / 3.0, 1e-12) : lambda * 4.0;
+      }
+    } else {
+      // Steepest descent with a backtracking step, as the thesis's baseline (4.2.4).
+      for (int tries = 0; tries < 20 && !improved; ++tries) {
+        next = recentre(pts, apply(c, -step * jtr));
+        f_new = cost(pts, next, o.huber_delta);
+        improved = f_new < f;
+        step = improved ? step * 1.5 : step * 0.5;
+      }
+    }
+    if (!improved) {
+      res.converged = true;  // no descent step left: at a minimum within precision
+      break;
+    }
+    const double decrease = (f - f_new) / std::max(f, 1e-300);
+    c = next;
+    f = f_new;
+    if (decrease < o.tolerance) {
+      res.converged = true;
+      ++res.iterations;
+      break;
+    }
+  }
+  double ss = 0.0;
+  for (const auto& q : pts) ss += std::pow(axis_distance(c, q) - c.radius, 2);
+  res.rms = std::sqrt(ss / static_cast<double>(pts.size()));
+  res.cylinder = c;
+  return res;
+}
+
+Cylinder cylinder_from_pca(std::span<const Eigen::Vector3d> pts, double radius) {
+  const pca::Line line = pca::fit_line(pts);
+  return {line.point, line.direction, radius};
+}
+
+}  // namespace rangefit

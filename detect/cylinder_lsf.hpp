@@ -1,0 +1,39 @@
+#pragma once
+// Geometric least-squares cylinder fit (LSF): minimises the point-to-surface distances
+// |P_perp (q - c)| - r over the axis point, direction and radius. Used two ways: as the thesis's
+// comparison baseline (steepest descent for 200 iterations from a PCA or CAD start, 4.2.4) and,
+// beyond the thesis, as the final Levenberg-Marquardt refinement of the RSF result with a Huber
+// loss so the remaining outliers do not pull the fit.
+
+#include <Eigen/Core>
+#include <span>
+
+#include "detect/cylinder_rsf.hpp"
+
+namespace rangefit {
+
+enum class LsfMethod { kLevenbergMarquardt, kSteepestDescent };
+
+struct CylinderLsfOptions {
+  LsfMethod method = LsfMethod::kLevenbergMarquardt;
+  int max_iterations = 30;    // thesis baseline: 200 steepest-descent iterations
+  double huber_delta = 0.15;  // mm; residuals beyond count linearly; 0: plain least squares
+  double tolerance = 1e-9;    // stop when the relative cost decrease falls below this
+};
+
+struct CylinderLsfResult {
+  bool converged = false;
+  int iterations = 0;
+  Cylinder cylinder;
+  double rms = 0.0;  // rms residual of all points at the end, mm
+};
+
+// Fits from `initial` (its axis must be non-zero, radius > 0). Empty input returns initial,
+// not converged.
+CylinderLsfResult fit_cylinder_lsf(std::span<const Eigen::Vector3d> points, const Cylinder& initial,
+                                   const CylinderLsfOptions& options);
+
+// The thesis's PCA start for the LSF baseline: centroid, largest eigenvector, given radius.
+Cylinder cylinder_from_pca(std::span<const Eigen::Vector3d> points, double radius);
+
+}  // namespace rangefit
