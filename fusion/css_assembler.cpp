@@ -1,6 +1,7 @@
 #include "fusion/css_assembler.hpp"
 
 #include <cmath>
+#include <optional>
 
 namespace rangefit::fusion {
 namespace {
@@ -140,7 +141,8 @@ void CssAssembler::fuse(const hal::CssRevolution& rev, hal::Duration period) {
   const double step_ns = static_cast<double>(period.count()) / kCols;
   const double start_offset_ns = static_cast<double>((rev.stamp - t_start_).count());
   const double end_offset_ns = static_cast<double>((t_end_ - t_start_).count());
-  std::size_t segment = use_joints ? joints_.locate(rev.stamp) : 0;
+  std::optional<ReferenceTrack::Cursor> cursor;
+  if (use_joints) cursor.emplace(joints_, rev.stamp);
   bool anchored = false;
   double anchor = 0.0, s0 = 0.0, c0 = 1.0;
   for (int i = 0; i < kCols; ++i) {
@@ -149,7 +151,7 @@ void CssAssembler::fuse(const hal::CssRevolution& rev, hal::Duration period) {
     const double offset_ns = i * step_ns;
     double omega;
     if (use_joints) {
-      const ReferenceTrack::Value v = joints_.at(rev.stamp, offset_ns, segment);
+      const ReferenceTrack::Value v = cursor->at(offset_ns);
       omega = v.v0;
       info.extrapolated |= v.extrapolated;
     } else {  // eq. 4.21
@@ -172,7 +174,7 @@ void CssAssembler::fuse(const hal::CssRevolution& rev, hal::Duration period) {
     const Eigen::Vector3d q = laser_mount_ + r * beam_mount_[i];  // R_x * x_s + t, eq. 4.17
     cloud.grid.index[row_begin + i] = static_cast<std::int32_t>(cloud.points.size());
     cloud.points.emplace_back(c * q.x() + s * q.z(), q.y(), c * q.z() - s * q.x());  // eq. 4.19
-    cloud.stamps.push_back(rev.stamp + hal::Duration(std::llround(offset_ns)));
+    cloud.stamps.push_back(rev.stamp + period * i / kCols);
   }
   if (info.extrapolated) ++scan_.faults.extrapolated;
   ++cloud.grid.rows;

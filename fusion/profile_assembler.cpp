@@ -84,8 +84,7 @@ void ProfileAssembler::fuse(const hal::RangerProfile& p) {
     ++scan_.dropped_frames;
     return;
   }
-  std::size_t segment = poses_.locate(p.stamp);
-  const ReferenceTrack::Value pose = poses_.at(p.stamp, 0.0, segment);
+  const ReferenceTrack::Value pose = ReferenceTrack::Cursor(poses_, p.stamp).at(0.0);
   const Eigen::Isometry3d T = T_world_ranger(pose.v0, pose.v1);
   const Eigen::Vector3d ex = T.linear().col(0);
   const Eigen::Vector3d ez = T.linear().col(2);

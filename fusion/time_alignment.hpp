@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "fusion/fused_scan.hpp"
@@ -69,23 +70,54 @@ class ReferenceTrack {
   std::size_t size() const { return samples_.size(); }
   hal::Timestamp last_stamp() const { return samples_.back().stamp; }
 
-  // Index of the segment to start from for instants at or after t (for at()).
+  // Index of the segment to start from for instants at or after t.
   std::size_t locate(hal::Timestamp t) const;
-  // Value at base + offset_ns. `segment` (from locate(base)) is advanced, so a run of increasing
-  // offsets costs O(1) each. Requires !empty().
-  Value at(hal::Timestamp base, double offset_ns, std::size_t& segment) const {
-    const std::size_t n = samples_.size();
-    if (n == 1) {
-      return {samples_[0].v0, samples_[0].v1, offset_ns != rel(0, base)};
+  // Evaluates channel 0 and 1 at increasing offsets from one base instant, keeping the current
+  // segment's line, so each evaluation is a compare and a multiply-add. Requires !empty().
+  class Cursor {
+   public:
+    Cursor(const ReferenceTrack& track, hal::Timestamp base)
+        : track_(track),
+          base_(base),
+          n_(track.samples_.size()),
+          first_(track.rel(0, base)),
+          last_(track.rel(n_ - 1, base)),
+          segment_(track.locate(base)) {
+      load();
     }
-    while (segment + 2 < n && rel(segment + 1, base) <= offset_ns) ++segment;
-    const Sample& a = samples_[segment];
-    const Sample& b = samples_[segment + 1];
-    const double ta = rel(segment, base);
-    const double f = (offset_ns - ta) / static_cast<double>((b.stamp - a.stamp).count());
-    const bool outside = offset_ns < rel(0, base) || offset_ns > rel(n - 1, base);
-    return {a.v0 + f * (b.v0 - a.v0), a.v1 + f * (b.v1 - a.v1), outside};
-  }
+    Value at(double offset_ns) {
+      while (offset_ns >= next_ && segment_ + 2 < n_) {
+        ++segment_;
+        load();
+      }
+      const double dt = offset_ns - t_a_;
+      return {v0_ + dt * slope0_, v1_ + dt * slope1_, offset_ns < first_ || offset_ns > last_};
+    }
+
+   private:
+    void load() {
+      const Sample& a = track_.samples_[segment_];
+      t_a_ = track_.rel(segment_, base_);
+      v0_ = a.v0;
+      v1_ = a.v1;
+      if (segment_ + 1 < n_) {
+        const Sample& b = track_.samples_[segment_ + 1];
+        const double span = static_cast<double>((b.stamp - a.stamp).count());
+        slope0_ = (b.v0 - a.v0) / span;
+        slope1_ = (b.v1 - a.v1) / span;
+        next_ = t_a_ + span;
+      } else {  // a single sample: hold it
+        slope0_ = slope1_ = 0.0;
+        next_ = std::numeric_limits<double>::infinity();
+      }
+    }
+    const ReferenceTrack& track_;
+    hal::Timestamp base_;
+    std::size_t n_;
+    double first_, last_;  // offsets of the first and last sample
+    std::size_t segment_;
+    double t_a_ = 0.0, next_ = 0.0, v0_ = 0.0, v1_ = 0.0, slope0_ = 0.0, slope1_ = 0.0;
+  };
 
  private:
   double rel(std::size_t k, hal::Timestamp base) const {

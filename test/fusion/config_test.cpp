@@ -1,0 +1,123 @@
+#include "fusion/config.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include <unistd.h>
+
+namespace rangefit::fusion {
+namespace {
+
+using std::chrono::milliseconds;
+
+TEST(FusionConfig, DocumentWithoutAFusionTableGivesTheThesisDefaults) {
+  const FusionConfigResult r = parse_fusion_config(std::string_view("[service]\nx = 1\n"));
+  ASSERT_TRUE(r.config) << r.error;
+  const CssFusionConfig& css = r.config->css;
+  EXPECT_DOUBLE_EQ(css.geometry.standoff_mm, 88.5);
+  EXPECT_DOUBLE_EQ(css.geometry.pivot_radius_mm, 285.8);
+  EXPECT_NEAR(css.geometry.eta_rad, 28.8 * std::numbers::pi / 180.0, 1e-12);
+  EXPECT_NEAR(css.deflection_rad, 5.0 * std::numbers::pi / 180.0, 1e-12);
+  EXPECT_DOUBLE_EQ(css.scan_speed_mm_s, 2.0);
+  EXPECT_EQ(css.omega_source, OmegaSource::kJointStream);
+  EXPECT_DOUBLE_EQ(r.config->pan_tilt.geometry.ranger.baseline_mm, 425.0);
+  EXPECT_DOUBLE_EQ(r.config->stripe_cell.geometry.max_speed_mm_s, 6.3);
+}
+
+TEST(FusionConfig, EmptyDocumentGivesTheDefaults) {
+  EXPECT_TRUE(parse_fusion_config(std::string_view("")).config);
+}
+
+TEST(FusionConfig, EveryTableOverridesItsFields) {
+  const FusionConfigResult r = parse_fusion_config(std::string_view(R"(
+[fusion.time]
+max_reference_gap_ms = 20
+clock_jump_tolerance_ms = 0.5
+max_faults = 3
+[fusion.css]
+omega_source = "stamps"
+joint = 5
+eta_rad = 0.5
+pivot_radius_mm = 300
+[fusion.stripe_cell]
+ranger_position_cell_mm = [1, 2, 3]
+profile_period_ms = 20
+[fusion.stripe_cell.ranger]
+points_per_profile = 256
+[fusion.pan_tilt]
+t_w_mm = [0, 0, 1000]
+)"));
+  ASSERT_TRUE(r.config) << r.error;
+  const FusionConfig& c = *r.config;
+  EXPECT_EQ(c.css.limits.max_reference_gap, milliseconds(20));
+  EXPECT_EQ(c.pan_tilt.limits.clock_jump_tolerance, std::chrono::microseconds(500));
+  EXPECT_EQ(c.stripe_cell.limits.max_faults, 3u);
+  EXPECT_EQ(c.css.omega_source, OmegaSource::kStartEndStamps);
+  EXPECT_EQ(c.css.joint, 5);
+  EXPECT_DOUBLE_EQ(c.css.geometry.eta_rad, 0.5);
+  EXPECT_DOUBLE_EQ(c.css.geometry.pivot_radius_mm, 300.0);
+  EXPECT_EQ(c.stripe_cell.geometry.ranger_position_cell_mm, Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(c.stripe_cell.profile_period, milliseconds(20));
+  EXPECT_EQ(c.stripe_cell.geometry.ranger.points_per_profile, 256);
+  EXPECT_EQ(c.pan_tilt.geometry.t_w_mm, Eigen::Vector3d(0, 0, 1000));
+}
+
+// Each bad document and the text its error must contain.
+struct BadCase {
+  const char* toml;
+  const char* expected;
+};
+
+class FusionConfigError : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(FusionConfigError, NamesTheOffendingField) {
+  const FusionConfigResult r = parse_fusion_config(std::string_view(GetParam().toml), "cell.toml");
+  EXPECT_FALSE(r.config);
+  EXPECT_NE(r.error.find(GetParam().expected), std::string::npos) << r.error;
+  EXPECT_EQ(r.error.rfind("cell.toml", 0), 0u) << r.error;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    BadDocuments, FusionConfigError,
+    ::testing::Values(
+        BadCase{"[fusion.css]\nstandof_mm = 88\n", "fusion.css.standof_mm: unknown field"},
+        BadCase{"[fusion.css]\nstandoff_mm = \"far\"\n",
+                "fusion.css.standoff_mm: must be a number"},
+        BadCase{"[fusion.css]\nstandoff_mm = -1\n", "fusion.css.standoff_mm: must be in"},
+        BadCase{"[fusion.css]\nomega_source = \"gps\"\n", "fusion.css.omega_source"},
+        BadCase{"[fusion.css]\nmin_range_mm = 200\n", "fusion.css.max_range_mm: must exceed"},
+        BadCase{"[fusion.time]\nmax_faults = 1.5\n", "fusion.time.max_faults: must be an integer"},
+        BadCase{"[fusion.stripe_cell]\naxis_direction_cell = [0, 2]\n",
+                "fusion.stripe_cell.axis_direction_cell: must be an array of 3"},
+        BadCase{"[fusion.stripe_cell]\naxis_direction_cell = [0, 0.5, 0]\n",
+                "must be a unit vector"},
+        BadCase{"[fusion.pan_tilt.ranger]\nfan_angle = 1\n",
+                "fusion.pan_tilt.ranger.fan_angle: unknown field"},
+        BadCase{"[fusion]\ncss = 3\n", "fusion.css: must be a table"},
+        BadCase{"fusion = 1\n", "fusion: must be a table"},
+        BadCase{"[fusion.css\n", "cell.toml:1"}));
+
+TEST(FusionConfig, MissingFileIsAnErrorNamingIt) {
+  const FusionConfigResult r = load_fusion_config("/nonexistent/fusion.toml");
+  EXPECT_FALSE(r.config);
+  EXPECT_NE(r.error.find("/nonexistent/fusion.toml"), std::string::npos);
+}
+
+TEST(FusionConfig, ChangedFileTakesEffectWithoutARebuild) {
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("rangefit_fusion_config_test_" + std::to_string(::getpid()) + ".toml");
+  for (const double r : {285.8, 290.0}) {
+    std::ofstream(path) << "[fusion.css]\npivot_radius_mm = " << r << "\n";
+    const FusionConfigResult c = load_fusion_config(path);
+    ASSERT_TRUE(c.config) << c.error;
+    EXPECT_DOUBLE_EQ(c.config->css.geometry.pivot_radius_mm, r);
+  }
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace rangefit::fusion
