@@ -1,0 +1,84 @@
+#include "io/object_model_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <numbers>
+#include <string>
+
+#include "io/io_error.hpp"
+
+namespace rangefit::io {
+namespace {
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_object_model(text, "model.toml");
+  } catch (const IoError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ObjectModelFile, ReadsTheShippedMalletWithItsLink) {
+  const ObjectModel m =
+      read_object_model(std::string(RANGEFIT_SOURCE_DIR) + "/data/models/mallet.toml");
+  EXPECT_EQ(m.name, "mallet");
+  ASSERT_EQ(m.parts.size(), 2u);
+  EXPECT_EQ(m.parts[1].name, "shaft");
+  EXPECT_DOUBLE_EQ(m.parts[1].shape.a3, 120.0);
+  EXPECT_DOUBLE_EQ(m.parts[0].shape.eps1, 0.1);
+  ASSERT_EQ(m.links.size(), 1u);
+  EXPECT_EQ(m.links[0].first, 0u);
+  EXPECT_EQ(m.links[0].second, 1u);
+  EXPECT_NEAR(m.links[0].angle_rad, std::numbers::pi / 2.0, 1e-12);
+  EXPECT_DOUBLE_EQ(m.links[0].distance_mm, 170.0);
+}
+
+TEST(ObjectModelFile, ReadsAllShippedModelsAsValidParts) {
+  for (const char* name : {"cylinder", "box", "sphere", "cone", "mallet"}) {
+    const ObjectModel m =
+        read_object_model(std::string(RANGEFIT_SOURCE_DIR) + "/data/models/" + name + ".toml");
+    for (const ModelPart& p : m.parts) EXPECT_TRUE(p.shape.valid()) << name;
+  }
+}
+
+TEST(ObjectModelFile, TaperDefaultsToZeroAndFormatRoundTrips) {
+  const ObjectModel m = parse_object_model(
+      "name = \"c\"\n[[part]]\nname = \"p\"\nsize = [1, 2, 3]\nshape = [0.5, 1]\n", "m.toml");
+  EXPECT_EQ(m.parts[0].shape.kx, 0.0);
+  const ObjectModel back = parse_object_model(format_object_model(m), "m.toml");
+  EXPECT_EQ(back.parts[0].shape.a2, 2.0);
+  EXPECT_EQ(back.parts[0].shape.eps1, 0.5);
+}
+
+TEST(ObjectModelFile, ErrorsNameTheLineAndTheField) {
+  const std::string bad_size =
+      "name = \"x\"\n[[part]]\nname = \"p\"\nsize = [1, 2]\nshape = [1, 1]\n";
+  const std::string e1 = error_of(bad_size);
+  EXPECT_NE(e1.find("model.toml"), std::string::npos) << e1;
+  EXPECT_NE(e1.find("line 4"), std::string::npos) << e1;
+  EXPECT_NE(e1.find("part[0].size"), std::string::npos) << e1;
+
+  const std::string bad_shape =
+      "name = \"x\"\n[[part]]\nname = \"p\"\nsize = [1, 2, 3]\nshape = [0.01, 1]\n";
+  EXPECT_NE(error_of(bad_shape).find("part[0].shape"), std::string::npos);
+
+  const std::string bad_link =
+      "name = \"x\"\n[[part]]\nname = \"p\"\nsize = [1, 2, 3]\nshape = [1, 1]\n"
+      "[[link]]\nparts = [\"p\", \"q\"]\nangle_deg = 90\ndistance = 10\n";
+  const std::string e3 = error_of(bad_link);
+  EXPECT_NE(e3.find("link[0].parts"), std::string::npos) << e3;
+  EXPECT_NE(e3.find("line 7"), std::string::npos) << e3;
+
+  EXPECT_NE(error_of("name = \"x\"\n").find("part"), std::string::npos);
+  EXPECT_NE(error_of("[[part]]\nname = \"p\"\n").find("'name'"), std::string::npos);
+  EXPECT_NE(error_of("name = \"x\"\nsize = [1, 2\n").find("line 2"), std::string::npos);
+}
+
+TEST(ObjectModelFile, EmptyOrMissingFileIsAnError) {
+  EXPECT_FALSE(error_of("").empty());
+  EXPECT_THROW(read_object_model("/nonexistent/model.toml"), IoError);
+}
+
+}  // namespace
+}  // namespace rangefit::io
