@@ -12,4 +12,7 @@ inline constexpr int kExitNotFound = 2;
 
 // Each add_* function adds one subcommand to app; the subcommand's callback stores its exit code
 // in *exit_code.
+void add_request_command(CLI::App& app, int* exit_code);  // request_command.cpp
+void add_watch_command(CLI::App& app, int* exit_code);  // watch_command.cpp
+void add_replay_command(CLI::App& app, int* exit_code);  // replay_command.cpp
 }  // namespace rangefit::cli

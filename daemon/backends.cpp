@@ -1,0 +1,110 @@
+#include "daemon/backends.hpp"
+
+#include <algorithm>
+
+#include "detect/object_detector.hpp"
+#include "io/ply.hpp"
+
+namespace rangefit::daemon {
+
+DeviceBackend::DeviceBackend(DaemonConfig config) : config_(std::move(config)) {
+  for (const auto& d : config_.devices) {
+    hal::DeviceHealth h;
+    h.state = d.driver == DriverKind::kReplay ? hal::DeviceState::kReady
+                                              : hal::DeviceState::kDisconnected;
+    if (d.driver != DriverKind::kReplay) {
+      h.message = std::string(to_string(d.driver)) + " driver for " + d.kind + " not wired yet";
+    }
+    health_[d.name] = h;
+  }
+}
+
+std::vector<NamedHealth> DeviceBackend::health() const {
+  std::lock_guard lock(mutex_);
+  std::vector<NamedHealth> out;
+  for (const auto& [name, h] : health_) out.push_back({name, h});
+  return out;
+}
+
+ScanOutcome DeviceBackend::scan(const ScanRequest& request, const std::atomic<bool>& cancel,
+                                const std::function<void()>& progress) {
+  const DeviceConfig* device = config_.device(request.sensor);
+  if (device == nullptr) return {hal::Status::Error("unknown sensor " + request.sensor), {}};
+  if (cancel) return {hal::Status::Error("cancelled"), {}};
+  if (device->driver == DriverKind::kReplay) return replay(*device, progress);
+  return {hal::Status::Error(std::string(to_string(device->driver)) + " driver for " +
+                             device->kind + " is not available in this build"),
+          {}};
+}
+
+ScanOutcome DeviceBackend::replay(const DeviceConfig& device,
+                                  const std::function<void()>& progress) {
+  std::lock_guard lock(mutex_);
+  auto& health = health_[device.name];
+  auto it = replay_cache_.find(device.name);
+  if (it == replay_cache_.end()) {
+    try {
+      it = replay_cache_.emplace(device.name, io::read_ply(device.replay_file)).first;
+    } catch (const std::exception& e) {
+      // The file may come back (e.g. a mount); the next request retries.
+      health.state = hal::DeviceState::kDisconnected;
+      health.message = e.what();
+      ++health.counters.timeouts;
+      return {hal::Status::Error(device.name + ": " + e.what()), {}};
+    }
+  }
+  progress();
+  health.state = hal::DeviceState::kReady;
+  health.message.clear();
+  health.counters.samples += it->second.size();
+  return {hal::Status::Ok(), it->second};
+}
+
+DetectionResult ModelDetector::detect(const PointCloud& cloud, const ScanRequest& request) {
+  if (request.kind == DetectKind::kObject) return detect_object_request(cloud, request);
+  return DetectionResult::error(request, "bore detector is not available in this build");
+}
+
+DetectionResult ModelDetector::detect_object_request(const PointCloud& cloud,
+                                                     const ScanRequest& request) {
+  const ObjectModelConfig* cfg = config_.object(request.model);
+  if (cfg == nullptr) return DetectionResult::error(request, "unknown model " + request.model);
+  ObjectModel model;
+  model.name = cfg->name;
+  Superquadric sq;
+  sq.a1 = cfg->scale_mm[0];
+  sq.a2 = cfg->scale_mm[1];
+  sq.a3 = cfg->scale_mm[2];
+  sq.eps1 = cfg->shape[0];
+  sq.eps2 = cfg->shape[1];
+  model.parts.push_back({cfg->name, sq});
+  ObjectDetectOptions options;
+  options.seed = config_.detection.seed;
+  options.threads = 1;  // the daemon keeps a core for the drivers and DDS
+  const ObjectDetectResult r = detect_object(model, cloud.points, options);
+  DetectionResult out;
+  out.found = r.found();
+  if (!out.found) {
+    out.reason = to_string(r.reason);
+    return out;
+  }
+  // Score in 0..1: share of the neighbourhood lying on the surface band (eq. 5.4 over 5.3 + 5.4).
+  for (const auto& part : r.instances.front().parts) {
+    const double total = static_cast<double>(part.scores.interior + part.scores.surface);
+    const double score = total > 0 ? static_cast<double>(part.scores.surface) / total : 0.0;
+    out.parts.push_back({part.name, part.T_world_part, score});
+  }
+  const double best =
+      out.parts.empty()
+          ? 0.0
+          : std::min_element(out.parts.begin(), out.parts.end(), [](auto& a, auto& b) {
+              return a.score < b.score;
+            })->score;
+  if (best < config_.detection.object_min_score) {
+    out.found = false;
+    out.reason = "score " + std::to_string(best) + " below detection.object_min_score";
+  }
+  return out;
+}
+
+}  // namespace rangefit::daemon

@@ -1,0 +1,98 @@
+#include "daemon/cli/request_command.hpp"
+
+#include <array>
+#include <chrono>
+#include <iostream>
+#include <random>
+
+#include "daemon/cli/commands.hpp"
+#include "daemon/client.hpp"
+#include "daemon/json_codec.hpp"
+
+namespace rangefit::cli {
+namespace {
+
+struct RequestArgs {
+  std::uint32_t domain = 0;
+  std::string id;
+  std::string model;
+  std::string sensor;
+  bool linear = false;
+  std::array<double, 3> position_mm{};
+  std::array<double, 3> axis{0, 0, 1};
+  double radius_mm = 0;
+  std::array<double, 3> sweep{};  // start, end, speed
+  double timeout_s = 120;
+};
+
+std::string make_id() {
+  std::random_device rd;
+  return "req-" + std::to_string(rd() % 1000000);
+}
+
+int run(RequestArgs& a, daemon::DetectKind kind) {
+  daemon::ScanRequest req;
+  req.id = a.id.empty() ? make_id() : a.id;
+  req.kind = kind;
+  req.model = a.model;
+  req.sensor = a.sensor;
+  req.bore.position_mm = {a.position_mm[0], a.position_mm[1], a.position_mm[2]};
+  req.bore.axis = {a.axis[0], a.axis[1], a.axis[2]};
+  req.bore.radius_mm = a.radius_mm;
+  req.sweep_start = a.sweep[0];
+  req.sweep_end = a.sweep[1];
+  req.sweep_speed = a.sweep[2];
+  try {
+    daemon::DdsClient client(a.domain);
+    const auto timeout = std::chrono::milliseconds(static_cast<long>(a.timeout_s * 1000));
+    if (!client.wait_for_daemon(std::min(timeout, std::chrono::milliseconds(10000)))) {
+      std::cerr << "rangefit request: no rangefitd on DDS domain " << a.domain << "\n";
+      return kExitBadInput;
+    }
+    client.send(req, a.linear);
+    const auto result = client.wait_result(req.id, timeout);
+    if (!result) {
+      std::cerr << "rangefit request: no result for " << req.id << " within " << a.timeout_s
+                << " s\n";
+      return kExitBadInput;
+    }
+    std::cout << daemon::to_json(*result).dump(2) << "\n";
+    if (result->found) return kExitOk;
+    return result->reason.empty() || result->reason.starts_with("no fit") ? kExitNotFound
+                                                                          : kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "rangefit request: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+}
+
+void common(CLI::App* sub, RequestArgs& a) {
+  sub->add_option("--domain", a.domain, "DDS domain id of rangefitd")->capture_default_str();
+  sub->add_option("--id", a.id, "request id (default: random)");
+  sub->add_option("--sensor", a.sensor, "device name (default: the daemon's default for the kind)");
+  sub->add_option("--sweep", a.sweep, "sweep start end speed (mm or rad, per second)");
+  sub->add_flag("--linear", a.linear, "the sensor sweeps linearly (values in mm)");
+  sub->add_option("--timeout", a.timeout_s, "seconds to wait for the result")
+      ->capture_default_str();
+}
+
+}  // namespace
+
+void add_request_command(CLI::App& app, int* exit_code) {
+  auto* cmd = app.add_subcommand("request", "ask a running rangefitd to scan and detect (DDS)");
+  cmd->require_subcommand(1);
+  static RequestArgs bore_args, object_args;
+  auto* bore = cmd->add_subcommand("bore", "find a bore near a CAD prior");
+  common(bore, bore_args);
+  bore->add_option("--position", bore_args.position_mm, "expected entrance x y z, mm (world)")
+      ->required();
+  bore->add_option("--axis", bore_args.axis, "expected axis x y z")->capture_default_str();
+  bore->add_option("--radius", bore_args.radius_mm, "expected radius, mm")->required();
+  bore->callback([exit_code] { *exit_code = run(bore_args, daemon::DetectKind::kBore); });
+  auto* object = cmd->add_subcommand("object", "find a configured object model");
+  common(object, object_args);
+  object->add_option("--model", object_args.model, "object model name (daemon config)")->required();
+  object->callback([exit_code] { *exit_code = run(object_args, daemon::DetectKind::kObject); });
+}
+
+}  // namespace rangefit::cli

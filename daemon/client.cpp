@@ -1,0 +1,73 @@
+#include "daemon/client.hpp"
+
+#include <thread>
+
+namespace rangefit::daemon {
+
+DdsClient::DdsClient(std::uint32_t domain_id)
+    : participant_(domain_id),
+      requests_(participant_, topics::kRequest, &rangefit_msgs_msg_dds__DetectRequest__desc,
+                topics::request_qos()),
+      detections_(participant_, topics::kDetections, &rangefit_msgs_msg_dds__Detection__desc,
+                  {true, true, 16}),
+      diagnostics_(participant_, topics::kDiagnostics,
+                   &diagnostic_msgs_msg_dds__DiagnosticArray__desc, topics::diagnostics_qos()),
+      clouds_(participant_, topics::kCloud, &sensor_msgs_msg_dds__PointCloud2__desc,
+              topics::cloud_qos()),
+      states_(participant_, topics::kState, &rangefit_msgs_msg_dds__State__desc,
+              topics::latched_qos()) {}
+
+bool DdsClient::wait_for_daemon(std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (requests_.matched() == 0) {
+    if (std::chrono::steady_clock::now() >= deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return true;
+}
+
+bool DdsClient::send(const ScanRequest& request, bool linear_sweep) {
+  const RequestOut out(request, linear_sweep);
+  return requests_.write(out.msg());
+}
+
+std::optional<DetectionResult> DdsClient::wait_result(const std::string& request_id,
+                                                      std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  for (;;) {
+    for (auto it = pending_.begin(); it != pending_.end(); ++it) {
+      if (it->request_id == request_id) {
+        DetectionResult r = std::move(*it);
+        pending_.erase(it);
+        return r;
+      }
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= deadline) return std::nullopt;
+    if (detections_.wait(
+            std::min<std::chrono::nanoseconds>(deadline - now, std::chrono::milliseconds(200)))) {
+      detections_.take_each(
+          [&](const rangefit_msgs_msg_dds__Detection_& m) { pending_.push_back(from_msg(m)); });
+    }
+  }
+}
+
+void DdsClient::poll(std::chrono::milliseconds timeout, const Callbacks& cb) {
+  detections_.wait(timeout);
+  detections_.take_each([&](const rangefit_msgs_msg_dds__Detection_& m) {
+    if (cb.detection) cb.detection(from_msg(m));
+  });
+  diagnostics_.take_each([&](const diagnostic_msgs_msg_dds__DiagnosticArray_& m) {
+    if (cb.diagnostics) cb.diagnostics(from_msg(m));
+  });
+  clouds_.take_each([&](const sensor_msgs_msg_dds__PointCloud2_& m) {
+    if (cb.cloud) cb.cloud(from_msg(m));
+  });
+  states_.take_each([&](const rangefit_msgs_msg_dds__State_& m) {
+    if (cb.state) {
+      cb.state(static_cast<LifecycleState>(m.state), m.detail == nullptr ? "" : m.detail);
+    }
+  });
+}
+
+}  // namespace rangefit::daemon

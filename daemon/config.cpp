@@ -1,0 +1,313 @@
+// TOML → DaemonConfig. Each table is read through a FieldReader that knows the dotted path of
+// the table, so every error names the field; keys nobody reads are reported as unknown, which
+// catches typos that would otherwise silently fall back to a default.
+#include "daemon/config.hpp"
+
+#include <toml++/toml.h>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace rangefit::daemon {
+namespace {
+
+struct FieldError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+class FieldReader {
+ public:
+  FieldReader(const toml::table& table, std::string path) : table_(table), path_(std::move(path)) {}
+
+  std::string field(std::string_view key) const {
+    return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+  }
+  [[noreturn]] void fail(std::string_view key, const std::string& why) const {
+    throw FieldError(field(key) + ": " + why);
+  }
+
+  const toml::node* find(std::string_view key) {
+    used_.insert(std::string(key));
+    return table_.get(key);
+  }
+
+  void read(std::string_view key, std::string& out) {
+    if (const auto* n = find(key)) {
+      if (!n->is_string()) fail(key, "must be a string");
+      out = n->as_string()->get();
+    }
+  }
+  void read(std::string_view key, double& out, double lo, double hi) {
+    if (const auto* n = find(key)) {
+      if (n->is_integer()) {
+        out = static_cast<double>(n->as_integer()->get());
+      } else if (n->is_floating_point()) {
+        out = n->as_floating_point()->get();
+      } else {
+        fail(key, "must be a number");
+      }
+      if (!std::isfinite(out) || out < lo || out > hi) {
+        std::ostringstream s;
+        s << "must be in [" << lo << ", " << hi << "], got " << out;
+        fail(key, s.str());
+      }
+    }
+  }
+  void read(std::string_view key, std::int64_t& out, std::int64_t lo, std::int64_t hi) {
+    if (const auto* n = find(key)) {
+      if (!n->is_integer()) fail(key, "must be an integer");
+      out = n->as_integer()->get();
+      if (out < lo || out > hi) {
+        fail(key, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
+                      std::to_string(out));
+      }
+    }
+  }
+  template <std::size_t N>
+  void read(std::string_view key, std::array<double, N>& out, double lo, double hi) {
+    if (const auto* n = find(key)) {
+      const auto* arr = n->as_array();
+      if (arr == nullptr || arr->size() != N)
+        fail(key, "must be an array of " + std::to_string(N) + " numbers");
+      for (std::size_t i = 0; i < N; ++i) {
+        const auto v = (*arr)[i].value<double>();
+        if (!v || !std::isfinite(*v) || *v < lo || *v > hi) {
+          std::ostringstream s;
+          s << "element " << i << " must be a number in [" << lo << ", " << hi << "]";
+          fail(key, s.str());
+        }
+        out[i] = *v;
+      }
+    }
+  }
+  const toml::table* sub_table(std::string_view key) {
+    const auto* n = find(key);
+    if (n == nullptr) return nullptr;
+    if (!n->is_table()) fail(key, "must be a table");
+    return n->as_table();
+  }
+  const toml::array* table_array(std::string_view key) {
+    const auto* n = find(key);
+    if (n == nullptr) return nullptr;
+    if (!n->is_array_of_tables()) fail(key, "must be an array of tables ([[" + field(key) + "]])");
+    return n->as_array();
+  }
+  // Call after reading: any key not read is a typo or a field this version does not know.
+  void reject_unknown() const {
+    for (const auto& [k, v] : table_) {
+      if (!used_.contains(std::string(k.str()))) fail(k.str(), "unknown field");
+    }
+  }
+
+ private:
+  const toml::table& table_;
+  std::string path_;
+  std::set<std::string> used_;
+};
+
+constexpr double kMaxDouble = std::numeric_limits<double>::max();
+constexpr double kPi = 3.14159265358979323846;
+
+void read_service(FieldReader& r, ServiceConfig& s) {
+  std::int64_t capacity = static_cast<std::int64_t>(s.queue_capacity);
+  r.read("queue_capacity", capacity, 1, 1024);
+  s.queue_capacity = static_cast<std::size_t>(capacity);
+  r.read("scan_timeout_s", s.scan_timeout_s, 0.1, 3600.0);
+  r.read("stall_timeout_s", s.stall_timeout_s, 0.1, 3600.0);
+  r.read("log_level", s.log_level);
+  static const std::set<std::string> kLevels{"trace", "debug", "info", "warn", "error"};
+  if (!kLevels.contains(s.log_level))
+    r.fail("log_level", "must be trace, debug, info, warn or error");
+  r.read("bore_sensor", s.bore_sensor);
+  r.read("object_sensor", s.object_sensor);
+  r.reject_unknown();
+}
+
+void read_dds(FieldReader& r, DdsConfig& d) {
+  std::int64_t domain = d.domain_id;
+  r.read("domain_id", domain, 0, 232);  // the DDSI port mapping allows domains 0..232
+  d.domain_id = static_cast<std::uint32_t>(domain);
+  r.read("config_uri", d.config_uri);
+  r.read("diagnostics_period_s", d.diagnostics_period_s, 0.05, 60.0);
+  std::int64_t depth = d.cloud_depth;
+  r.read("cloud_depth", depth, 1, 100);
+  d.cloud_depth = static_cast<int>(depth);
+  depth = d.request_depth;
+  r.read("request_depth", depth, 1, 1000);
+  d.request_depth = static_cast<int>(depth);
+  r.reject_unknown();
+}
+
+void read_spool(FieldReader& r, SpoolConfig& s) {
+  std::string dir = s.directory.string();
+  r.read("directory", dir);
+  if (dir.empty()) r.fail("directory", "must not be empty");
+  s.directory = dir;
+  std::int64_t bytes = static_cast<std::int64_t>(s.max_bytes);
+  r.read("max_bytes", bytes, 1 << 20, std::numeric_limits<std::int64_t>::max());
+  s.max_bytes = static_cast<std::uint64_t>(bytes);
+  r.read("max_age_hours", s.max_age_hours, 0.001, 24.0 * 3650);
+  r.reject_unknown();
+}
+
+void read_detection(FieldReader& r, DetectionConfig& d) {
+  std::int64_t seed = static_cast<std::int64_t>(d.seed);
+  r.read("seed", seed, 0, std::numeric_limits<std::int64_t>::max());
+  d.seed = static_cast<std::uint64_t>(seed);
+  r.read("timeout_s", d.timeout_s, 0.01, 3600.0);
+  r.read("bore_radius_tolerance_mm", d.bore_radius_tolerance_mm, 0.0, 1000.0);
+  r.read("object_min_score", d.object_min_score, 0.0, 1.0);
+  r.reject_unknown();
+}
+
+void read_device(FieldReader& r, DeviceConfig& d) {
+  r.read("name", d.name);
+  if (d.name.empty()) r.fail("name", "is required");
+  r.read("kind", d.kind);
+  static const std::set<std::string> kKinds{"css", "stripe", "axis", "robot", "pan_tilt"};
+  if (!kKinds.contains(d.kind)) r.fail("kind", "must be one of css, stripe, axis, robot, pan_tilt");
+  std::string driver = "sim";
+  r.read("driver", driver);
+  if (driver == "sim") {
+    d.driver = DriverKind::kSim;
+  } else if (driver == "real") {
+    d.driver = DriverKind::kReal;
+  } else if (driver == "replay") {
+    d.driver = DriverKind::kReplay;
+  } else {
+    r.fail("driver", "must be one of sim, real, replay");
+  }
+  r.read("transport", d.transport);
+  if (d.driver == DriverKind::kReal && d.transport.empty()) {
+    r.fail("transport", "is required for driver = \"real\" (e.g. \"can0\" or \"10.0.0.5:502\")");
+  }
+  std::string replay;
+  r.read("replay_file", replay);
+  d.replay_file = replay;
+  if (d.driver == DriverKind::kReplay && replay.empty()) {
+    r.fail("replay_file", "is required for driver = \"replay\"");
+  }
+  r.read("xyz_mm", d.xyz_mm, -1e5, 1e5);
+  r.read("rpy_rad", d.rpy_rad, -2 * kPi, 2 * kPi);
+  r.read("sweep_start", d.sweep_start, -kMaxDouble, kMaxDouble);
+  r.read("sweep_end", d.sweep_end, -kMaxDouble, kMaxDouble);
+  r.read("sweep_speed", d.sweep_speed, 0.0, kMaxDouble);
+  r.reject_unknown();
+}
+
+void read_object(FieldReader& r, ObjectModelConfig& o) {
+  r.read("name", o.name);
+  if (o.name.empty()) r.fail("name", "is required");
+  r.read("scale_mm", o.scale_mm, 0.1, 1e5);
+  if (o.scale_mm == std::array<double, 3>{})
+    r.fail("scale_mm", "is required (three half-sizes, mm)");
+  r.read("shape", o.shape, 0.1, 2.0);
+  std::string mesh;
+  r.read("mesh", mesh);
+  o.mesh = mesh;
+  r.reject_unknown();
+}
+
+DaemonConfig read_root(const toml::table& root) {
+  DaemonConfig c;
+  FieldReader r(root, "");
+  if (const auto* t = r.sub_table("service")) {
+    FieldReader sub(*t, "service");
+    read_service(sub, c.service);
+  }
+  if (const auto* t = r.sub_table("dds")) {
+    FieldReader sub(*t, "dds");
+    read_dds(sub, c.dds);
+  }
+  if (const auto* t = r.sub_table("spool")) {
+    FieldReader sub(*t, "spool");
+    read_spool(sub, c.spool);
+  }
+  if (const auto* t = r.sub_table("detection")) {
+    FieldReader sub(*t, "detection");
+    read_detection(sub, c.detection);
+  }
+  std::set<std::string> names;
+  if (const auto* arr = r.table_array("devices")) {
+    for (std::size_t i = 0; i < arr->size(); ++i) {
+      const std::string path = "devices[" + std::to_string(i) + "]";
+      FieldReader sub(*(*arr)[i].as_table(), path);
+      read_device(sub, c.devices.emplace_back());
+      if (!names.insert(c.devices.back().name).second) sub.fail("name", "duplicate device name");
+    }
+  }
+  names.clear();
+  if (const auto* arr = r.table_array("objects")) {
+    for (std::size_t i = 0; i < arr->size(); ++i) {
+      const std::string path = "objects[" + std::to_string(i) + "]";
+      FieldReader sub(*(*arr)[i].as_table(), path);
+      read_object(sub, c.objects.emplace_back());
+      if (!names.insert(c.objects.back().name).second) sub.fail("name", "duplicate object name");
+    }
+  }
+  r.reject_unknown();
+  for (const auto* key : {"bore_sensor", "object_sensor"}) {
+    const std::string& sensor =
+        std::string_view(key) == "bore_sensor" ? c.service.bore_sensor : c.service.object_sensor;
+    if (!sensor.empty() && c.device(sensor) == nullptr) {
+      throw FieldError(std::string("service.") + key + ": no device named \"" + sensor + "\"");
+    }
+  }
+  return c;
+}
+
+}  // namespace
+
+const char* to_string(DriverKind k) {
+  switch (k) {
+    case DriverKind::kSim:
+      return "sim";
+    case DriverKind::kReal:
+      return "real";
+    case DriverKind::kReplay:
+      return "replay";
+  }
+  return "?";
+}
+
+const DeviceConfig* DaemonConfig::device(std::string_view name) const {
+  for (const auto& d : devices) {
+    if (d.name == name) return &d;
+  }
+  return nullptr;
+}
+
+const ObjectModelConfig* DaemonConfig::object(std::string_view name) const {
+  for (const auto& o : objects) {
+    if (o.name == name) return &o;
+  }
+  return nullptr;
+}
+
+ConfigResult parse_config(std::string_view toml_text, std::string_view source_name) {
+  ConfigResult result;
+  try {
+    const toml::table root = toml::parse(toml_text, source_name);
+    result.config = read_root(root);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream s;
+    s << source_name << ":" << e.source().begin.line << ": " << e.description();
+    result.error = s.str();
+  } catch (const FieldError& e) {
+    result.error = std::string(source_name) + ": " + e.what();
+  }
+  return result;
+}
+
+ConfigResult load_config(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return {std::nullopt, path.string() + ": cannot open"};
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_config(text.str(), path.string());
+}
+
+}  // namespace rangefit::daemon

@@ -1,0 +1,89 @@
+#pragma once
+// rangefitd's configuration: one TOML file (systemd/rangefitd.toml is the documented sample).
+// Every field has a default listed here; parse_config() validates every field and names the
+// offending one (e.g. "devices[1].driver: must be one of sim, real, replay") on error.
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace rangefit::daemon {
+
+enum class DriverKind { kSim, kReal, kReplay };
+const char* to_string(DriverKind k);
+
+struct DeviceConfig {
+  std::string name;  // unique; requests name sensors by it
+  std::string kind;  // css | stripe | axis | robot | pan_tilt
+  DriverKind driver = DriverKind::kSim;
+  std::string transport;              // real driver: "can0", "/dev/ttyACM0", "10.0.0.5:502"
+  std::filesystem::path replay_file;  // replay driver: a PLY cloud returned as each scan
+  std::array<double, 3> xyz_mm{};     // sensor extrinsics: translation, mm
+  std::array<double, 3> rpy_rad{};    // sensor extrinsics: roll, pitch, yaw, rad
+  double sweep_start = 0.0;           // default sweep: mm (linear) or rad (rotary)
+  double sweep_end = 0.0;
+  double sweep_speed = 0.0;  // per second; 0 = device default
+};
+
+struct ObjectModelConfig {
+  std::string name;                   // requests name models by it
+  std::array<double, 3> scale_mm{};   // superquadric half-sizes a1, a2, a3 (thesis ch. 5), mm
+  std::array<double, 2> shape{1, 1};  // superquadric exponents eps1, eps2 (0.1 .. 2)
+  std::filesystem::path mesh;         // optional CAD mesh (STL) of the object
+};
+
+struct DetectionConfig {
+  std::uint64_t seed = 1;                 // every random algorithm is seeded from this
+  double timeout_s = 30.0;                // detection longer than this is abandoned
+  double bore_radius_tolerance_mm = 2.0;  // found radius may differ this much from the prior
+  double object_min_score = 0.5;          // fits scoring lower report found = false
+};
+
+struct DdsConfig {
+  std::uint32_t domain_id = 0;        // 0 .. 232
+  std::string config_uri;             // Cyclone XML (file://...); empty = CYCLONEDDS_URI/default
+  double diagnostics_period_s = 1.0;  // rt/diagnostics period (REP 107 expects ~1 Hz)
+  int cloud_depth = 2;                // keep-last depth of rt/rangefit/cloud
+  int request_depth = 16;             // keep-last depth of the request reader
+};
+
+struct SpoolConfig {
+  std::filesystem::path directory = "/var/lib/rangefitd/spool";
+  std::uint64_t max_bytes = 1ull << 30;  // oldest entries are removed beyond this size...
+  double max_age_hours = 168.0;          // ...or this age
+};
+
+struct ServiceConfig {
+  std::size_t queue_capacity = 4;  // waiting requests; beyond this a request is answered busy
+  double scan_timeout_s = 120.0;   // a scan running longer is aborted with an error result
+  double stall_timeout_s = 30.0;   // no pipeline progress this long: the watchdog is not fed
+  std::string log_level = "info";  // trace | debug | info | warn | error
+  std::string bore_sensor;         // default sensor for bore requests (a device name)
+  std::string object_sensor;       // default sensor for object requests
+};
+
+struct DaemonConfig {
+  ServiceConfig service;
+  DdsConfig dds;
+  SpoolConfig spool;
+  DetectionConfig detection;
+  std::vector<DeviceConfig> devices;
+  std::vector<ObjectModelConfig> objects;
+
+  const DeviceConfig* device(std::string_view name) const;
+  const ObjectModelConfig* object(std::string_view name) const;
+};
+
+struct ConfigResult {
+  std::optional<DaemonConfig> config;  // set when valid
+  std::string error;                   // "<source>: <field>: <problem>" when not
+};
+
+ConfigResult parse_config(std::string_view toml_text, std::string_view source_name = "config");
+ConfigResult load_config(const std::filesystem::path& path);
+
+}  // namespace rangefit::daemon

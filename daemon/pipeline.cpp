@@ -1,0 +1,157 @@
+#include "daemon/pipeline.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <future>
+
+namespace rangefit::daemon {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+Pipeline::Pipeline(PipelineOptions options, ScanBackend& backend, Detector& detector, Spool* spool,
+                   ResultSink& sink, hal::Clock& clock)
+    : options_(options),
+      backend_(backend),
+      detector_(detector),
+      spool_(spool),
+      sink_(sink),
+      clock_(clock) {
+  touch();
+  set_state(LifecycleState::kIdle, "", "");
+  worker_ = std::thread([this] { run(); });
+}
+
+Pipeline::~Pipeline() { stop(true); }
+
+Submit Pipeline::submit(ScanRequest request) {
+  std::size_t depth = 0;
+  {
+    std::lock_guard lock(mutex_);
+    if (stopping_) return Submit::kStopping;
+    if (queue_.size() >= options_.queue_capacity) {
+      ++busy_;
+      return Submit::kBusy;
+    }
+    queue_.push_back(std::move(request));
+    depth = queue_.size();
+  }
+  spdlog::debug("request queued, depth {}", depth);
+  cv_.notify_one();
+  return Submit::kAccepted;
+}
+
+void Pipeline::stop(bool abort) {
+  std::deque<ScanRequest> dropped;
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+    dropped.swap(queue_);
+  }
+  if (abort) cancel_ = true;
+  cv_.notify_all();
+  for (const auto& r : dropped) sink_.on_result(DetectionResult::error(r, "daemon stopping"));
+  if (worker_.joinable()) worker_.join();
+}
+
+std::size_t Pipeline::queue_depth() const {
+  std::lock_guard lock(mutex_);
+  return queue_.size();
+}
+
+std::string Pipeline::last_error() const {
+  std::lock_guard lock(mutex_);
+  return last_error_;
+}
+
+void Pipeline::set_options(PipelineOptions options) {
+  std::lock_guard lock(mutex_);
+  options_ = options;
+}
+
+void Pipeline::set_state(LifecycleState s, const std::string& detail, const std::string& active) {
+  state_ = s;
+  sink_.on_state(s, detail, active, queue_depth());
+}
+
+void Pipeline::run() {
+  for (;;) {
+    ScanRequest request;
+    {
+      std::unique_lock lock(mutex_);
+      // Waking every 100 ms is the idle heartbeat the watchdog looks for.
+      cv_.wait_for(lock, std::chrono::milliseconds(100),
+                   [&] { return stopping_ || !queue_.empty(); });
+      touch();
+      if (stopping_) return;
+      if (queue_.empty()) continue;
+      request = std::move(queue_.front());
+      queue_.pop_front();
+    }
+    process(request);
+    touch();
+  }
+}
+
+void Pipeline::process(const ScanRequest& request) {
+  set_state(LifecycleState::kScanning, "", request.id);
+  const auto t0 = std::chrono::steady_clock::now();
+  ScanOutcome outcome;
+  try {
+    outcome = backend_.scan(request, cancel_, [this] { touch(); });
+  } catch (const std::exception& e) {
+    outcome.status = hal::Status::Error(std::string("scan threw: ") + e.what());
+  }
+  DetectionResult result;
+  const double scan_s = seconds_since(t0);
+  if (outcome.status) {
+    set_state(LifecycleState::kDetecting, "", request.id);
+    const auto t1 = std::chrono::steady_clock::now();
+    try {
+      result = detector_.detect(outcome.cloud, request);
+    } catch (const std::exception& e) {
+      result = DetectionResult::error(request, std::string("detector threw: ") + e.what());
+    }
+    result.detect_seconds = seconds_since(t1);
+  } else {
+    result = DetectionResult::error(request, "scan failed: " + outcome.status.message);
+  }
+  result.request_id = request.id;
+  result.kind = request.kind;
+  result.model = request.model;
+  result.num_points = outcome.cloud.size();
+  result.scan_seconds = scan_s;
+  touch();
+
+  if (spool_ != nullptr) {
+    std::string why;
+    if (!spool_->write(request, outcome.cloud, result, &why)) {
+      spdlog::error("{}", why);
+      if (result.reason.empty()) result.reason = "not spooled: " + why;
+    }
+  }
+  if (!outcome.cloud.empty()) sink_.on_cloud(request, outcome.cloud);
+  sink_.on_result(result);
+  ++completed_;
+  if (outcome.status) {
+    spdlog::info("request {}: {} ({} points, scan {:.2f} s, detect {:.2f} s){}", request.id,
+                 result.found ? "found" : "not found", result.num_points, result.scan_seconds,
+                 result.detect_seconds, result.reason.empty() ? "" : ": " + result.reason);
+    set_state(LifecycleState::kIdle, "", "");
+  } else {
+    {
+      std::lock_guard lock(mutex_);
+      last_error_ = result.reason;
+    }
+    spdlog::error("request {}: {}", request.id, result.reason);
+    // FAULT is reported while the failure is the latest news; the next good scan clears it.
+    set_state(LifecycleState::kFault, result.reason, "");
+  }
+}
+
+}  // namespace rangefit::daemon

@@ -1,0 +1,144 @@
+// rangefitd: runs the cell, answers scan requests and publishes results over DDS.
+// Signals are blocked in every thread and taken synchronously in the main loop (sigtimedwait),
+// so no handler runs in signal context. systemd protocol: READY=1 once config, devices and DDS
+// entities are up; WATCHDOG=1 only while the pipeline makes progress; RELOADING=1 then READY=1
+// around SIGHUP; STOPPING=1 on SIGTERM/SIGINT.
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/sinks/systemd_sink.h>
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <cstring>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "daemon/config.hpp"
+#include "daemon/dds_service.hpp"
+#include "daemon/service.hpp"
+#include "daemon/systemd_notify.hpp"
+
+namespace {
+
+using namespace rangefit;
+
+void setup_logging(const std::string& level) {
+  std::vector<spdlog::sink_ptr> sinks;
+  // Under systemd stderr goes to the journal anyway; the systemd sink adds priorities and fields.
+  if (getenv("JOURNAL_STREAM") != nullptr || getenv("INVOCATION_ID") != nullptr) {
+    sinks.push_back(std::make_shared<spdlog::sinks::systemd_sink_mt>("rangefitd"));
+  } else {
+    sinks.push_back(std::make_shared<spdlog::sinks::stderr_color_sink_mt>());
+  }
+  auto logger = std::make_shared<spdlog::logger>("rangefitd", sinks.begin(), sinks.end());
+  spdlog::set_default_logger(logger);
+  spdlog::set_level(spdlog::level::from_str(level));
+}
+
+int usage() {
+  std::cerr << "usage: rangefitd --config FILE\n"
+               "  Runs the rangefit cell service (see systemd/rangefitd.toml for the config).\n";
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string config_path;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if ((arg == "--config" || arg == "-c") && i + 1 < argc) {
+      config_path = argv[++i];
+    } else if (arg.starts_with("--config=")) {
+      config_path = arg.substr(9);
+    } else {
+      return usage();
+    }
+  }
+  if (config_path.empty()) return usage();
+
+  // Block before any thread exists so every thread inherits the mask.
+  sigset_t signals;
+  sigemptyset(&signals);
+  for (int s : {SIGHUP, SIGTERM, SIGINT}) sigaddset(&signals, s);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+  daemon::SdNotifier notifier;
+  auto loaded = daemon::load_config(config_path);
+  if (!loaded.config) {
+    setup_logging("info");
+    spdlog::critical("{}", loaded.error);
+    notifier.notify("STATUS=config error: " + loaded.error);
+    return 1;
+  }
+  setup_logging(loaded.config->service.log_level);
+  notifier.notify("STATUS=starting");
+
+  hal::MonotonicClock clock;
+  std::unique_ptr<daemon::Service> service;
+  try {
+    daemon::apply_dds_config_uri(loaded.config->dds.config_uri);
+    service = std::make_unique<daemon::Service>(*loaded.config, clock);
+  } catch (const std::exception& e) {
+    spdlog::critical("start-up failed: {}", e.what());
+    notifier.notify(std::string("STATUS=start-up failed: ") + e.what());
+    return 1;
+  }
+  spdlog::info("rangefitd up: config {}, DDS domain {}, spool {}", config_path,
+               loaded.config->dds.domain_id, loaded.config->spool.directory.string());
+  notifier.notify("READY=1");
+
+  auto stall_limit = [&] {
+    return std::chrono::duration_cast<hal::Duration>(
+        std::chrono::duration<double>(service->config().service.stall_timeout_s));
+  };
+  daemon::WatchdogFeeder watchdog(notifier, stall_limit());
+  const hal::Duration watchdog_period = daemon::watchdog_interval() / 2;
+  hal::Timestamp next_feed{0};
+  std::string last_status;
+
+  for (;;) {
+    service->step(std::chrono::milliseconds(100));
+
+    const hal::Timestamp now = clock.now();
+    if (watchdog_period > hal::Duration::zero() && now >= next_feed) {
+      std::string why;
+      watchdog.tick(now, service->last_progress(), &why);
+      if (!why.empty()) spdlog::error("{}", why);
+      next_feed = now + watchdog_period;
+    }
+    std::string status = service->status_line();
+    if (service->stalled()) status = "STALLED; " + status;
+    if (status != last_status) {
+      notifier.notify("STATUS=" + status);
+      last_status = status;
+    }
+
+    timespec zero{};
+    siginfo_t info{};
+    const int sig = sigtimedwait(&signals, &info, &zero);
+    if (sig == SIGHUP) {
+      notifier.notify("RELOADING=1");
+      spdlog::info("SIGHUP: reloading {}", config_path);
+      auto next = daemon::load_config(config_path);
+      std::string why = next.error;
+      if (next.config && service->reload(*next.config, &why)) {
+        spdlog::set_level(spdlog::level::from_str(next.config->service.log_level));
+        watchdog.set_stall_limit(stall_limit());
+        spdlog::info("configuration reloaded");
+        notifier.notify("READY=1\nSTATUS=configuration reloaded");
+      } else {
+        spdlog::error("reload refused, keeping the running configuration: {}", why);
+        notifier.notify("READY=1\nSTATUS=reload refused: " + why);
+      }
+    } else if (sig == SIGTERM || sig == SIGINT) {
+      notifier.notify("STOPPING=1\nSTATUS=stopping");
+      spdlog::info("{}: stopping (aborting the running scan)", strsignal(sig));
+      service->stop(true);
+      service.reset();
+      spdlog::info("stopped");
+      return 0;
+    }
+  }
+}

@@ -1,0 +1,44 @@
+#include "daemon/request_validation.hpp"
+
+#include <cmath>
+
+#include "daemon/messages.hpp"
+
+namespace rangefit::daemon {
+
+std::string validate_request(ScanRequest& request, const DaemonConfig& config) {
+  if (request.id.empty()) return "request_id is empty";
+  if (request.id.size() > 256) return "request_id longer than 256 characters";
+  if (request.kind == DetectKind::kBore) {
+    if (!(request.bore.radius_mm > 0.0)) return "bore_radius must be > 0";
+    if (!(request.bore.axis.norm() > 1e-9)) return "bore_axis must not be zero";
+    request.bore.axis.normalize();
+  } else if (config.object(request.model) == nullptr) {
+    std::string known;
+    for (const auto& o : config.objects) known += (known.empty() ? "" : ", ") + o.name;
+    return "unknown object model \"" + request.model +
+           "\" (configured: " + (known.empty() ? "none" : known) + ")";
+  }
+  if (request.sensor.empty()) {
+    request.sensor = request.kind == DetectKind::kBore ? config.service.bore_sensor
+                                                       : config.service.object_sensor;
+  }
+  const DeviceConfig* device = config.device(request.sensor);
+  if (device == nullptr) {
+    return request.sensor.empty() ? std::string("no sensor given and no default configured")
+                                  : "unknown sensor \"" + request.sensor + "\"";
+  }
+  if (!std::isfinite(request.sweep_start) || !std::isfinite(request.sweep_end) ||
+      !std::isfinite(request.sweep_speed) || request.sweep_speed < 0.0) {
+    return "sweep values must be finite and sweep_speed >= 0";
+  }
+  convert_sweep_units(request, sweep_is_linear(device->kind), /*to_wire=*/false);
+  if (request.sweep_start == request.sweep_end) {  // the device's configured sweep
+    request.sweep_start = device->sweep_start;
+    request.sweep_end = device->sweep_end;
+  }
+  if (request.sweep_speed == 0.0) request.sweep_speed = device->sweep_speed;
+  return "";
+}
+
+}  // namespace rangefit::daemon
