@@ -1,0 +1,147 @@
+#include "sim/stripe_cell.hpp"
+
+#include <atomic>
+#include <cmath>
+
+#include "sim/simulated_stream.hpp"
+
+namespace rangefit::sim {
+namespace {
+
+hal::Duration seconds(double s) { return hal::Duration(std::llround(s * 1e9)); }
+double to_s(hal::Duration d) { return static_cast<double>(d.count()) * 1e-9; }
+
+}  // namespace
+
+double AxisMotion::position_locked(hal::Timestamp t) const {
+  const double dt = std::max(to_s(t - t0_), 0.0);
+  const double dist = std::abs(target_ - p0_);
+  const double moved = std::min(speed_ * dt, dist);
+  return p0_ + (target_ >= p0_ ? moved : -moved);
+}
+
+double AxisMotion::position(hal::Timestamp t) const {
+  std::lock_guard lock(mutex_);
+  return position_locked(t);
+}
+
+double AxisMotion::velocity(hal::Timestamp t) const {
+  std::lock_guard lock(mutex_);
+  if (t < t0_ || position_locked(t) == target_) return 0.0;
+  return target_ >= p0_ ? speed_ : -speed_;
+}
+
+hal::Status AxisMotion::move(hal::Timestamp now, double target_mm, double speed_mm_s) {
+  if (!std::isfinite(target_mm) || target_mm < 0.0 || target_mm > travel_) {
+    return hal::Status::Error("target outside the axis travel [0, " + std::to_string(travel_) +
+                              "] mm");
+  }
+  if (!std::isfinite(speed_mm_s) || speed_mm_s <= 0.0) {
+    return hal::Status::Error("speed must be positive");
+  }
+  std::lock_guard lock(mutex_);
+  p0_ = position_locked(now);
+  t0_ = now;
+  target_ = target_mm;
+  speed_ = std::min(speed_mm_s, max_speed_);  // the drive limits the speed
+  return hal::Status::Ok();
+}
+
+void AxisMotion::halt(hal::Timestamp now) {
+  std::lock_guard lock(mutex_);
+  p0_ = target_ = position_locked(now);
+  t0_ = now;
+}
+
+bool AxisMotion::done(hal::Timestamp now) const {
+  std::lock_guard lock(mutex_);
+  return position_locked(now) == target_;
+}
+
+// The FESTO axis as the driver presents it: commands plus polled position samples.
+class StripeCell::AxisDevice final : public SimulatedStream<hal::AxisSample, hal::LinearAxis> {
+ public:
+  AxisDevice(StripeCell& cell, hal::Clock& clock, hal::Timestamp start)
+      : SimulatedStream("sim-linear-axis", clock, cell.options_.axis_faults, cell.options_.seed, 4),
+        cell_(cell),
+        start_(start) {}
+
+  hal::Status enable() override {
+    enabled_ = true;
+    return hal::Status::Ok();
+  }
+  hal::Status home() override {
+    if (!enabled_) return hal::Status::Error("axis not enabled");
+    return cell_.motion_.move(clock().now(), 0.0, cell_.options_.geometry.max_speed_mm_s);
+  }
+  hal::Status move_to(double position_mm, double speed_mm_s) override {
+    if (!enabled_) return hal::Status::Error("axis not enabled");
+    return cell_.motion_.move(clock().now(), position_mm, speed_mm_s);
+  }
+  hal::Status halt() override {
+    cell_.motion_.halt(clock().now());
+    return hal::Status::Ok();
+  }
+  bool motion_complete() const override { return cell_.motion_.done(clock().now()); }
+
+ protected:
+  hal::Timestamp due(std::uint64_t k) const override {
+    return poll_time(k) + cell_.options_.axis_round_trip / 2;
+  }
+
+  void make(std::uint64_t k, std::mt19937_64& rng, hal::AxisSample& s) override {
+    const FaultOptions& f = faults();
+    const bool stale = k > 0 && std::bernoulli_distribution(f.stale_probability)(rng);
+    const hal::Timestamp t = poll_time(k);
+    const double res = cell_.options_.axis_resolution_mm;
+    const double p = cell_.motion_.position(stale ? poll_time(k - 1) : t);
+    s.stamp = t;
+    if (f.stamp_jitter_sigma.count() > 0) {
+      std::normal_distribution<double> j(0.0, static_cast<double>(f.stamp_jitter_sigma.count()));
+      s.stamp += hal::Duration(static_cast<std::int64_t>(j(rng)));
+    }
+    s.uncertainty = cell_.options_.axis_round_trip;
+    s.position_mm = std::round(p / res) * res;
+    s.velocity_mm_s = cell_.motion_.velocity(t);
+    s.scon = 0x07;  // FHPP: enabled, operation enabled, ready
+    s.spos = cell_.motion_.done(t) ? 0x04 : 0x10;
+    s.valid = true;
+  }
+
+ private:
+  hal::Timestamp poll_time(std::uint64_t k) const {
+    return start_ + seconds(static_cast<double>(k) / cell_.options_.axis_poll_hz);
+  }
+  StripeCell& cell_;
+  const hal::Timestamp start_;
+  std::atomic<bool> enabled_{false};
+};
+
+StripeCell::StripeCell(const Scene& scene, const RayCaster& caster, StripeCellOptions options,
+                       hal::Clock& clock)
+    : options_(std::move(options)),
+      T_scene_world_(scene.mounts.T_scene_stripe),
+      motion_(options_.geometry.max_speed_mm_s, options_.geometry.axis_travel_mm) {
+  const hal::Timestamp start = clock.now();
+  RangerOptions r;
+  r.ranger = options_.geometry.ranger;
+  r.profile_rate_hz = options_.profile_rate_hz;
+  r.quantise = options_.quantise;
+  r.faults = options_.ranger_faults;
+  r.seed = options_.seed;
+  ranger_ = make_simulated_ranger(
+      "sim-stripe-ranger", caster, r, [this](hal::Timestamp t) { return T_scene_ranger(t); }, clock,
+      start);
+  axis_ = std::make_unique<AxisDevice>(*this, clock, start);
+}
+
+StripeCell::~StripeCell() = default;
+
+hal::RangerSource& StripeCell::ranger() { return *ranger_; }
+hal::LinearAxis& StripeCell::axis() { return *axis_; }
+
+Eigen::Isometry3d StripeCell::T_scene_ranger(hal::Timestamp t) const {
+  return T_scene_world_ * options_.geometry.T_world_ranger(motion_.position(t));
+}
+
+}  // namespace rangefit::sim
