@@ -27,10 +27,10 @@ class DdsClient {
 
   // Polls every subscribed topic once for up to timeout; calls the non-null callbacks.
   struct Callbacks {
-    std::function<void(const DetectionResult&)> detection;
-    std::function<void(const std::vector<DiagStatus>&)> diagnostics;
-    std::function<void(const PointCloud&)> cloud;
-    std::function<void(LifecycleState, const std::string& detail)> state;
+    std::function<void(const DetectionResult&)> detection{};
+    std::function<void(const std::vector<DiagStatus>&)> diagnostics{};
+    std::function<void(const PointCloud&)> cloud{};
+    std::function<void(LifecycleState, const std::string& detail)> state{};
   };
   void poll(std::chrono::milliseconds timeout, const Callbacks& callbacks);
 

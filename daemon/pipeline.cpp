@@ -135,9 +135,7 @@ void Pipeline::process(const ScanRequest& request) {
       if (result.reason.empty()) result.reason = "not spooled: " + why;
     }
   }
-  if (!outcome.cloud.empty()) sink_.on_cloud(request, outcome.cloud);
-  sink_.on_result(result);
-  ++completed_;
+  // State first, then the result: a client holding the result sees the settled state.
   if (outcome.status) {
     spdlog::info("request {}: {} ({} points, scan {:.2f} s, detect {:.2f} s){}", request.id,
                  result.found ? "found" : "not found", result.num_points, result.scan_seconds,
@@ -152,6 +150,9 @@ void Pipeline::process(const ScanRequest& request) {
     // FAULT is reported while the failure is the latest news; the next good scan clears it.
     set_state(LifecycleState::kFault, result.reason, "");
   }
+  if (!outcome.cloud.empty()) sink_.on_cloud(request, outcome.cloud);
+  ++completed_;
+  sink_.on_result(result);
 }
 
 }  // namespace rangefit::daemon
