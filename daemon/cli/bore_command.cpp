@@ -1,0 +1,184 @@
+#include "daemon/cli/bore_command.hpp"
+
+#include <cmath>
+#include <exception>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "daemon/cli/commands.hpp"
+#include "daemon/cli/json_util.hpp"
+#include "detect/bore_detector.hpp"
+#include "io/cloud_io.hpp"
+
+namespace rangefit::cli {
+namespace {
+
+struct BoreArgs {
+  std::string cloud;
+  std::string entrance, axis, plane_normal, view_dir, sensor_position;
+  double radius = 0.0;
+  double normal_keep = 1.0;
+  std::uint64_t seed = 1;
+  bool json = false;
+};
+
+// "X,Y,Z" -> vector; nullopt on anything else (wrong count, not a number, NaN/Inf).
+std::optional<Eigen::Vector3d> parse_vec(const std::string& text) {
+  std::vector<double> v;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    try {
+      std::size_t used = 0;
+      const double x = std::stod(item, &used);
+      if (used != item.size() || !std::isfinite(x)) return std::nullopt;
+      v.push_back(x);
+    } catch (const std::exception&) {
+      return std::nullopt;
+    }
+  }
+  if (v.size() != 3) return std::nullopt;
+  return Eigen::Vector3d(v[0], v[1], v[2]);
+}
+
+nlohmann::json to_json(const BoreResult& r) {
+  nlohmann::json j;
+  j["found"] = r.found;
+  if (r.found) {
+    j["entrance"] = json_vec(r.entrance);
+    j["axis"] = json_vec(r.axis);
+    j["radius"] = r.radius;
+    j["plane_normal"] = json_vec(r.plane_normal);
+    j["rsf_radius"] = r.rsf_radius;
+    j["second_fit"] = r.second_fit;
+    j["refined"] = r.refined;
+  } else {
+    j["reason"] = std::string(to_string(r.reason));
+  }
+  const BoreCounts& c = r.counts;
+  j["points"] = {{"input", c.input},
+                 {"non_finite", c.non_finite},
+                 {"roi", c.roi},
+                 {"normal_queries", c.normal_queries},
+                 {"normals", c.normals},
+                 {"plane", c.plane},
+                 {"wall", c.wall},
+                 {"wall_final", c.wall_final},
+                 {"refine_inliers", c.refine_inliers}};
+  const BoreTimes& t = r.time_ms;
+  j["time_ms"] = {{"roi", t.roi},    {"normals", t.normals}, {"segmentation", t.segmentation},
+                  {"rsf", t.rsf},    {"refine", t.refine},   {"entrance", t.entrance},
+                  {"total", t.total}};
+  return j;
+}
+
+void print_text(const BoreResult& r) {
+  std::cout << std::fixed << std::setprecision(4);
+  if (!r.found) {
+    std::cout << "bore not found: " << to_string(r.reason) << " (" << r.counts.roi
+              << " points in the region, " << r.counts.wall << " wall points)\n";
+    return;
+  }
+  const auto v = [](const Eigen::Vector3d& x) {
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(4) << x.x() << ", " << x.y() << ", " << x.z();
+    return s.str();
+  };
+  std::cout << "bore found\n"
+            << "  entrance  " << v(r.entrance) << " mm\n"
+            << "  axis      " << v(r.axis) << " (unit, out of the bore)\n"
+            << "  radius    " << r.radius << " mm\n"
+            << "  points    " << r.counts.roi << " in region, " << r.counts.plane << " plane, "
+            << r.counts.wall << " wall" << (r.second_fit ? " (notch re-fit ran)" : "") << "\n"
+            << std::setprecision(2) << "  time      " << r.time_ms.total << " ms\n";
+}
+
+int run(const BoreArgs& a) {
+  BorePrior prior;
+  const auto entrance = parse_vec(a.entrance);
+  const auto axis = parse_vec(a.axis);
+  if (!entrance || !axis || axis->norm() == 0.0) {
+    std::cerr << "rangefit bore: --cad-entrance and --cad-axis need three finite numbers X,Y,Z "
+                 "(axis non-zero)\n";
+    return kExitBadInput;
+  }
+  if (!std::isfinite(a.radius) || a.radius <= 0.0) {
+    std::cerr << "rangefit bore: --cad-radius must be a positive number of millimetres\n";
+    return kExitBadInput;
+  }
+  prior.entrance = *entrance;
+  prior.axis = *axis;
+  prior.radius = a.radius;
+  BoreOptions options;
+  options.seed = a.seed;
+  options.normal_keep = a.normal_keep;
+  const std::pair<const std::string*, const char*> optional_vectors[] = {
+      {&a.plane_normal, "--cad-plane-normal"},
+      {&a.view_dir, "--view-dir"},
+      {&a.sensor_position, "--sensor-position"}};
+  for (const auto& [text, name] : optional_vectors) {
+    if (text->empty()) continue;
+    const auto v = parse_vec(*text);
+    if (!v || (text != &a.sensor_position && v->norm() == 0.0)) {
+      std::cerr << "rangefit bore: " << name << " needs three finite numbers X,Y,Z\n";
+      return kExitBadInput;
+    }
+    if (text == &a.plane_normal) prior.plane_normal = *v;
+    if (text == &a.view_dir) options.view_dir = *v;
+    if (text == &a.sensor_position) options.sensor_position = *v;
+  }
+  PointCloud cloud;
+  try {
+    cloud = io::read_cloud(a.cloud);
+  } catch (const std::exception& e) {
+    std::cerr << "rangefit bore: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  const BoreResult r = detect_bore(cloud, prior, options);
+  if (a.json) {
+    std::cout << to_json(r).dump() << "\n";
+  } else {
+    print_text(r);
+  }
+  if (r.found) return kExitOk;
+  return r.reason == BoreReason::kBadPrior ? kExitBadInput : kExitNotFound;
+}
+
+}  // namespace
+
+void add_bore_command(CLI::App& app, int* exit_code) {
+  auto args = std::make_shared<BoreArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "bore",
+      "Find a bore hole in a scan from its CAD prior (thesis ch. 4) and print entrance, axis "
+      "and radius. Units: mm. Exit 0 found, 2 not found, 1 bad input.");
+  cmd->add_option("--cloud", args->cloud, "Scan file, .ply or .pcd (points in mm)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--cad-entrance", args->entrance,
+                  "Expected bore entrance X,Y,Z in the scan's frame, mm")
+      ->required();
+  cmd->add_option("--cad-axis", args->axis, "Expected bore axis X,Y,Z (any length, either sign)")
+      ->required();
+  cmd->add_option("--cad-radius", args->radius, "Expected bore radius, mm")->required();
+  cmd->add_option("--cad-plane-normal", args->plane_normal,
+                  "Normal X,Y,Z of the surface around the bore (default: the axis)");
+  cmd->add_option("--view-dir", args->view_dir,
+                  "Direction X,Y,Z from the part toward the sensor (default: the plane normal)");
+  cmd->add_option("--sensor-position", args->sensor_position,
+                  "Sensor position X,Y,Z in mm, instead of --view-dir");
+  cmd->add_option("--normal-keep", args->normal_keep,
+                  "Share (0..1] of region points that get a normal (thesis: 0.2)")
+      ->check(CLI::Range(0.001, 1.0));
+  cmd->add_option("--seed", args->seed, "Seed of the random sampling (same seed, same result)");
+  cmd->add_flag("--json", args->json,
+                "Print one JSON object: found, entrance, axis, radius, reason, points, time_ms");
+  cmd->callback([args, exit_code] { *exit_code = run(*args); });
+}
+
+}  // namespace rangefit::cli

@@ -1,0 +1,142 @@
+// Bore detection speed on a ~75,000-point synthetic scan with a ~7,500-point region (5 mm bore,
+// 0.2 mm spacing): the whole pipeline, the RSF step and the LSF baselines in one run, each with
+// its accuracy against the ground truth as counters (axis_deg, radius_mm, entrance_mm).
+//   build-bore/test/bench/bore_benchmark
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "detect/bore_detector.hpp"
+#include "detect/cylinder_lsf.hpp"
+#include "detect/cylinder_rsf.hpp"
+#include "detect/kdtree.hpp"
+#include "detect/normals.hpp"
+#include "sim/synthetic_bore.hpp"
+
+namespace rangefit {
+namespace {
+
+struct Fixture {
+  sim::SyntheticBoreScan scan;
+  BorePrior prior;
+  std::vector<Eigen::Vector3d> wall, wall_normals;  // segmented wall of the region
+};
+
+const Fixture& fixture(bool organised) {
+  static Fixture f[2];
+  Fixture& x = f[organised ? 1 : 0];
+  if (!x.scan.cloud.empty()) return x;
+  sim::SyntheticBoreOptions o;
+  o.radius = 5.0;
+  o.extent = 27.4;
+  o.spacing = 0.2;
+  o.organised = organised;
+  o.seed = 7;
+  x.scan = sim::make_synthetic_bore(o);
+  const auto& t = x.scan.truth;
+  x.prior.entrance = t.entrance + Eigen::Vector3d(0.3, -0.2, 0.1);
+  x.prior.axis = (t.axis + Eigen::Vector3d(0.03, 0.0, 0.0)).normalized();
+  x.prior.radius = 5.0;
+  x.prior.plane_normal = t.plane_normal;
+  // The wall as the pipeline segments it (eq. 4.4-4.6), for the RSF and LSF benchmarks.
+  std::vector<std::uint32_t> roi;
+  for (std::uint32_t i = 0; i < x.scan.cloud.size(); ++i) {
+    if ((x.scan.cloud.points[i] - t.entrance).norm() < 10.0) roi.push_back(i);
+  }
+  const KdTree tree(x.scan.cloud.points);
+  NormalOptions no;
+  no.view_dir = t.view_dir;
+  const NormalEstimate ne = estimate_normals(x.scan.cloud.points, tree, roi, no);
+  for (std::size_t i = 0; i < roi.size(); ++i) {
+    const Eigen::Vector3d& n = ne.normals[i];
+    if (n.isZero() || std::abs(n.dot(x.prior.axis)) > std::sin(5.0 * std::numbers::pi / 180)) {
+      continue;
+    }
+    x.wall.push_back(x.scan.cloud.points[roi[i]]);
+    x.wall_normals.push_back(n);
+  }
+  return x;
+}
+
+void accuracy(benchmark::State& state, const Eigen::Vector3d& axis, double radius) {
+  const auto& t = fixture(false).scan.truth;
+  state.counters["axis_deg"] =
+      std::acos(std::min(1.0, std::abs(axis.normalized().dot(t.axis)))) * 180.0 / std::numbers::pi;
+  state.counters["radius_mm"] = radius - t.radius;
+}
+
+void run_pipeline(benchmark::State& state, bool organised, double keep) {
+  const Fixture& f = fixture(organised);
+  BoreOptions opt;
+  opt.view_dir = f.scan.truth.view_dir;
+  opt.normal_keep = keep;
+  BoreResult r;
+  for (auto _ : state) {
+    r = detect_bore(f.scan.cloud, f.prior, opt);
+    benchmark::DoNotOptimize(r);
+  }
+  accuracy(state, r.axis, r.radius);
+  state.counters["entrance_mm"] = (r.entrance - f.scan.truth.entrance).norm();
+  state.counters["points"] = static_cast<double>(r.counts.input);
+  state.counters["roi"] = static_cast<double>(r.counts.roi);
+  state.counters["wall"] = static_cast<double>(r.counts.wall);
+  state.counters["normals_ms"] = r.time_ms.normals;
+}
+
+void BM_Pipeline(benchmark::State& s) { run_pipeline(s, false, 1.0); }
+void BM_PipelineKeep20(benchmark::State& s) { run_pipeline(s, false, 0.2); }
+void BM_PipelineOrganised(benchmark::State& s) { run_pipeline(s, true, 1.0); }
+void BM_PipelineOrganisedKeep20(benchmark::State& s) { run_pipeline(s, true, 0.2); }
+
+void BM_Rsf(benchmark::State& state) {
+  const Fixture& f = fixture(false);
+  RsfResult r;
+  for (auto _ : state) {
+    r = fit_cylinder_rsf(f.wall, f.wall_normals, f.prior.axis, f.prior.entrance, 5.0, {}, 1);
+    benchmark::DoNotOptimize(r);
+  }
+  accuracy(state, r.cylinder.axis, r.cylinder.radius);
+  state.counters["wall"] = static_cast<double>(f.wall.size());
+}
+
+void run_lsf(benchmark::State& state, LsfMethod method, int iterations, bool from_pca) {
+  const Fixture& f = fixture(false);
+  CylinderLsfOptions o;
+  o.method = method;
+  o.max_iterations = iterations;
+  o.huber_delta = 0.0;  // plain least squares, as the thesis's baseline
+  const Cylinder start = from_pca ? cylinder_from_pca(f.wall, 5.0)
+                                  : Cylinder{f.prior.entrance, f.prior.axis, f.prior.radius};
+  CylinderLsfResult r;
+  for (auto _ : state) {
+    r = fit_cylinder_lsf(f.wall, start, o);
+    benchmark::DoNotOptimize(r);
+  }
+  accuracy(state, r.cylinder.axis, r.cylinder.radius);
+  state.counters["iterations"] = r.iterations;
+}
+
+void BM_LsfSteepestFromCad(benchmark::State& s) {
+  run_lsf(s, LsfMethod::kSteepestDescent, 200, false);
+}
+void BM_LsfSteepestFromPca(benchmark::State& s) {
+  run_lsf(s, LsfMethod::kSteepestDescent, 200, true);
+}
+void BM_LsfLevenbergMarquardtFromCad(benchmark::State& s) {
+  run_lsf(s, LsfMethod::kLevenbergMarquardt, 100, false);
+}
+
+BENCHMARK(BM_Pipeline)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PipelineKeep20)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PipelineOrganised)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PipelineOrganisedKeep20)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Rsf)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LsfSteepestFromCad)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LsfSteepestFromPca)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LsfLevenbergMarquardtFromCad)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace rangefit
+
+BENCHMARK_MAIN();
