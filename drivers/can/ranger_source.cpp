@@ -1,0 +1,196 @@
+#include "drivers/can/ranger_source.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+
+#include "drivers/can/cia402_codec.hpp"
+
+namespace rangefit::drivers::can {
+
+namespace {
+hal::RangerProfile prototype() {
+  hal::RangerProfile p;
+  p.x_mm.reserve(ranger::kMaxPoints);
+  p.z_mm.reserve(ranger::kMaxPoints);
+  return p;
+}
+}  // namespace
+
+FrameFilter ranger_filter(const RangerConfig& config) {
+  FrameFilter f;
+  f.ids = {ranger::profile_id(config.node), cia402::heartbeat_id(config.node),
+           cia402::emcy_id(config.node)};
+  return f;
+}
+
+RangerCanSource::RangerCanSource(RangerConfig config, std::unique_ptr<CanTransport> transport)
+    : config_(std::move(config)),
+      transport_(std::move(transport)),
+      ring_(config_.queue_capacity, prototype()),
+      loop_(*transport_, *this, counters_, config_.loop),
+      reassembler_(config_.incomplete_timeout),
+      scratch_(prototype()) {}
+
+RangerCanSource::~RangerCanSource() { stop(); }
+
+hal::Status RangerCanSource::start() {
+  if (started_) return hal::Status::Ok();
+  const hal::Status open = transport_->reopen();
+  if (!open) spdlog::warn("{}: {} (retrying)", config_.name, open.message);
+  last_heartbeat_ = hal::monotonic_now();
+  if (open) on_link(true);
+  loop_.start(open.ok);
+  started_ = true;
+  return hal::Status::Ok();
+}
+
+void RangerCanSource::stop() {
+  if (!started_) return;
+  loop_.stop();
+  started_ = false;
+}
+
+std::size_t RangerCanSource::read(std::vector<hal::RangerProfile>& out, hal::Duration timeout) {
+  return ring_.drain(out, timeout);
+}
+
+CanCounters RangerCanSource::counters() const {
+  CanCounters c = counters_.snapshot(transport_->counters());
+  c.values[static_cast<std::size_t>(Counter::kRingDropped)] += ring_.dropped();
+  return c;
+}
+
+hal::DeviceHealth RangerCanSource::health() const {
+  hal::DeviceHealth h;
+  h.counters = counters().stream();
+  if (!started_)
+    h.state = hal::DeviceState::kReady;
+  else if (!loop_.link_up())
+    h.state = hal::DeviceState::kDisconnected;
+  else if (loop_.bus_off() || !alive_)
+    h.state = hal::DeviceState::kFault;
+  else
+    h.state = hal::DeviceState::kStreaming;
+  h.message = to_string(problem_.load());
+  return h;
+}
+
+void RangerCanSource::on_link(bool up) {
+  if (!up) {
+    problem_ = Problem::kLinkDown;
+    return;
+  }
+  last_heartbeat_ = hal::monotonic_now();
+  (void)transport_->send(cia402::encode_nmt(cia402::kNmtStart, config_.node));
+}
+
+std::size_t RangerCanSource::pending_incomplete() {
+  const std::uint64_t now = reassembler_.counters().incomplete;
+  const std::uint64_t n = now - incomplete_seen_;
+  incomplete_seen_ = now;
+  return static_cast<std::size_t>(n);
+}
+
+hal::Timestamp RangerCanSource::on_tick(hal::Timestamp now) {
+  if (reassembler_.expire(now)) problem_ = Problem::kTimeout;
+  if (const std::size_t n = pending_incomplete()) counters_.bump(Counter::kTimeouts, n);
+  if (alive_ && now - last_heartbeat_ > config_.heartbeat_timeout) {
+    alive_ = false;
+    counters_.bump(Counter::kNodesLost);
+    problem_ = Problem::kNodeLost;
+  }
+  return now + std::chrono::milliseconds(10);
+}
+
+void RangerCanSource::on_frame(const CanFrame& f) {
+  if (f.id == ranger::profile_id(config_.node)) {
+    switch (reassembler_.feed(f)) {
+      case ranger::FeedResult::kComplete:
+        deliver();
+        break;
+      case ranger::FeedResult::kCrcError:
+        counters_.bump(Counter::kCrcErrors);
+        problem_ = Problem::kCrcError;
+        break;
+      case ranger::FeedResult::kBadFrame:
+        counters_.bump(Counter::kBadLengths);
+        break;
+      case ranger::FeedResult::kDuplicate:
+        counters_.bump(Counter::kDuplicates);
+        break;
+      case ranger::FeedResult::kPending:
+        break;
+    }
+    if (const std::size_t n = pending_incomplete()) counters_.bump(Counter::kTimeouts, n);
+    return;
+  }
+  const cia402::Message m = cia402::decode(f);
+  if (m.kind == cia402::Kind::kHeartbeat && m.node == config_.node) {
+    last_heartbeat_ = f.stamp;
+    alive_ = true;
+    if (m.nmt_state == cia402::kBootUp) {
+      counters_.bump(Counter::kReboots);
+      problem_ = Problem::kNodeReboot;
+      have_offset_ = false;  // the device clock restarted
+      (void)transport_->send(cia402::encode_nmt(cia402::kNmtStart, config_.node));
+    }
+  } else if (m.kind == cia402::Kind::kEmcy && m.node == config_.node) {
+    if (m.emcy_code != 0) {
+      counters_.bump(Counter::kFaults);
+      problem_ = Problem::kEmcy;
+    }
+  } else if (m.kind == cia402::Kind::kBadLength) {
+    counters_.bump(Counter::kBadLengths);
+  } else {
+    counters_.bump(Counter::kUnknownIds);
+  }
+}
+
+void RangerCanSource::deliver() {
+  const ranger::WireProfile& w = reassembler_.profile();
+  if (have_sequence_) {
+    const std::uint32_t step = w.sequence - last_sequence_;
+    if (step == 0 || step > 0x8000'0000u) {
+      counters_.bump(step == 0 ? Counter::kDuplicates : Counter::kReordered);
+      return;
+    }
+    if (step > 1) counters_.bump(Counter::kGaps, step - 1);
+  }
+  have_sequence_ = true;
+  last_sequence_ = w.sequence;
+  // Unwrap the 32-bit µs device clock, then map it with the running-minimum offset.
+  if (!have_offset_)
+    device_us_ = w.device_time_us;
+  else
+    device_us_ += static_cast<std::int32_t>(w.device_time_us - last_device_us_);
+  last_device_us_ = w.device_time_us;
+  const std::int64_t measured = reassembler_.header_stamp().count() - device_us_ * 1000;
+  if (!have_offset_ || measured < offset_ns_ + config_.offset_creep.count()) {
+    offset_ns_ = measured;
+  } else {
+    offset_ns_ += config_.offset_creep.count();
+  }
+  have_offset_ = true;
+
+  scratch_.sequence = w.sequence;
+  scratch_.stamp = hal::Timestamp{device_us_ * 1000 + offset_ns_};
+  scratch_.exposure = std::chrono::microseconds(w.exposure_us);
+  scratch_.flags = w.flags & (hal::kRangerOverrun | hal::kRangerSaturated | hal::kRangerLaserOff);
+  if (w.flags & ranger::kWireOverrun) counters_.bump(Counter::kFaults);
+  const std::size_t n = w.point_count;
+  scratch_.x_mm.resize(n);
+  scratch_.z_mm.resize(n);
+  const double centre = (static_cast<double>(n) - 1.0) / 2.0;
+  const double unit_mm = w.units_um / 1000.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    scratch_.x_mm[k] =
+        static_cast<float>((static_cast<double>(k) - centre) * config_.lateral_pitch_mm);
+    scratch_.z_mm[k] = w.range[k] == ranger::kNoReturn
+                           ? hal::kNoReturn
+                           : static_cast<float>(config_.range_offset_mm + w.range[k] * unit_mm);
+  }
+  if (ring_.push(scratch_)) counters_.bump(Counter::kSamples);
+}
+
+}  // namespace rangefit::drivers::can

@@ -1,0 +1,73 @@
+#pragma once
+// The laser-stripe ranger over CAN FD (project-defined profile, docs/protocols/can.md): the driver
+// reassembles profiles from their segment frames, checks sequence and CRC, translates the
+// device's exposure time to CLOCK_MONOTONIC and supervises the ranger's heartbeat.
+//
+// Device clock: offset = receive stamp of the header - device time, filtered as a running
+// minimum (transport delay only ever adds) that may creep up slowly so drift is followed.
+
+#include <memory>
+#include <string>
+
+#include "drivers/can/can_loop.hpp"
+#include "drivers/can/ranger_codec.hpp"
+#include "drivers/can/sample_ring.hpp"
+#include "hal/source.hpp"
+
+namespace rangefit::drivers::can {
+
+struct RangerConfig {
+  std::string name = "ranger";
+  std::uint8_t node = 0x20;
+  double lateral_pitch_mm = 0.1;  // spacing of the points along the laser line
+  double range_offset_mm = 0.0;   // z = offset + raw * units
+  hal::Duration incomplete_timeout = std::chrono::milliseconds(50);
+  hal::Duration heartbeat_timeout = std::chrono::milliseconds(300);
+  // How fast the clock-offset estimate may rise per profile (covers drift, forgets old minima).
+  hal::Duration offset_creep = std::chrono::microseconds(2);
+  std::size_t queue_capacity = 256;
+  LoopConfig loop;
+};
+
+FrameFilter ranger_filter(const RangerConfig& config);
+
+class RangerCanSource final : public hal::RangerSource, private CanLoopHandler {
+ public:
+  RangerCanSource(RangerConfig config, std::unique_ptr<CanTransport> transport);
+  ~RangerCanSource() override;
+
+  std::string name() const override { return config_.name; }
+  hal::Status start() override;
+  void stop() override;
+  hal::DeviceHealth health() const override;
+  std::size_t read(std::vector<hal::RangerProfile>& out, hal::Duration timeout) override;
+  CanCounters counters() const;
+
+ private:
+  hal::Timestamp on_tick(hal::Timestamp now) override;
+  void on_frame(const CanFrame& frame) override;
+  void on_link(bool up) override;
+  void deliver();
+  std::size_t pending_incomplete();
+
+  RangerConfig config_;
+  std::unique_ptr<CanTransport> transport_;
+  AtomicCanCounters counters_;
+  SampleRing<hal::RangerProfile> ring_;
+  CanLoop loop_;
+  ranger::Reassembler reassembler_;
+  hal::RangerProfile scratch_;  // capacity reserved once; reused for every profile
+  std::uint64_t incomplete_seen_ = 0;
+  bool have_sequence_ = false;
+  std::uint32_t last_sequence_ = 0;
+  bool have_offset_ = false;
+  std::int64_t offset_ns_ = 0;
+  std::uint32_t last_device_us_ = 0;
+  std::int64_t device_us_ = 0;  // unwrapped device time
+  hal::Timestamp last_heartbeat_{};
+  std::atomic<bool> alive_{true};
+  std::atomic<Problem> problem_{Problem::kNone};
+  std::atomic<bool> started_{false};
+};
+
+}  // namespace rangefit::drivers::can

@@ -1,0 +1,65 @@
+#pragma once
+// A simulated CiA 402 drive: boots (heartbeat 00), goes operational on NMT start, answers every
+// SYNC with TPDO1 (statusword + position actual value of the simulated angle at the SYNC's
+// receive instant) and optionally TPDO2, produces heartbeats at the 0x1017 period (settable by
+// expedited SDO). Faults for tests: silence, reboot, dropped/duplicated/short TPDOs, EMCY.
+
+#include <atomic>
+#include <functional>
+
+#include "drivers/can/cia402_codec.hpp"
+#include "sim/can_bus.hpp"
+
+namespace rangefit::sim {
+
+struct SimCia402Config {
+  std::uint8_t node = 1;
+  double rad_per_increment = 1e-6;
+  double offset_rad = 0.0;
+  bool tpdo2 = false;
+  std::uint16_t heartbeat_ms = 100;
+  std::uint16_t statusword = 0x0637;  // operation enabled, voltage enabled, remote
+};
+
+class SimCia402Node final : public SimCanDevice {
+ public:
+  // angle(t) in rad at CLOCK_MONOTONIC t; the default is the value of set_angle().
+  explicit SimCia402Node(SimCia402Config config,
+                         std::function<double(hal::Timestamp)> angle = nullptr);
+
+  void on_frame(const drivers::can::CanFrame& frame, drivers::can::CanTransport& bus) override;
+  hal::Timestamp tick(hal::Timestamp now, drivers::can::CanTransport& bus) override;
+
+  void set_angle(double rad) { angle_value_ = rad; }
+  // Fault injection (thread-safe; applied on the bus thread).
+  void set_silent(bool silent) { silent_ = silent; }
+  void reboot() { reboot_ = true; }
+  void drop_next_tpdos(int n) { drop_tpdos_ = n; }
+  void duplicate_next_tpdo() { duplicate_tpdo_ = true; }
+  void short_next_tpdo() { short_tpdo_ = true; }
+  void set_fault(bool fault) { fault_ = fault; }
+  void send_emcy_next(std::uint16_t code) { emcy_code_ = code; }
+
+  std::uint8_t nmt_state() const { return state_; }
+  std::uint64_t syncs_answered() const { return answered_; }
+  std::uint16_t heartbeat_ms() const { return heartbeat_ms_; }
+
+ private:
+  void answer_sync(hal::Timestamp stamp, drivers::can::CanTransport& bus);
+  void answer_sdo(const drivers::can::cia402::Message& m, drivers::can::CanTransport& bus);
+  void boot(drivers::can::CanTransport& bus);
+
+  SimCia402Config config_;
+  std::function<double(hal::Timestamp)> angle_;
+  std::atomic<double> angle_value_{0.0};
+  std::atomic<std::uint8_t> state_{drivers::can::cia402::kBootUp};
+  std::atomic<std::uint16_t> heartbeat_ms_;
+  std::atomic<bool> silent_{false}, reboot_{true}, duplicate_tpdo_{false}, short_tpdo_{false};
+  std::atomic<bool> fault_{false}, reschedule_heartbeat_{false};
+  std::atomic<int> drop_tpdos_{0};
+  std::atomic<std::uint16_t> emcy_code_{0};
+  std::atomic<std::uint64_t> answered_{0};
+  hal::Timestamp next_heartbeat_{};
+};
+
+}  // namespace rangefit::sim

@@ -1,0 +1,262 @@
+// The CiA 402 joint driver against simulated CiA 402 drives speaking the wire protocol over the
+// in-process transport: values and stamps, start-up (NMT, SDO), and the CAN fault list.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <thread>
+
+#include "drivers/can/cia402_joint_source.hpp"
+#include "drivers/can/cia402_pan_tilt_source.hpp"
+#include "drivers/can/inprocess_transport.hpp"
+#include "sim/can_cia402_node.hpp"
+
+namespace rangefit::drivers::can {
+namespace {
+
+using namespace std::chrono_literals;
+
+template <class Pred>
+bool eventually(Pred pred, std::chrono::milliseconds limit = 3000ms) {
+  const auto deadline = std::chrono::steady_clock::now() + limit;
+  while (!pred()) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(2ms);
+  }
+  return true;
+}
+
+constexpr double kOmega = 1.0;  // rad/s of the simulated joints
+
+class Cia402Driver : public ::testing::Test {
+ protected:
+  void start(bool master = true) {
+    config_.sync_master = master;
+    config_.joints = {{1, 5, 1e-6, 0.0}, {2, 6, 1e-6, 0.0}};
+    auto [a, b] = InProcessTransport::make_pair(cia402_filter(config_));
+    link_ = a.get();
+    sim_link_ = b.get();
+    bus_ = std::make_unique<sim::SimCanBus>(std::move(b));
+    t0_ = hal::monotonic_now();
+    const auto angle = [t0 = t0_](hal::Timestamp t) {
+      return kOmega * std::chrono::duration<double>(t - t0).count();
+    };
+    sim::SimCia402Config n1;
+    n1.node = 1;
+    n1.heartbeat_ms = 1000;  // the driver configures 100 ms by SDO
+    sim::SimCia402Config n2 = n1;
+    n2.node = 2;
+    node1_ = std::make_shared<sim::SimCia402Node>(n1, angle);
+    node2_ = std::make_shared<sim::SimCia402Node>(n2, angle);
+    if (master) {
+      bus_->add(node1_);
+      bus_->add(node2_);
+    }
+    bus_->start();
+    driver_ = std::make_unique<Cia402JointSource>(config_, std::move(a));
+    ASSERT_TRUE(driver_->start().ok);
+  }
+  void TearDown() override {
+    if (driver_) driver_->stop();
+    if (bus_) bus_->stop();
+  }
+  std::vector<hal::JointSample> collect(std::size_t n) {
+    std::vector<hal::JointSample> out;
+    eventually([&] {
+      driver_->read(out, 10ms);
+      return out.size() >= n;
+    });
+    return out;
+  }
+  std::uint64_t count(Counter c) const { return driver_->counters()[c]; }
+
+  Cia402Config config_;
+  InProcessTransport* link_ = nullptr;
+  InProcessTransport* sim_link_ = nullptr;
+  std::unique_ptr<sim::SimCanBus> bus_;
+  std::shared_ptr<sim::SimCia402Node> node1_, node2_;
+  std::unique_ptr<Cia402JointSource> driver_;
+  hal::Timestamp t0_{};
+};
+
+TEST(Cia402DriverConfig, NoJointsIsRefusedAtStart) {
+  auto [a, b] = InProcessTransport::make_pair();
+  Cia402JointSource driver(Cia402Config{}, std::move(a));
+  const hal::Status s = driver.start();
+  EXPECT_FALSE(s.ok);
+  EXPECT_NE(s.message.find("no joints"), std::string::npos);
+}
+
+TEST_F(Cia402Driver, StartsNodesConfiguresHeartbeatAndStreamsJointAnglesAtSyncStamps) {
+  start();
+  const auto samples = collect(100);
+  ASSERT_GE(samples.size(), 100u);
+  EXPECT_EQ(node1_->nmt_state(), cia402::kOperational);
+  EXPECT_EQ(node1_->heartbeat_ms(), 100);
+  hal::Timestamp last5{};
+  int joint5 = 0;
+  for (const auto& s : samples) {
+    ASSERT_TRUE(s.joint == 5 || s.joint == 6);
+    EXPECT_TRUE(s.valid);
+    EXPECT_EQ(s.status, 0x0637);
+    // The drive sampled its angle when it received the SYNC; the driver stamps the SYNC echo.
+    const double expected = kOmega * std::chrono::duration<double>(s.stamp - t0_).count();
+    EXPECT_NEAR(s.angle_rad, expected, 0.02);
+    if (s.joint == 5) {
+      EXPECT_GT(s.stamp, last5);
+      last5 = s.stamp;
+      ++joint5;
+    }
+  }
+  EXPECT_GE(joint5, 40);
+  EXPECT_EQ(driver_->health().state, hal::DeviceState::kStreaming);
+}
+
+TEST_F(Cia402Driver, BothJointsOfOneSyncShareItsStamp) {
+  start();
+  const auto samples = collect(40);
+  std::map<std::int64_t, int> per_stamp;
+  for (const auto& s : samples) ++per_stamp[s.stamp.count()];
+  int paired = 0;
+  for (const auto& [stamp, n] : per_stamp) paired += n == 2;
+  EXPECT_GE(paired, 15);
+}
+
+TEST_F(Cia402Driver, SilentNodeIsReportedLostAndRecovers) {
+  start();
+  collect(10);
+  node2_->set_silent(true);
+  ASSERT_TRUE(eventually([&] { return count(Counter::kNodesLost) >= 1; }));
+  const hal::DeviceHealth h = driver_->health();
+  EXPECT_EQ(h.state, hal::DeviceState::kFault);
+  EXPECT_NE(h.message.find("node 2"), std::string::npos);
+  EXPECT_GT(count(Counter::kGaps), 0u);
+  node2_->set_silent(false);
+  ASSERT_TRUE(eventually([&] { return driver_->health().state == hal::DeviceState::kStreaming; }));
+  std::vector<hal::JointSample> out;
+  ASSERT_TRUE(eventually([&] {
+    driver_->read(out, 10ms);
+    return !out.empty() && out.back().joint == 6;
+  }));
+}
+
+TEST_F(Cia402Driver, RebootedNodeIsCountedAndStartedAgain) {
+  start();
+  collect(10);
+  const auto before = count(Counter::kReboots);
+  node1_->reboot();
+  ASSERT_TRUE(eventually([&] { return count(Counter::kReboots) > before; }));
+  ASSERT_TRUE(eventually([&] { return node1_->nmt_state() == cia402::kOperational; }));
+  const auto answered = node1_->syncs_answered();
+  EXPECT_TRUE(eventually([&] { return node1_->syncs_answered() > answered + 5; }));
+}
+
+TEST_F(Cia402Driver, MissingDuplicateAndShortTpdosAreCountedNotDelivered) {
+  start();
+  collect(10);
+  const auto gaps = count(Counter::kGaps);
+  node1_->drop_next_tpdos(3);
+  ASSERT_TRUE(eventually([&] { return count(Counter::kGaps) >= gaps + 3; }));
+  node1_->duplicate_next_tpdo();
+  ASSERT_TRUE(eventually([&] { return count(Counter::kDuplicates) >= 1; }));
+  node1_->short_next_tpdo();
+  ASSERT_TRUE(eventually([&] { return count(Counter::kBadLengths) >= 1; }));
+  EXPECT_EQ(driver_->health().state, hal::DeviceState::kStreaming);
+}
+
+TEST_F(Cia402Driver, EmcyAndFaultBitAreReported) {
+  start();
+  collect(10);
+  node2_->send_emcy_next(0x2310);
+  ASSERT_TRUE(eventually([&] { return count(Counter::kFaults) >= 1; }));
+  EXPECT_NE(driver_->health().message.find("EMCY"), std::string::npos);
+  node1_->set_fault(true);
+  std::vector<hal::JointSample> out;
+  EXPECT_TRUE(eventually([&] {
+    driver_->read(out, 10ms);
+    return std::any_of(out.begin(), out.end(),
+                       [](const auto& s) { return s.joint == 5 && !s.valid; });
+  }));
+}
+
+TEST_F(Cia402Driver, UnknownIdsAreCountedWhenNotFilteredOut) {
+  start();
+  FrameFilter open = cia402_filter(config_);
+  open.ids.clear();
+  link_->set_filter(open);
+  ASSERT_EQ(sim_link_->send(cia402::encode_tpdo1(9, 0, 0)), TxResult::kOk);  // node 9: not ours
+  ASSERT_TRUE(eventually([&] { return count(Counter::kUnknownIds) >= 1; }));
+}
+
+TEST_F(Cia402Driver, DownedInterfaceIsReopenedAndStreamingResumes) {
+  start();
+  collect(10);
+  link_->set_link_down(true);
+  ASSERT_TRUE(
+      eventually([&] { return driver_->health().state == hal::DeviceState::kDisconnected; }));
+  EXPECT_NE(driver_->health().message.find("interface down"), std::string::npos);
+  link_->set_link_down(false);
+  ASSERT_TRUE(eventually([&] { return count(Counter::kReconnects) >= 1; }));
+  std::vector<hal::JointSample> out;
+  driver_->read(out, 0ms);
+  out.clear();
+  EXPECT_FALSE(collect(10).empty());
+}
+
+TEST_F(Cia402Driver, FollowerCountsSyncGapsDuplicatesAndReordering) {
+  start(/*master=*/false);
+  auto& bus = *sim_link_;
+  const auto sync_and_answer = [&](std::uint8_t counter, bool answer) {
+    ASSERT_EQ(bus.send(cia402::encode_sync(counter)), TxResult::kOk);
+    if (!answer) return;
+    ASSERT_EQ(bus.send(cia402::encode_tpdo1(1, 0x0637, counter * 1000)), TxResult::kOk);
+    ASSERT_EQ(bus.send(cia402::encode_tpdo1(2, 0x0637, counter * 1000)), TxResult::kOk);
+  };
+  sync_and_answer(1, true);
+  sync_and_answer(2, true);
+  sync_and_answer(2, false);  // duplicate SYNC
+  sync_and_answer(4, true);   // SYNC 3 missing
+  sync_and_answer(3, false);  // late, reordered SYNC 3
+  const auto samples = collect(6);
+  ASSERT_EQ(samples.size(), 6u);
+  EXPECT_NEAR(samples[0].angle_rad, 1000e-6, 1e-12);
+  EXPECT_NEAR(samples[5].angle_rad, 4000e-6, 1e-12);
+  EXPECT_EQ(samples[4].stamp, samples[5].stamp);
+  EXPECT_EQ(count(Counter::kDuplicates), 1u);
+  EXPECT_EQ(count(Counter::kReordered), 1u);
+  EXPECT_EQ(count(Counter::kGaps), 1u);
+}
+
+TEST(Cia402PanTilt, PairsPanAndTiltOfTheSameSync) {
+  PanTiltConfig config;
+  config.pan = {3, 1, 1e-6, 0.0};
+  config.tilt = {4, 2, 1e-6, 0.0};
+  auto [a, b] = InProcessTransport::make_pair(cia402_filter(pan_tilt_bus_config(config)));
+  sim::SimCanBus bus(std::move(b));
+  auto pan = std::make_shared<sim::SimCia402Node>(sim::SimCia402Config{3});
+  auto tilt = std::make_shared<sim::SimCia402Node>(sim::SimCia402Config{4});
+  pan->set_angle(0.3);
+  tilt->set_angle(-0.2);
+  bus.add(pan);
+  bus.add(tilt);
+  bus.start();
+  Cia402PanTiltSource head(config, std::move(a));
+  ASSERT_TRUE(head.start().ok);
+  std::vector<hal::PanTiltSample> out;
+  ASSERT_TRUE(eventually([&] {
+    head.read(out, 10ms);
+    return out.size() >= 10;
+  }));
+  head.stop();
+  bus.stop();
+  for (const auto& s : out) {
+    EXPECT_NEAR(s.pan_rad, 0.3, 1e-6);
+    EXPECT_NEAR(s.tilt_rad, -0.2, 1e-6);
+    EXPECT_TRUE(s.valid);
+  }
+}
+
+}  // namespace
+}  // namespace rangefit::drivers::can
