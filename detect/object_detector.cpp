@@ -134,7 +134,8 @@ struct Combination {
 // criteria and the links' A and D are all ranked over the combinations.
 std::vector<Combination> vote(const ObjectModel& model,
                               const std::vector<std::vector<PartHypothesis>>& hyps,
-                              Selection selection) {
+                              const ObjectDetectOptions& options) {
+  const Selection selection = options.selection;
   std::vector<Combination> combos;
   std::vector<std::size_t> pick(hyps.size(), 0);
   for (const auto& h : hyps) {
@@ -155,6 +156,17 @@ std::vector<Combination> vote(const ObjectModel& model,
     while (p < pick.size() && ++pick[p] == hyps[p].size()) pick[p++] = 0;
     if (p == pick.size()) break;
   }
+  // Link gate: vote among the consistently linked combinations when there are any.
+  std::vector<Combination> linked;
+  for (const Combination& c : combos) {
+    bool ok = true;
+    for (std::size_t l = 0; l < model.links.size(); ++l) {
+      ok = ok && c.a[l] <= options.link_angle_tolerance_rad &&
+           c.d[l] <= options.link_distance_tolerance * model.links[l].distance_mm + 5.0;
+    }
+    if (ok) linked.push_back(c);
+  }
+  if (!linked.empty()) combos = std::move(linked);
   const auto add_ranks = [&](const std::vector<double>& v, bool larger_better) {
     const std::vector<int> r = ranks(v, larger_better);
     for (std::size_t i = 0; i < combos.size(); ++i) combos[i].rank_sum += r[i];
@@ -278,7 +290,7 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
 
   // Selection: ranked vote (5.1.2) extended by the links (5.1.3), then K distinct instances.
   t0 = Clock::now();
-  const std::vector<Combination> combos = vote(model, hyps, options.selection);
+  const std::vector<Combination> combos = vote(model, hyps, options);
   for (const Combination& c : combos) {
     if (static_cast<int>(result.instances.size()) >= options.instances) break;
     bool duplicate = false;

@@ -42,6 +42,11 @@ struct ObjectDetectOptions {
   double gamma = 0.2;                 // surface band of eq. 5.3-5.4
   double neighbourhood_factor = 1.2;  // r = factor * max(a) for refinement and verification
   Selection selection = Selection::kRankedVote;
+  // Compound models: combinations whose links deviate less than this (A of eq. 5.5, and D of
+  // eq. 5.6 relative to d_k) are voted on first; only if none qualifies are all of them ranked.
+  // Keeps perfect fits of look-alike parts from outvoting a correctly linked object.
+  double link_angle_tolerance_rad = 0.26;
+  double link_distance_tolerance = 0.15;
   int instances = 1;  // K instances wanted, best first, no two sharing a part position
   bool early_stop = true;
   int confirmations = 3;  // early stop: hypotheses agreeing with the leader (single-part models)

@@ -42,6 +42,15 @@ inline ObjectModel mallet_model() {
   return m;
 }
 
+// The view of figures 5.18 and 5.28: ~140,000 points at 440 x 330 rays.
+inline sim::SceneView table_view() {
+  sim::SceneView view;
+  view.fov_deg = 36.0;
+  view.table_min = {-100, -80};
+  view.table_max = {400, 320};
+  return view;
+}
+
 struct Scene {
   sim::RenderedScene rendered;
   std::vector<sim::ScenePart> parts;  // ground truth, same order as the labels
@@ -67,7 +76,7 @@ inline Scene fig_5_18_scene(double noise_sigma = 0.0, std::uint64_t noise_seed =
        pose_from_axis({88.923, 94.128, 59.173}, {0.18692, -0.29300, 0.93767}, 0.3)},
       {"sphere", sphere_model(), pose_from_axis({160.0, 65.0, 50.0}, {0, 0, 1})},
       {"cone", cone_model(), pose_from_axis({213.074, 110.438, 40.0}, {0, 0, 1})}};
-  sim::SceneView view;
+  sim::SceneView view = table_view();
   view.width = static_cast<int>(std::lround(440 * scale));
   view.height = static_cast<int>(std::lround(330 * scale));
   view.noise_sigma_mm = noise_sigma;
@@ -82,7 +91,7 @@ inline Scene three_spheres_scene(double noise_sigma, std::uint64_t noise_seed, d
       {"sphere48", {48, 48, 48, 1, 1, 0, 0}, pose_from_axis({40, 100, 48}, {0, 0, 1})},
       {"sphere50", {50, 50, 50, 1, 1, 0, 0}, pose_from_axis({148, 100, 50}, {0, 0, 1})},
       {"sphere52", {52, 52, 52, 1, 1, 0, 0}, pose_from_axis({260, 100, 52}, {0, 0, 1})}};
-  sim::SceneView view;
+  sim::SceneView view = table_view();
   view.width = static_cast<int>(std::lround(440 * scale));
   view.height = static_cast<int>(std::lround(330 * scale));
   view.noise_sigma_mm = noise_sigma;
@@ -97,15 +106,16 @@ inline Scene mallet_scene(double noise_sigma = 0.0, std::uint64_t noise_seed = 1
                           double scale = 1.0) {
   const Eigen::Vector3d x = Eigen::Vector3d::UnitX(), y = Eigen::Vector3d::UnitY();
   std::vector<sim::ScenePart> parts = {
-      {"mallet/head", {30, 30, 56, 0.1, 1.0, 0, 0}, pose_from_axis({60, 200, 30}, x)},
-      {"mallet/shaft", {12, 10, 120, 0.1, 1.0, 0, 0}, pose_from_axis({60, 30, 30}, y, 1.5708)},
+      {"mallet/head", {30, 30, 56, 0.1, 1.0, 0, 0}, pose_from_axis({60, 240, 30}, x)},
+      {"mallet/shaft", {12, 10, 120, 0.1, 1.0, 0, 0}, pose_from_axis({60, 70, 30}, y, 1.5708)},
       {"lookalike/drum", {30, 30, 56, 0.1, 1.0, 0, 0}, pose_from_axis({250, 60, 30}, y)},
-      {"lookalike/rod", {12, 10, 120, 0.1, 1.0, 0, 0}, pose_from_axis({230, 270, 12}, {1, 0.2, 0})},
+      {"lookalike/rod", {12, 10, 120, 0.1, 1.0, 0, 0}, pose_from_axis({250, 300, 12}, {1, 0.2, 0})},
       {"hammer/head", {15, 15, 45, 0.1, 1.0, 0, 0}, pose_from_axis({320, 200, 15}, y)},
       {"hammer/shaft", {12, 10, 120, 0.1, 1.0, 0, 0}, pose_from_axis({320, 35, 12}, y)},
       {"occluder/box", {20, 40, 25, 0.1, 0.1, 0, 0}, pose_from_axis({115, 120, 25}, {0, 0, 1})},
-      {"occluder/block", {15, 15, 35, 0.1, 0.1, 0, 0}, pose_from_axis({95, 0, 35}, {0, 0, 1})}};
+      {"occluder/block", {15, 15, 35, 0.1, 0.1, 0, 0}, pose_from_axis({265, -10, 35}, {0, 0, 1})}};
   sim::SceneView view;
+  view.fov_deg = 42.0;
   view.eye = {180, -220, 480};
   view.target = {180, 130, 20};
   view.table_min = {-80, -80};
