@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   rangefit::cli::add_request_command(app, &exit_code);
   rangefit::cli::add_watch_command(app, &exit_code);
   rangefit::cli::add_replay_command(app, &exit_code);
+  rangefit::cli::add_simulate_command(app, &exit_code);
 
   try {
     app.parse(argc, argv);
