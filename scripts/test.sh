@@ -5,7 +5,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/deps.sh
 build=${1:-build}
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DRANGEFIT_BUILD_TESTS=ON \
+  -DRANGEFIT_BUILD_BENCHMARKS=ON -DRANGEFIT_SANITIZE=OFF
 cmake --build "$build" -j"$(nproc)"
 # Tests labelled hil need the qemu VM (test/hil); .ci/run runs them separately.
 ctest --test-dir "$build" --output-on-failure -j"$(nproc)" -LE hil
