@@ -1,7 +1,9 @@
 #include "daemon/backends.hpp"
 
 #include <algorithm>
+#include <cmath>
 
+#include "detect/bore_detector.hpp"
 #include "detect/object_detector.hpp"
 #include "io/ply.hpp"
 
@@ -62,7 +64,40 @@ ScanOutcome DeviceBackend::replay(const DeviceConfig& device,
 
 DetectionResult ModelDetector::detect(const PointCloud& cloud, const ScanRequest& request) {
   if (request.kind == DetectKind::kObject) return detect_object_request(cloud, request);
-  return DetectionResult::error(request, "bore detector is not available in this build");
+  return detect_bore_request(cloud, request);
+}
+
+DetectionResult ModelDetector::detect_bore_request(const PointCloud& cloud,
+                                                   const ScanRequest& request) {
+  rangefit::BorePrior prior;
+  prior.entrance = request.bore.position_mm;
+  prior.axis = request.bore.axis;
+  prior.radius = request.bore.radius_mm;
+  BoreOptions options;
+  options.seed = config_.detection.seed;
+  const BoreResult r = detect_bore(cloud, prior, options);
+  DetectionResult out;
+  out.found = r.found;
+  if (!r.found) {
+    out.reason = std::string(to_string(r.reason));
+    return out;
+  }
+  out.bore_radius_mm = r.radius;
+  // Pose of the bore: origin at the entrance, z along the axis (out of the bore).
+  PartPose part;
+  part.name = "bore";
+  part.T_world_part.linear() =
+      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), r.axis).toRotationMatrix();
+  part.T_world_part.translation() = r.entrance;
+  const double error = std::abs(r.radius - prior.radius);
+  part.score = std::max(0.0, 1.0 - error / std::max(prior.radius, 1e-9));
+  out.parts.push_back(part);
+  if (error > config_.detection.bore_radius_tolerance_mm) {
+    out.found = false;
+    out.reason = "radius " + std::to_string(r.radius) + " mm differs from the prior by more than " +
+                 "detection.bore_radius_tolerance_mm";
+  }
+  return out;
 }
 
 DetectionResult ModelDetector::detect_object_request(const PointCloud& cloud,

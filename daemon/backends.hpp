@@ -36,6 +36,7 @@ class ModelDetector final : public Detector {
 
  private:
   DetectionResult detect_object_request(const PointCloud& cloud, const ScanRequest& request);
+  DetectionResult detect_bore_request(const PointCloud& cloud, const ScanRequest& request);
   DaemonConfig config_;
 };
 
