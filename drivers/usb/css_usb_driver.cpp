@@ -16,7 +16,11 @@ CssUsbDriver::CssUsbDriver(std::unique_ptr<UsbTransport> transport, CssUsbOption
   transport_->set_event_handler([this](TransportEvent e) { on_event(e); });
 }
 
-CssUsbDriver::~CssUsbDriver() { stop(); }
+CssUsbDriver::~CssUsbDriver() {
+  stop();
+  // The transport's threads call back into this object: end them while its members still live.
+  transport_.reset();
+}
 
 hal::Status CssUsbDriver::start() {
   std::lock_guard lock(mutex_);
