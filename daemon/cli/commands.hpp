@@ -17,4 +17,5 @@ void add_watch_command(CLI::App& app, int* exit_code);  // watch_command.cpp
 void add_replay_command(CLI::App& app, int* exit_code);  // replay_command.cpp
 void add_simulate_command(CLI::App& app, int* exit_code);  // simulate_command.cpp
 void add_bore_command(CLI::App& app, int* exit_code);  // bore_command.cpp
+void add_object_command(CLI::App& app, int* exit_code);  // object_command.cpp
 }  // namespace rangefit::cli

@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   int exit_code = rangefit::cli::kExitOk;
   // Subcommands (one file each in daemon/cli/):
   rangefit::cli::add_bore_command(app, &exit_code);
+  rangefit::cli::add_object_command(app, &exit_code);
   rangefit::cli::add_request_command(app, &exit_code);
   rangefit::cli::add_watch_command(app, &exit_code);
   rangefit::cli::add_replay_command(app, &exit_code);
