@@ -1,0 +1,88 @@
+#!/usr/bin/env bash
+# Hardware-in-the-loop runner: boots a Debian kernel under qemu (TCG), shares the host root
+# read-only over 9p (tmpfs overlay on top) and the build folder read-write, creates vcan0 and
+# runs the ctest tests labelled `hil` inside the VM. Exits with their exit code; 124 when the
+# VM timed out, 125 when it never reported one. Facts behind each step: ../shared/HIL.md.
+# Usage: bash test/hil/run_vm.sh BUILD_DIR   (build first: cmake --build BUILD_DIR)
+set -euo pipefail
+build=$(realpath "${1:?usage: run_vm.sh BUILD_DIR}")
+here=$(cd "$(dirname "$0")" && pwd)
+bash "$here/deps.sh"
+cache=$build/hil-cache
+mkdir -p "$cache"
+
+# 1. Kernel: the package linux-image-amd64 depends on, cached by its name.
+pkg=$(apt-cache depends linux-image-amd64 | awk '/Depends: linux-image-[0-9]/{print $2; exit}')
+tree=$cache/$pkg
+if [[ ! -f $tree/.done ]]; then
+  rm -rf "$tree" && mkdir -p "$tree/deb"
+  (cd "$tree/deb" && apt-get download -o APT::Sandbox::User=root "$pkg" >/dev/null)
+  ex=$tree/x && mkdir -p "$ex"
+  dpkg-deb --fsys-tarfile "$tree"/deb/*.deb | tar -x -C "$ex" --wildcards './boot/vmlinuz-*' \
+    './lib/modules/*/kernel/net/can' './lib/modules/*/kernel/drivers/net/can' \
+    './lib/modules/*/kernel/net/9p' './lib/modules/*/kernel/fs/9p' './lib/modules/*/kernel/fs/netfs' \
+    './lib/modules/*/kernel/fs/fscache' './lib/modules/*/kernel/fs/overlayfs' \
+    './lib/modules/*/kernel/drivers/virtio' './lib/modules/*/modules.*' 2>/dev/null || true
+  ver=$(ls "$ex/lib/modules")
+  depmod -b "$ex" "$ver"
+  mv "$ex"/boot/vmlinuz-* "$tree/vmlinuz"
+  mv "$ex/lib/modules/$ver" "$tree/modules" && echo "$ver" > "$tree/version"
+  rm -rf "$ex" "$tree/deb" && touch "$tree/.done"
+fi
+ver=$(cat "$tree/version")
+
+# 2. Initramfs: busybox, the 9p/overlay modules, and an init that chroots into the host root.
+work=$build/hil-run && rm -rf "$work" && mkdir -p "$work/initrd"/{bin,modules,proc,sys,dev,host,ovl,newroot}
+cp /bin/busybox "$work/initrd/bin/busybox"
+for m in virtio_ring virtio virtio_pci_modern_dev virtio_pci_legacy_dev virtio_pci netfs fscache \
+         9pnet 9pnet_virtio 9p overlay; do
+  f=$(find "$tree/modules" -name "$m.ko*" | head -1)
+  [[ -n $f ]] && cp "$f" "$work/initrd/modules/$m.ko"
+done
+cat > "$work/initrd/init" <<INIT
+#!/bin/busybox sh
+/bin/busybox --install -s /bin
+mount -t proc proc /proc; mount -t sysfs sys /sys; mount -t devtmpfs dev /dev
+for m in virtio_ring virtio virtio_pci_modern_dev virtio_pci_legacy_dev virtio_pci netfs fscache 9pnet 9pnet_virtio 9p overlay; do
+  [ -f /modules/\$m.ko ] && insmod /modules/\$m.ko 2>/dev/null
+done
+mount -t 9p -o trans=virtio,version=9p2000.L,ro hostroot /host
+mount -t tmpfs tmpfs /ovl && mkdir -p /ovl/up /ovl/work
+mount -t overlay overlay -o lowerdir=/host,upperdir=/ovl/up,workdir=/ovl/work /newroot
+mount -t 9p -o trans=virtio,version=9p2000.L,msize=262144 build /newroot$build
+for d in proc sys dev tmp run; do mkdir -p /newroot/\$d; done
+mount -t proc proc /newroot/proc; mount -t sysfs sys /newroot/sys; mount --bind /dev /newroot/dev
+mount -t tmpfs tmpfs /newroot/tmp; mount -t tmpfs tmpfs /newroot/run
+mkdir -p /newroot/lib/modules/$ver && mount --bind /newroot$tree/modules /newroot/lib/modules/$ver
+chroot /newroot /bin/bash $work/cmd.sh
+echo EXIT_CODE=\$?
+poweroff -f
+INIT
+chmod +x "$work/initrd/init"
+(cd "$work/initrd" && find . | cpio -o -H newc --quiet) > "$work/initramfs.cpio"
+
+# 3. The command the VM runs (a file in the share: the kernel command line cannot carry spaces).
+cat > "$work/cmd.sh" <<CMD
+set -e
+export PATH=/usr/sbin:/usr/bin:/sbin:/bin
+modprobe vcan; modprobe can_raw
+ip link add dev vcan0 type vcan && ip link set vcan0 mtu 72 && ip link set up vcan0
+ip link set lo up
+ctest --test-dir $build -L hil --output-on-failure ${HIL_CTEST_ARGS:-}
+CMD
+
+log=$work/console.log
+set +e
+timeout "${HIL_TIMEOUT:-240}" qemu-system-x86_64 -machine q35,accel=tcg -cpu max -smp 2 -m 1024 \
+  -nodefaults -display none -serial stdio -no-reboot -kernel "$tree/vmlinuz" \
+  -initrd "$work/initramfs.cpio" -append 'console=ttyS0 panic=-1 quiet' \
+  -fsdev local,id=r,path=/,security_model=none,readonly=on,multidevs=remap \
+  -device virtio-9p-pci,fsdev=r,mount_tag=hostroot \
+  -fsdev local,id=b,path="$build",security_model=none,multidevs=remap \
+  -device virtio-9p-pci,fsdev=b,mount_tag=build | tee "$log"
+rc=${PIPESTATUS[0]}
+set -e
+[[ $rc == 124 ]] && { echo "HIL: VM timed out"; exit 124; }
+code=$(tr -d '\r' < "$log" | sed -n 's/^EXIT_CODE=\([0-9]*\)$/\1/p' | tail -1)
+[[ -z $code ]] && { echo "HIL: the VM never reported an exit code"; exit 125; }
+exit "$code"
