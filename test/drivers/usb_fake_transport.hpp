@@ -86,6 +86,7 @@ class FakeCssDevice final : public UsbTransport {
   hal::Status start_streaming(DataHandler handler, int) override {
     if (!present_ || !open_) return hal::Status::Error("no device");
     halt_stream();
+    std::lock_guard lock(thread_mutex_);
     handler_ = std::move(handler);
     streaming_ = true;
     thread_ = std::thread([this] { stream(); });
@@ -98,7 +99,9 @@ class FakeCssDevice final : public UsbTransport {
   }
 
  private:
+  // The test thread (unplug) and the driver's supervisor both stop the stream.
   void halt_stream() {
+    std::lock_guard lock(thread_mutex_);
     streaming_ = false;
     if (thread_.joinable() && thread_.get_id() != std::this_thread::get_id()) thread_.join();
   }
@@ -148,6 +151,7 @@ class FakeCssDevice final : public UsbTransport {
   EventHandler events_;
   DataHandler handler_;
   std::thread thread_;
+  std::mutex thread_mutex_;  // guards thread_ and handler_
   std::mutex mutex_;
   std::vector<hal::Timestamp> index_times_;
   std::uint32_t sequence_ = 0;
