@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "drivers/can/crc32.hpp"
+#include "drivers/common/crc32.hpp"
 
 namespace rangefit::drivers::can::ranger {
 

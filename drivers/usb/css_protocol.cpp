@@ -8,17 +8,6 @@
 namespace rangefit::drivers::css_usb {
 namespace {
 
-constexpr std::array<std::uint32_t, 256> make_crc_table() {
-  std::array<std::uint32_t, 256> table{};
-  for (std::uint32_t i = 0; i < 256; ++i) {
-    std::uint32_t c = i;
-    for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-    table[i] = c;
-  }
-  return table;
-}
-constexpr std::array<std::uint32_t, 256> kCrcTable = make_crc_table();
-
 template <typename T>
 void put(std::vector<std::uint8_t>& out, T value) {
   for (std::size_t i = 0; i < sizeof(T); ++i) {
@@ -34,12 +23,6 @@ T get(const std::uint8_t* bytes) {
 }
 
 }  // namespace
-
-std::uint32_t crc32(std::span<const std::uint8_t> bytes, std::uint32_t crc) {
-  crc = ~crc;
-  for (std::uint8_t b : bytes) crc = kCrcTable[(crc ^ b) & 0xffu] ^ (crc >> 8);
-  return ~crc;
-}
 
 void encode_revolution(const WireRevolution& revolution, std::vector<std::uint8_t>& out) {
   const std::size_t start = out.size();

@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "drivers/common/crc32.hpp"
+
 namespace rangefit::drivers::css_usb {
 
 inline constexpr std::array<std::uint8_t, 4> kMagic = {'C', 'S', 'S', '1'};
@@ -63,10 +65,6 @@ struct DeviceInfo {
   std::uint32_t standoff_min_um = 65000;
   std::uint32_t standoff_max_um = 130000;
 };
-
-// CRC-32 (reflected polynomial 0xEDB88320, init and final xor 0xFFFFFFFF). `crc` continues a
-// previous call's result.
-std::uint32_t crc32(std::span<const std::uint8_t> bytes, std::uint32_t crc = 0);
 
 // Appends one frame (kFrameBytes) to out.
 void encode_revolution(const WireRevolution& revolution, std::vector<std::uint8_t>& out);

@@ -5,7 +5,7 @@
 #include <string_view>
 
 #include "drivers/can/cia402_codec.hpp"
-#include "drivers/can/crc32.hpp"
+#include "drivers/common/crc32.hpp"
 #include "drivers/can/powercube_codec.hpp"
 #include "drivers/can/ranger_codec.hpp"
 

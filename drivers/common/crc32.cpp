@@ -1,8 +1,8 @@
-#include "drivers/can/crc32.hpp"
+#include "drivers/common/crc32.hpp"
 
 #include <array>
 
-namespace rangefit::drivers::can {
+namespace rangefit::drivers {
 
 namespace {
 constexpr std::array<std::uint32_t, 256> make_table() {
@@ -23,4 +23,4 @@ std::uint32_t crc32(std::span<const std::uint8_t> bytes, std::uint32_t crc) {
   return ~crc;
 }
 
-}  // namespace rangefit::drivers::can
+}  // namespace rangefit::drivers
