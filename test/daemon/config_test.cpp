@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 namespace rangefit::daemon {
 namespace {
 
@@ -28,6 +30,9 @@ struct BadCase {
   const char* toml;
   const char* field_in_error;
 };
+
+// Names the ctest case after the field it checks instead of the struct's raw bytes.
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.field_in_error; }
 
 class DaemonConfigErrors : public ::testing::TestWithParam<BadCase> {};
 
