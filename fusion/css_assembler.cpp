@@ -33,25 +33,7 @@ CssAssembler::CssAssembler(const CssFusionConfig& config) : config_(config) {
 }
 
 void CssAssembler::begin_scan(hal::Timestamp t_start, hal::Timestamp t_end) {
-  const std::size_t cells = config_.expected_revolutions * kCols;
-  PointCloud& cloud = scan_.cloud;
-  cloud.frame_id = "world";
-  cloud.points.clear();
-  cloud.normals.clear();
-  cloud.stamps.clear();
-  cloud.points.reserve(cells);
-  cloud.stamps.reserve(cells);
-  cloud.grid.rows = 0;
-  cloud.grid.cols = kCols;
-  cloud.grid.index.clear();
-  cloud.grid.index.reserve(cells);
-  scan_.frames.clear();
-  scan_.frames.reserve(config_.expected_revolutions);
-  scan_.faults = {};
-  scan_.dropped_frames = 0;
-  scan_.rejected_reference = 0;
-  scan_.bad = false;
-  scan_.reason.clear();
+  scan_.reset(config_.expected_revolutions, kCols);
   joints_.clear();
   joints_.reserve(config_.expected_revolutions * 160);  // room for a 1 kHz joint stream
   frame_check_.reset();

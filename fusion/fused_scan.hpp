@@ -3,6 +3,7 @@
 // above all the time-alignment faults that were met while building it (issue 5, item 5). Faults
 // are counted, never smoothed over silently; past the configured limit the scan is marked bad.
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -45,6 +46,29 @@ struct FusedScan {
   std::uint32_t rejected_reference = 0;  // reference samples flagged invalid by the device
   bool bad = false;                      // faults.total() exceeded the configured limit
   std::string reason;                    // why the scan is bad; empty when it is not
+
+  // Empties the scan for a new one of about `rows` rows of `cols` cells, reserving memory up
+  // front so fusing never reallocates mid-scan.
+  void reset(std::size_t rows, int cols) {
+    const std::size_t cells = rows * static_cast<std::size_t>(cols);
+    cloud.frame_id = "world";
+    cloud.points.clear();
+    cloud.normals.clear();
+    cloud.stamps.clear();
+    cloud.points.reserve(cells);
+    cloud.stamps.reserve(cells);
+    cloud.grid.rows = 0;
+    cloud.grid.cols = cols;
+    cloud.grid.index.clear();
+    cloud.grid.index.reserve(cells);
+    frames.clear();
+    frames.reserve(rows);
+    faults = {};
+    dropped_frames = 0;
+    rejected_reference = 0;
+    bad = false;
+    reason.clear();
+  }
 };
 
 }  // namespace rangefit::fusion

@@ -13,25 +13,7 @@ ProfileAssembler::ProfileAssembler(int columns, std::size_t expected_profiles,
       limits_(limits) {}
 
 void ProfileAssembler::begin_scan() {
-  const std::size_t cells = expected_profiles_ * static_cast<std::size_t>(columns_);
-  PointCloud& cloud = scan_.cloud;
-  cloud.frame_id = "world";
-  cloud.points.clear();
-  cloud.normals.clear();
-  cloud.stamps.clear();
-  cloud.points.reserve(cells);
-  cloud.stamps.reserve(cells);
-  cloud.grid.rows = 0;
-  cloud.grid.cols = columns_;
-  cloud.grid.index.clear();
-  cloud.grid.index.reserve(cells);
-  scan_.frames.clear();
-  scan_.frames.reserve(expected_profiles_);
-  scan_.faults = {};
-  scan_.dropped_frames = 0;
-  scan_.rejected_reference = 0;
-  scan_.bad = false;
-  scan_.reason.clear();
+  scan_.reset(expected_profiles_, columns_);
   poses_.clear();
   poses_.reserve(expected_profiles_ * 2);
   frame_check_.reset();
