@@ -4,6 +4,7 @@
 # runs the ctest tests labelled `hil` inside the VM. Exits with their exit code; 124 when the
 # VM timed out, 125 when it never reported one. Facts behind each step: ../shared/HIL.md.
 # Usage: bash test/hil/run_vm.sh BUILD_DIR   (build first: cmake --build BUILD_DIR)
+#   HIL_CMD="..." runs that command in the VM instead of the hil tests (e.g. a benchmark).
 set -euo pipefail
 build=$(realpath "${1:?usage: run_vm.sh BUILD_DIR}")
 here=$(cd "$(dirname "$0")" && pwd)
@@ -68,7 +69,7 @@ export PATH=/usr/sbin:/usr/bin:/sbin:/bin
 modprobe vcan; modprobe can_raw
 ip link add dev vcan0 type vcan && ip link set vcan0 mtu 72 && ip link set up vcan0
 ip link set lo up
-ctest --test-dir $build -L hil --output-on-failure ${HIL_CTEST_ARGS:-}
+${HIL_CMD:-ctest --test-dir $build -L hil --output-on-failure ${HIL_CTEST_ARGS:-}}
 CMD
 
 log=$work/console.log
