@@ -1,7 +1,5 @@
 #include "drivers/can/cia402_joint_source.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <algorithm>
 
 namespace rangefit::drivers::can {
@@ -22,46 +20,22 @@ FrameFilter cia402_filter(const Cia402Config& config) {
 }
 
 Cia402JointSource::Cia402JointSource(Cia402Config config, std::unique_ptr<CanTransport> transport)
-    : config_(std::move(config)),
-      transport_(std::move(transport)),
-      ring_(config_.queue_capacity),
-      loop_(*transport_, *this, counters_, config_.loop) {
+    : CanSource(config.name, std::move(transport), config.queue_capacity, config.loop),
+      config_(std::move(config)) {
   for (const auto& j : config_.joints) {
     nodes_.push_back(std::make_unique<Node>());
     nodes_.back()->config = j;
   }
 }
 
-Cia402JointSource::~Cia402JointSource() { stop(); }
-
-hal::Status Cia402JointSource::start() {
-  if (started_) return hal::Status::Ok();
+hal::Status Cia402JointSource::check_config() const {
   if (nodes_.empty()) return hal::Status::Error(config_.name + ": no joints configured");
-  const hal::Status open = transport_->reopen();
-  if (!open) spdlog::warn("{}: {} (retrying)", config_.name, open.message);
-  const hal::Timestamp now = hal::monotonic_now();
-  for (auto& n : nodes_) n->last_heartbeat = now;
-  if (open) on_link(true);
-  next_sync_ = now;
-  loop_.start(open.ok);
-  started_ = true;
   return hal::Status::Ok();
 }
 
-void Cia402JointSource::stop() {
-  if (!started_) return;
-  loop_.stop();
-  started_ = false;
-}
-
-std::size_t Cia402JointSource::read(std::vector<hal::JointSample>& out, hal::Duration timeout) {
-  return ring_.drain(out, timeout);
-}
-
-CanCounters Cia402JointSource::counters() const {
-  CanCounters c = counters_.snapshot(transport_->counters());
-  c.values[static_cast<std::size_t>(Counter::kRingDropped)] += ring_.dropped();
-  return c;
+void Cia402JointSource::on_start(hal::Timestamp now) {
+  for (auto& n : nodes_) n->last_heartbeat = now;
+  next_sync_ = now;
 }
 
 std::uint8_t Cia402JointSource::node_state(std::uint8_t node) const {
@@ -69,35 +43,6 @@ std::uint8_t Cia402JointSource::node_state(std::uint8_t node) const {
     if (n->config.node == node) return n->nmt_state.load();
   }
   return 0xFF;
-}
-
-hal::DeviceHealth Cia402JointSource::health() const {
-  hal::DeviceHealth h;
-  const CanCounters c = counters();
-  h.counters = c.stream();
-  if (!started_)
-    h.state = hal::DeviceState::kReady;
-  else if (!loop_.link_up())
-    h.state = hal::DeviceState::kDisconnected;
-  else if (loop_.bus_off() || any_node_lost_)
-    h.state = hal::DeviceState::kFault;
-  else
-    h.state = hal::DeviceState::kStreaming;
-  const Problem p = problem_.load();
-  if (p != Problem::kNone) {
-    h.message = std::string(to_string(p));
-    if (problem_node_ != 0) h.message += " (node " + std::to_string(problem_node_) + ")";
-  }
-  return h;
-}
-
-void Cia402JointSource::report(Problem p, std::uint8_t node) {
-  problem_node_ = node;
-  problem_ = p;
-}
-
-void Cia402JointSource::send(const CanFrame& f) {
-  if (transport_->send(f) == TxResult::kBufferFull) counters_.bump(Counter::kTxBufferFull);
 }
 
 void Cia402JointSource::start_node(std::uint8_t node) {
@@ -110,7 +55,7 @@ void Cia402JointSource::start_node(std::uint8_t node) {
 
 void Cia402JointSource::on_link(bool up) {
   if (!up) {
-    report(Problem::kLinkDown, 0);
+    report(Problem::kLinkDown);
     return;
   }
   const hal::Timestamp now = hal::monotonic_now();
@@ -133,7 +78,7 @@ hal::Timestamp Cia402JointSource::on_tick(hal::Timestamp now) {
   for (auto& n : nodes_) {
     if (n->alive && now - n->last_heartbeat > config_.heartbeat_timeout) {
       n->alive = false;
-      counters_.bump(Counter::kNodesLost);
+      bump(Counter::kNodesLost);
       report(Problem::kNodeLost, n->config.node);
     }
     lost = lost || !n->alive;
@@ -144,12 +89,10 @@ hal::Timestamp Cia402JointSource::on_tick(hal::Timestamp now) {
   if (now >= next_sync_) {
     const std::uint8_t counter =
         config_.sync_overflow == 0 ? 0 : next_sync_counter(sync_counter_, config_.sync_overflow);
-    if (transport_->send(encode_sync(counter)) == TxResult::kOk) {
+    if (send(encode_sync(counter)) == TxResult::kOk) {
       sync_counter_ = counter;
       pending_counter_ = counter;
       pending_echo_ = true;
-    } else {
-      counters_.bump(Counter::kTxBufferFull);
     }
     next_sync_ += config_.sync_period;
     if (next_sync_ <= now) next_sync_ = now + config_.sync_period;  // fell behind: skip slots
@@ -157,10 +100,10 @@ hal::Timestamp Cia402JointSource::on_tick(hal::Timestamp now) {
   return std::min(next, next_sync_);
 }
 
-void Cia402JointSource::begin_cycle(std::uint8_t /*counter*/, hal::Timestamp stamp) {
+void Cia402JointSource::begin_cycle(hal::Timestamp stamp) {
   if (cycle_ > 0) {
     for (auto& n : nodes_) {
-      if (n->alive && n->answered_cycle != cycle_) counters_.bump(Counter::kGaps);
+      if (n->alive && n->answered_cycle != cycle_) bump(Counter::kGaps);
     }
   }
   ++cycle_;
@@ -171,41 +114,41 @@ void Cia402JointSource::take_sync(const CanFrame& f, const Message& m) {
   if (f.flags & kFrameEcho) {
     if (pending_echo_ && m.sync_counter == pending_counter_) {
       pending_echo_ = false;
-      begin_cycle(m.sync_counter, f.stamp);
+      begin_cycle(f.stamp);
     }
     return;
   }
   if (config_.sync_master) {  // a second SYNC producer on the bus
-    counters_.bump(Counter::kDuplicates);
+    bump(Counter::kDuplicates);
     return;
   }
   const std::uint8_t ovf = config_.sync_overflow;
   if (ovf != 0 && cycle_ > 0 && m.sync_counter != 0) {
     if (m.sync_counter == sync_counter_) {
-      counters_.bump(Counter::kDuplicates);
+      bump(Counter::kDuplicates);
       return;
     }
     const int expected = next_sync_counter(sync_counter_, ovf);
     const int ahead = (m.sync_counter - expected + ovf) % ovf;
     if (ahead > ovf / 2) {
-      counters_.bump(Counter::kReordered);
+      bump(Counter::kReordered);
       return;
     }
-    if (ahead > 0) counters_.bump(Counter::kGaps, static_cast<std::uint64_t>(ahead));
+    if (ahead > 0) bump(Counter::kGaps, static_cast<std::uint64_t>(ahead));
   }
   sync_counter_ = m.sync_counter;
-  begin_cycle(m.sync_counter, f.stamp);
+  begin_cycle(f.stamp);
 }
 
 void Cia402JointSource::take_tpdo1(Node& n, const Message& m) {
   if (cycle_ == 0) return;  // no SYNC seen yet: nothing to stamp it with
   if (n.answered_cycle == cycle_) {
-    counters_.bump(Counter::kDuplicates);
+    bump(Counter::kDuplicates);
     return;
   }
   n.answered_cycle = cycle_;
   const bool fault = (m.statusword & kStatusFault) != 0;
-  if (fault) counters_.bump(Counter::kFaults);
+  if (fault) bump(Counter::kFaults);
   hal::JointSample s;
   s.joint = n.config.joint;
   s.stamp = cycle_stamp_;
@@ -213,7 +156,7 @@ void Cia402JointSource::take_tpdo1(Node& n, const Message& m) {
   s.velocity_rad_s = n.velocity * n.config.rad_per_increment;
   s.status = m.statusword;
   s.valid = !fault;
-  if (ring_.push(s)) counters_.bump(Counter::kSamples);
+  deliver(s);
 }
 
 void Cia402JointSource::on_frame(const CanFrame& f) {
@@ -224,7 +167,7 @@ void Cia402JointSource::on_frame(const CanFrame& f) {
       take_sync(f, m);
       return;
     case Kind::kBadLength:
-      counters_.bump(Counter::kBadLengths);
+      bump(Counter::kBadLengths);
       return;
     case Kind::kNmt:
     case Kind::kTime:
@@ -234,7 +177,7 @@ void Cia402JointSource::on_frame(const CanFrame& f) {
       break;
   }
   if (n == nullptr) {
-    counters_.bump(Counter::kUnknownIds);
+    bump(Counter::kUnknownIds);
     return;
   }
   switch (m.kind) {
@@ -249,22 +192,22 @@ void Cia402JointSource::on_frame(const CanFrame& f) {
       n->alive = true;
       n->nmt_state = m.nmt_state;
       if (m.nmt_state == kBootUp) {
-        counters_.bump(Counter::kReboots);
+        bump(Counter::kReboots);
         report(Problem::kNodeReboot, n->config.node);
         start_node(n->config.node);
       }
       break;
     case Kind::kEmcy:
       if (m.emcy_code != 0) {
-        counters_.bump(Counter::kFaults);
+        bump(Counter::kFaults);
         report(Problem::kEmcy, n->config.node);
       }
       break;
     case Kind::kSdoResponse:
-      if (m.sdo_command == kSdoAbort) counters_.bump(Counter::kFaults);
+      if (m.sdo_command == kSdoAbort) bump(Counter::kFaults);
       break;
     default:
-      counters_.bump(Counter::kUnknownIds);
+      bump(Counter::kUnknownIds);
       break;
   }
 }

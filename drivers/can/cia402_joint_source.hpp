@@ -11,10 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "drivers/can/can_loop.hpp"
+#include "drivers/can/can_source.hpp"
 #include "drivers/can/cia402_codec.hpp"
-#include "drivers/can/sample_ring.hpp"
-#include "hal/source.hpp"
 
 namespace rangefit::drivers::can {
 
@@ -41,18 +39,11 @@ struct Cia402Config {
 // Transport filter the driver needs: its nodes' ids, SYNC (for the echo) and NMT.
 FrameFilter cia402_filter(const Cia402Config& config);
 
-class Cia402JointSource final : public hal::JointSource, private CanLoopHandler {
+class Cia402JointSource final : public CanSource<hal::JointSample> {
  public:
   Cia402JointSource(Cia402Config config, std::unique_ptr<CanTransport> transport);
-  ~Cia402JointSource() override;
+  ~Cia402JointSource() override { stop(); }
 
-  std::string name() const override { return config_.name; }
-  hal::Status start() override;
-  void stop() override;
-  hal::DeviceHealth health() const override;
-  std::size_t read(std::vector<hal::JointSample>& out, hal::Duration timeout) override;
-
-  CanCounters counters() const;
   // Heartbeat state of a node as last seen (cia402::NmtState), or 0xFF when never heard.
   std::uint8_t node_state(std::uint8_t node) const;
 
@@ -66,23 +57,20 @@ class Cia402JointSource final : public hal::JointSource, private CanLoopHandler 
     std::atomic<bool> alive{true};
   };
 
+  hal::Status check_config() const override;
+  void on_start(hal::Timestamp now) override;
+  bool devices_faulted() const override { return any_node_lost_; }
   hal::Timestamp on_tick(hal::Timestamp now) override;
   void on_frame(const CanFrame& frame) override;
   void on_link(bool up) override;
   Node* find(std::uint8_t node);
   void start_node(std::uint8_t node);
-  void begin_cycle(std::uint8_t counter, hal::Timestamp stamp);
+  void begin_cycle(hal::Timestamp stamp);
   void take_tpdo1(Node& n, const cia402::Message& m);
   void take_sync(const CanFrame& f, const cia402::Message& m);
-  void send(const CanFrame& f);
-  void report(Problem p, std::uint8_t node);
 
   Cia402Config config_;
-  std::unique_ptr<CanTransport> transport_;
   std::vector<std::unique_ptr<Node>> nodes_;
-  AtomicCanCounters counters_;
-  SampleRing<hal::JointSample> ring_;
-  CanLoop loop_;
   // Receive-thread state.
   hal::Timestamp next_sync_{};
   std::uint8_t sync_counter_ = 0;     // last counter sent (master) or seen (follower)
@@ -90,9 +78,6 @@ class Cia402JointSource final : public hal::JointSource, private CanLoopHandler 
   bool pending_echo_ = false;
   std::uint64_t cycle_ = 0;  // cycles begun; 0 = none yet
   hal::Timestamp cycle_stamp_{};
-  std::atomic<Problem> problem_{Problem::kNone};
-  std::atomic<std::uint8_t> problem_node_{0};
-  std::atomic<bool> started_{false};
   std::atomic<bool> any_node_lost_{false};
 };
 

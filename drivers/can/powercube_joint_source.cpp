@@ -1,7 +1,5 @@
 #include "drivers/can/powercube_joint_source.hpp"
 
-#include <spdlog/spdlog.h>
-
 namespace rangefit::drivers::can {
 
 FrameFilter powercube_filter(const PowerCubeConfig& config) {
@@ -12,72 +10,32 @@ FrameFilter powercube_filter(const PowerCubeConfig& config) {
 
 PowerCubeJointSource::PowerCubeJointSource(PowerCubeConfig config,
                                            std::unique_ptr<CanTransport> transport)
-    : config_(std::move(config)),
-      transport_(std::move(transport)),
-      ring_(config_.queue_capacity),
-      loop_(*transport_, *this, counters_, config_.loop),
+    : CanSource(config.name, std::move(transport), config.queue_capacity, config.loop),
+      config_(std::move(config)),
       misses_(config_.modules.size(), 0),
       last_state_(config_.modules.size(), 0) {}
 
-PowerCubeJointSource::~PowerCubeJointSource() { stop(); }
-
-hal::Status PowerCubeJointSource::start() {
-  if (started_) return hal::Status::Ok();
+hal::Status PowerCubeJointSource::check_config() const {
   if (config_.modules.empty()) return hal::Status::Error(config_.name + ": no modules configured");
-  const hal::Status open = transport_->reopen();
-  if (!open) spdlog::warn("{}: {} (retrying)", config_.name, open.message);
-  current_ = config_.modules.size() - 1;  // the first poll goes to module 0
-  round_start_ = hal::monotonic_now();
-  loop_.start(open.ok);
-  started_ = true;
   return hal::Status::Ok();
 }
 
-void PowerCubeJointSource::stop() {
-  if (!started_) return;
-  loop_.stop();
-  started_ = false;
-}
-
-std::size_t PowerCubeJointSource::read(std::vector<hal::JointSample>& out, hal::Duration timeout) {
-  return ring_.drain(out, timeout);
-}
-
-CanCounters PowerCubeJointSource::counters() const {
-  CanCounters c = counters_.snapshot(transport_->counters());
-  c.values[static_cast<std::size_t>(Counter::kRingDropped)] += ring_.dropped();
-  return c;
-}
-
-hal::DeviceHealth PowerCubeJointSource::health() const {
-  hal::DeviceHealth h;
-  h.counters = counters().stream();
-  if (!started_)
-    h.state = hal::DeviceState::kReady;
-  else if (!loop_.link_up())
-    h.state = hal::DeviceState::kDisconnected;
-  else if (loop_.bus_off() || lost_modules_ > 0)
-    h.state = hal::DeviceState::kFault;
-  else
-    h.state = hal::DeviceState::kStreaming;
-  h.message = to_string(problem_.load());
-  return h;
+void PowerCubeJointSource::on_start(hal::Timestamp now) {
+  current_ = config_.modules.size() - 1;  // the first poll goes to module 0
+  round_start_ = now;
+  outstanding_ = false;
 }
 
 void PowerCubeJointSource::on_link(bool up) {
-  if (!up) problem_ = Problem::kLinkDown;
+  if (!up) report(Problem::kLinkDown);
   outstanding_ = false;
 }
 
 void PowerCubeJointSource::request_next(hal::Timestamp now) {
   current_ = (current_ + 1) % config_.modules.size();
   if (current_ == 0) round_start_ = now;
-  const TxResult r =
-      transport_->send(powercube::encode_position_request(config_.modules[current_].module));
-  if (r != TxResult::kOk) {
-    if (r == TxResult::kBufferFull) counters_.bump(Counter::kTxBufferFull);
-    return;
-  }
+  const std::uint8_t module = config_.modules[current_].module;
+  if (send(powercube::encode_position_request(module)) != TxResult::kOk) return;
   outstanding_ = true;
   request_time_ = now;
 }
@@ -86,12 +44,13 @@ hal::Timestamp PowerCubeJointSource::on_tick(hal::Timestamp now) {
   if (outstanding_) {
     if (now - request_time_ < config_.reply_timeout) return request_time_ + config_.reply_timeout;
     outstanding_ = false;
-    counters_.bump(Counter::kTimeouts);
-    problem_ = Problem::kTimeout;
+    bump(Counter::kTimeouts);
+    const std::uint8_t module = config_.modules[current_].module;
+    report(Problem::kTimeout, module);
     if (++misses_[current_] == config_.misses_until_lost) {
-      counters_.bump(Counter::kNodesLost);
+      bump(Counter::kNodesLost);
       ++lost_modules_;
-      problem_ = Problem::kNodeLost;
+      report(Problem::kNodeLost, module);
     }
   }
   // A new round starts one poll period after the previous one; modules within a round follow
@@ -107,16 +66,16 @@ hal::Timestamp PowerCubeJointSource::on_tick(hal::Timestamp now) {
 void PowerCubeJointSource::on_frame(const CanFrame& f) {
   const powercube::Message m = powercube::decode(f);
   if (m.kind == powercube::Kind::kBadLength) {
-    counters_.bump(Counter::kBadLengths);
+    bump(Counter::kBadLengths);
     return;
   }
   if (m.kind != powercube::Kind::kPositionReply) {
-    counters_.bump(Counter::kUnknownIds);
+    bump(Counter::kUnknownIds);
     return;
   }
   const std::size_t i = current_;
   if (!outstanding_ || config_.modules[i].module != m.module) {
-    counters_.bump(Counter::kDuplicates);  // late reply after its timeout, or unsolicited
+    bump(Counter::kDuplicates);  // late reply after its timeout, or unsolicited
     return;
   }
   outstanding_ = false;
@@ -124,8 +83,8 @@ void PowerCubeJointSource::on_frame(const CanFrame& f) {
   misses_[i] = 0;
   const bool not_ok = (m.reply.state & powercube::kStateNotOk) != 0;
   if (not_ok && !(last_state_[i] & powercube::kStateNotOk)) {
-    counters_.bump(Counter::kFaults);
-    problem_ = Problem::kDeviceFault;
+    bump(Counter::kFaults);
+    report(Problem::kDeviceFault, m.module);
   }
   last_state_[i] = m.reply.state;
   hal::JointSample s;
@@ -137,7 +96,7 @@ void PowerCubeJointSource::on_frame(const CanFrame& f) {
   s.angle_rad = static_cast<double>(m.reply.position_rad) + config_.modules[i].offset_rad;
   s.status = m.reply.state;
   s.valid = !not_ok;
-  if (ring_.push(s)) counters_.bump(Counter::kSamples);
+  deliver(s);
   // Next module right away: one bus round trip per joint, not one per tick.
   if (i + 1 < config_.modules.size()) request_next(hal::monotonic_now());
 }

@@ -8,10 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "drivers/can/can_loop.hpp"
+#include "drivers/can/can_source.hpp"
 #include "drivers/can/powercube_codec.hpp"
-#include "drivers/can/sample_ring.hpp"
-#include "hal/source.hpp"
 
 namespace rangefit::drivers::can {
 
@@ -34,37 +32,27 @@ struct PowerCubeConfig {
 
 FrameFilter powercube_filter(const PowerCubeConfig& config);
 
-class PowerCubeJointSource final : public hal::JointSource, private CanLoopHandler {
+class PowerCubeJointSource final : public CanSource<hal::JointSample> {
  public:
   PowerCubeJointSource(PowerCubeConfig config, std::unique_ptr<CanTransport> transport);
-  ~PowerCubeJointSource() override;
-
-  std::string name() const override { return config_.name; }
-  hal::Status start() override;
-  void stop() override;
-  hal::DeviceHealth health() const override;
-  std::size_t read(std::vector<hal::JointSample>& out, hal::Duration timeout) override;
-  CanCounters counters() const;
+  ~PowerCubeJointSource() override { stop(); }
 
  private:
+  hal::Status check_config() const override;
+  void on_start(hal::Timestamp now) override;
+  bool devices_faulted() const override { return lost_modules_ > 0; }
   hal::Timestamp on_tick(hal::Timestamp now) override;
   void on_frame(const CanFrame& frame) override;
   void on_link(bool up) override;
   void request_next(hal::Timestamp now);
 
   PowerCubeConfig config_;
-  std::unique_ptr<CanTransport> transport_;
-  AtomicCanCounters counters_;
-  SampleRing<hal::JointSample> ring_;
-  CanLoop loop_;
   std::vector<int> misses_;
   std::vector<std::uint8_t> last_state_;
   std::size_t current_ = 0;  // module index polled last
   bool outstanding_ = false;
   hal::Timestamp request_time_{};
   hal::Timestamp round_start_{};
-  std::atomic<Problem> problem_{Problem::kNone};
-  std::atomic<bool> started_{false};
   std::atomic<int> lost_modules_{0};
 };
 

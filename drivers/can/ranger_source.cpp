@@ -1,7 +1,5 @@
 #include "drivers/can/ranger_source.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <cmath>
 
 #include "drivers/can/cia402_codec.hpp"
@@ -25,64 +23,18 @@ FrameFilter ranger_filter(const RangerConfig& config) {
 }
 
 RangerCanSource::RangerCanSource(RangerConfig config, std::unique_ptr<CanTransport> transport)
-    : config_(std::move(config)),
-      transport_(std::move(transport)),
-      ring_(config_.queue_capacity, prototype()),
-      loop_(*transport_, *this, counters_, config_.loop),
+    : CanSource(config.name, std::move(transport), config.queue_capacity, config.loop, prototype()),
+      config_(std::move(config)),
       reassembler_(config_.incomplete_timeout),
       scratch_(prototype()) {}
 
-RangerCanSource::~RangerCanSource() { stop(); }
-
-hal::Status RangerCanSource::start() {
-  if (started_) return hal::Status::Ok();
-  const hal::Status open = transport_->reopen();
-  if (!open) spdlog::warn("{}: {} (retrying)", config_.name, open.message);
-  last_heartbeat_ = hal::monotonic_now();
-  if (open) on_link(true);
-  loop_.start(open.ok);
-  started_ = true;
-  return hal::Status::Ok();
-}
-
-void RangerCanSource::stop() {
-  if (!started_) return;
-  loop_.stop();
-  started_ = false;
-}
-
-std::size_t RangerCanSource::read(std::vector<hal::RangerProfile>& out, hal::Duration timeout) {
-  return ring_.drain(out, timeout);
-}
-
-CanCounters RangerCanSource::counters() const {
-  CanCounters c = counters_.snapshot(transport_->counters());
-  c.values[static_cast<std::size_t>(Counter::kRingDropped)] += ring_.dropped();
-  return c;
-}
-
-hal::DeviceHealth RangerCanSource::health() const {
-  hal::DeviceHealth h;
-  h.counters = counters().stream();
-  if (!started_)
-    h.state = hal::DeviceState::kReady;
-  else if (!loop_.link_up())
-    h.state = hal::DeviceState::kDisconnected;
-  else if (loop_.bus_off() || !alive_)
-    h.state = hal::DeviceState::kFault;
-  else
-    h.state = hal::DeviceState::kStreaming;
-  h.message = to_string(problem_.load());
-  return h;
-}
-
 void RangerCanSource::on_link(bool up) {
   if (!up) {
-    problem_ = Problem::kLinkDown;
+    report(Problem::kLinkDown);
     return;
   }
   last_heartbeat_ = hal::monotonic_now();
-  (void)transport_->send(cia402::encode_nmt(cia402::kNmtStart, config_.node));
+  send(cia402::encode_nmt(cia402::kNmtStart, config_.node));
 }
 
 std::size_t RangerCanSource::pending_incomplete() {
@@ -93,12 +45,12 @@ std::size_t RangerCanSource::pending_incomplete() {
 }
 
 hal::Timestamp RangerCanSource::on_tick(hal::Timestamp now) {
-  if (reassembler_.expire(now)) problem_ = Problem::kTimeout;
-  if (const std::size_t n = pending_incomplete()) counters_.bump(Counter::kTimeouts, n);
+  if (reassembler_.expire(now)) report(Problem::kTimeout, config_.node);
+  if (const std::size_t n = pending_incomplete()) bump(Counter::kTimeouts, n);
   if (alive_ && now - last_heartbeat_ > config_.heartbeat_timeout) {
     alive_ = false;
-    counters_.bump(Counter::kNodesLost);
-    problem_ = Problem::kNodeLost;
+    bump(Counter::kNodesLost);
+    report(Problem::kNodeLost, config_.node);
   }
   return now + std::chrono::milliseconds(10);
 }
@@ -107,22 +59,22 @@ void RangerCanSource::on_frame(const CanFrame& f) {
   if (f.id == ranger::profile_id(config_.node)) {
     switch (reassembler_.feed(f)) {
       case ranger::FeedResult::kComplete:
-        deliver();
+        deliver_profile();
         break;
       case ranger::FeedResult::kCrcError:
-        counters_.bump(Counter::kCrcErrors);
-        problem_ = Problem::kCrcError;
+        bump(Counter::kCrcErrors);
+        report(Problem::kCrcError, config_.node);
         break;
       case ranger::FeedResult::kBadFrame:
-        counters_.bump(Counter::kBadLengths);
+        bump(Counter::kBadLengths);
         break;
       case ranger::FeedResult::kDuplicate:
-        counters_.bump(Counter::kDuplicates);
+        bump(Counter::kDuplicates);
         break;
       case ranger::FeedResult::kPending:
         break;
     }
-    if (const std::size_t n = pending_incomplete()) counters_.bump(Counter::kTimeouts, n);
+    if (const std::size_t n = pending_incomplete()) bump(Counter::kTimeouts, n);
     return;
   }
   const cia402::Message m = cia402::decode(f);
@@ -130,32 +82,32 @@ void RangerCanSource::on_frame(const CanFrame& f) {
     last_heartbeat_ = f.stamp;
     alive_ = true;
     if (m.nmt_state == cia402::kBootUp) {
-      counters_.bump(Counter::kReboots);
-      problem_ = Problem::kNodeReboot;
+      bump(Counter::kReboots);
+      report(Problem::kNodeReboot, config_.node);
       have_offset_ = false;  // the device clock restarted
-      (void)transport_->send(cia402::encode_nmt(cia402::kNmtStart, config_.node));
+      send(cia402::encode_nmt(cia402::kNmtStart, config_.node));
     }
   } else if (m.kind == cia402::Kind::kEmcy && m.node == config_.node) {
     if (m.emcy_code != 0) {
-      counters_.bump(Counter::kFaults);
-      problem_ = Problem::kEmcy;
+      bump(Counter::kFaults);
+      report(Problem::kEmcy, config_.node);
     }
   } else if (m.kind == cia402::Kind::kBadLength) {
-    counters_.bump(Counter::kBadLengths);
+    bump(Counter::kBadLengths);
   } else {
-    counters_.bump(Counter::kUnknownIds);
+    bump(Counter::kUnknownIds);
   }
 }
 
-void RangerCanSource::deliver() {
+void RangerCanSource::deliver_profile() {
   const ranger::WireProfile& w = reassembler_.profile();
   if (have_sequence_) {
     const std::uint32_t step = w.sequence - last_sequence_;
     if (step == 0 || step > 0x8000'0000u) {
-      counters_.bump(step == 0 ? Counter::kDuplicates : Counter::kReordered);
+      bump(step == 0 ? Counter::kDuplicates : Counter::kReordered);
       return;
     }
-    if (step > 1) counters_.bump(Counter::kGaps, step - 1);
+    if (step > 1) bump(Counter::kGaps, step - 1);
   }
   have_sequence_ = true;
   last_sequence_ = w.sequence;
@@ -177,7 +129,7 @@ void RangerCanSource::deliver() {
   scratch_.stamp = hal::Timestamp{device_us_ * 1000 + offset_ns_};
   scratch_.exposure = std::chrono::microseconds(w.exposure_us);
   scratch_.flags = w.flags & (hal::kRangerOverrun | hal::kRangerSaturated | hal::kRangerLaserOff);
-  if (w.flags & ranger::kWireOverrun) counters_.bump(Counter::kFaults);
+  if (w.flags & ranger::kWireOverrun) bump(Counter::kFaults);
   const std::size_t n = w.point_count;
   scratch_.x_mm.resize(n);
   scratch_.z_mm.resize(n);
@@ -190,7 +142,7 @@ void RangerCanSource::deliver() {
                            ? hal::kNoReturn
                            : static_cast<float>(config_.range_offset_mm + w.range[k] * unit_mm);
   }
-  if (ring_.push(scratch_)) counters_.bump(Counter::kSamples);
+  deliver(scratch_);
 }
 
 }  // namespace rangefit::drivers::can

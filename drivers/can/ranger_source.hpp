@@ -9,10 +9,8 @@
 #include <memory>
 #include <string>
 
-#include "drivers/can/can_loop.hpp"
+#include "drivers/can/can_source.hpp"
 #include "drivers/can/ranger_codec.hpp"
-#include "drivers/can/sample_ring.hpp"
-#include "hal/source.hpp"
 
 namespace rangefit::drivers::can {
 
@@ -31,30 +29,21 @@ struct RangerConfig {
 
 FrameFilter ranger_filter(const RangerConfig& config);
 
-class RangerCanSource final : public hal::RangerSource, private CanLoopHandler {
+class RangerCanSource final : public CanSource<hal::RangerProfile> {
  public:
   RangerCanSource(RangerConfig config, std::unique_ptr<CanTransport> transport);
-  ~RangerCanSource() override;
-
-  std::string name() const override { return config_.name; }
-  hal::Status start() override;
-  void stop() override;
-  hal::DeviceHealth health() const override;
-  std::size_t read(std::vector<hal::RangerProfile>& out, hal::Duration timeout) override;
-  CanCounters counters() const;
+  ~RangerCanSource() override { stop(); }
 
  private:
+  void on_start(hal::Timestamp now) override { last_heartbeat_ = now; }
+  bool devices_faulted() const override { return !alive_; }
   hal::Timestamp on_tick(hal::Timestamp now) override;
   void on_frame(const CanFrame& frame) override;
   void on_link(bool up) override;
-  void deliver();
+  void deliver_profile();
   std::size_t pending_incomplete();
 
   RangerConfig config_;
-  std::unique_ptr<CanTransport> transport_;
-  AtomicCanCounters counters_;
-  SampleRing<hal::RangerProfile> ring_;
-  CanLoop loop_;
   ranger::Reassembler reassembler_;
   hal::RangerProfile scratch_;  // capacity reserved once; reused for every profile
   std::uint64_t incomplete_seen_ = 0;
@@ -66,8 +55,6 @@ class RangerCanSource final : public hal::RangerSource, private CanLoopHandler {
   std::int64_t device_us_ = 0;  // unwrapped device time
   hal::Timestamp last_heartbeat_{};
   std::atomic<bool> alive_{true};
-  std::atomic<Problem> problem_{Problem::kNone};
-  std::atomic<bool> started_{false};
 };
 
 }  // namespace rangefit::drivers::can

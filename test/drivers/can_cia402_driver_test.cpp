@@ -12,21 +12,13 @@
 #include "drivers/can/cia402_pan_tilt_source.hpp"
 #include "drivers/can/inprocess_transport.hpp"
 #include "sim/can_cia402_node.hpp"
+#include "test/drivers/can_test_rig.hpp"
 
 namespace rangefit::drivers::can {
 namespace {
 
 using namespace std::chrono_literals;
-
-template <class Pred>
-bool eventually(Pred pred, std::chrono::milliseconds limit = 3000ms) {
-  const auto deadline = std::chrono::steady_clock::now() + limit;
-  while (!pred()) {
-    if (std::chrono::steady_clock::now() > deadline) return false;
-    std::this_thread::sleep_for(2ms);
-  }
-  return true;
-}
+using test::eventually;
 
 constexpr double kOmega = 1.0;  // rad/s of the simulated joints
 
@@ -35,10 +27,6 @@ class Cia402Driver : public ::testing::Test {
   void start(bool master = true) {
     config_.sync_master = master;
     config_.joints = {{1, 5, 1e-6, 0.0}, {2, 6, 1e-6, 0.0}};
-    auto [a, b] = InProcessTransport::make_pair(cia402_filter(config_));
-    link_ = a.get();
-    sim_link_ = b.get();
-    bus_ = std::make_unique<sim::SimCanBus>(std::move(b));
     t0_ = hal::monotonic_now();
     const auto angle = [t0 = t0_](hal::Timestamp t) {
       return kOmega * std::chrono::duration<double>(t - t0).count();
@@ -51,33 +39,25 @@ class Cia402Driver : public ::testing::Test {
     node1_ = std::make_shared<sim::SimCia402Node>(n1, angle);
     node2_ = std::make_shared<sim::SimCia402Node>(n2, angle);
     if (master) {
-      bus_->add(node1_);
-      bus_->add(node2_);
+      rig_.wire(config_, cia402_filter(config_), {node1_, node2_});
+    } else {
+      rig_.wire(config_, cia402_filter(config_), {});
     }
-    bus_->start();
-    driver_ = std::make_unique<Cia402JointSource>(config_, std::move(a));
-    ASSERT_TRUE(driver_->start().ok);
+    rig_.bus->start();
+    ASSERT_TRUE(rig_.driver->start().ok);
+    driver_ = rig_.driver.get();
+    link_ = rig_.link;
+    sim_link_ = rig_.sim_link;
   }
-  void TearDown() override {
-    if (driver_) driver_->stop();
-    if (bus_) bus_->stop();
-  }
-  std::vector<hal::JointSample> collect(std::size_t n) {
-    std::vector<hal::JointSample> out;
-    eventually([&] {
-      driver_->read(out, 10ms);
-      return out.size() >= n;
-    });
-    return out;
-  }
+  std::vector<hal::JointSample> collect(std::size_t n) { return test::collect(*driver_, n); }
   std::uint64_t count(Counter c) const { return driver_->counters()[c]; }
 
   Cia402Config config_;
+  test::InProcessRig<Cia402JointSource> rig_;
+  Cia402JointSource* driver_ = nullptr;
   InProcessTransport* link_ = nullptr;
   InProcessTransport* sim_link_ = nullptr;
-  std::unique_ptr<sim::SimCanBus> bus_;
   std::shared_ptr<sim::SimCia402Node> node1_, node2_;
-  std::unique_ptr<Cia402JointSource> driver_;
   hal::Timestamp t0_{};
 };
 
@@ -233,24 +213,17 @@ TEST(Cia402PanTilt, PairsPanAndTiltOfTheSameSync) {
   PanTiltConfig config;
   config.pan = {3, 1, 1e-6, 0.0};
   config.tilt = {4, 2, 1e-6, 0.0};
-  auto [a, b] = InProcessTransport::make_pair(cia402_filter(pan_tilt_bus_config(config)));
-  sim::SimCanBus bus(std::move(b));
   auto pan = std::make_shared<sim::SimCia402Node>(sim::SimCia402Config{3});
   auto tilt = std::make_shared<sim::SimCia402Node>(sim::SimCia402Config{4});
   pan->set_angle(0.3);
   tilt->set_angle(-0.2);
-  bus.add(pan);
-  bus.add(tilt);
-  bus.start();
-  Cia402PanTiltSource head(config, std::move(a));
-  ASSERT_TRUE(head.start().ok);
-  std::vector<hal::PanTiltSample> out;
-  ASSERT_TRUE(eventually([&] {
-    head.read(out, 10ms);
-    return out.size() >= 10;
-  }));
-  head.stop();
-  bus.stop();
+  test::InProcessRig<Cia402PanTiltSource> rig;
+  rig.wire(config, cia402_filter(pan_tilt_bus_config(config)), {pan, tilt});
+  rig.bus->start();
+  ASSERT_TRUE(rig.driver->start().ok);
+  const auto out = test::collect(*rig.driver, 10);
+  rig.stop();
+  ASSERT_GE(out.size(), 10u);
   for (const auto& s : out) {
     EXPECT_NEAR(s.pan_rad, 0.3, 1e-6);
     EXPECT_NEAR(s.tilt_rad, -0.2, 1e-6);

@@ -7,51 +7,34 @@
 #include "drivers/can/inprocess_transport.hpp"
 #include "drivers/can/powercube_joint_source.hpp"
 #include "sim/can_powercube_module.hpp"
+#include "test/drivers/can_test_rig.hpp"
 
 namespace rangefit::drivers::can {
 namespace {
 
 using namespace std::chrono_literals;
-
-template <class Pred>
-bool eventually(Pred pred, std::chrono::milliseconds limit = 3000ms) {
-  const auto deadline = std::chrono::steady_clock::now() + limit;
-  while (!pred()) {
-    if (std::chrono::steady_clock::now() > deadline) return false;
-    std::this_thread::sleep_for(2ms);
-  }
-  return true;
-}
+using test::eventually;
 
 class PowerCubeDriver : public ::testing::Test {
  protected:
   void SetUp() override {
     config_.modules = {{4, 5, 0.0}, {5, 6, 0.1}};
     config_.poll_period = 5ms;
-    auto [a, b] = InProcessTransport::make_pair(powercube_filter(config_));
-    sim_link_ = b.get();
-    bus_ = std::make_unique<sim::SimCanBus>(std::move(b));
     m4_ = std::make_shared<sim::SimPowerCubeModule>(4);
     m5_ = std::make_shared<sim::SimPowerCubeModule>(5);
     m4_->set_angle(1.5);
     m5_->set_angle(-0.5);
-    bus_->add(m4_);
-    bus_->add(m5_);
-    bus_->start();
-    driver_ = std::make_unique<PowerCubeJointSource>(config_, std::move(a));
+    rig_.wire(config_, powercube_filter(config_), {m4_, m5_});
+    rig_.bus->start();
+    driver_ = rig_.driver.get();
     ASSERT_TRUE(driver_->start().ok);
-  }
-  void TearDown() override {
-    driver_->stop();
-    bus_->stop();
   }
   std::uint64_t count(Counter c) const { return driver_->counters()[c]; }
 
   PowerCubeConfig config_;
-  InProcessTransport* sim_link_ = nullptr;
-  std::unique_ptr<sim::SimCanBus> bus_;
   std::shared_ptr<sim::SimPowerCubeModule> m4_, m5_;
-  std::unique_ptr<PowerCubeJointSource> driver_;
+  test::InProcessRig<PowerCubeJointSource> rig_;
+  PowerCubeJointSource* driver_ = nullptr;
 };
 
 TEST(PowerCubeDriverConfig, NoModulesIsRefusedAtStart) {

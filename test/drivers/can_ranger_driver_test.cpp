@@ -9,21 +9,13 @@
 #include "drivers/can/inprocess_transport.hpp"
 #include "drivers/can/ranger_source.hpp"
 #include "sim/can_profile_ranger.hpp"
+#include "test/drivers/can_test_rig.hpp"
 
 namespace rangefit::drivers::can {
 namespace {
 
 using namespace std::chrono_literals;
-
-template <class Pred>
-bool eventually(Pred pred, std::chrono::milliseconds limit = 3000ms) {
-  const auto deadline = std::chrono::steady_clock::now() + limit;
-  while (!pred()) {
-    if (std::chrono::steady_clock::now() > deadline) return false;
-    std::this_thread::sleep_for(2ms);
-  }
-  return true;
-}
+using test::eventually;
 
 class RangerDriver : public ::testing::Test {
  protected:
@@ -32,8 +24,6 @@ class RangerDriver : public ::testing::Test {
     config_.lateral_pitch_mm = 0.05;
     config_.range_offset_mm = 60.0;
     t0_ = hal::monotonic_now();
-    auto [a, b] = InProcessTransport::make_pair(ranger_filter(config_));
-    bus_ = std::make_unique<sim::SimCanBus>(std::move(b));
     sim::SimRangerConfig rc;
     rc.node = 0x21;
     rc.rate_hz = 100;
@@ -41,30 +31,19 @@ class RangerDriver : public ::testing::Test {
     ranger_ = std::make_shared<sim::SimProfileRanger>(rc, [](std::uint32_t seq, std::size_t k) {
       return k == 7 ? std::uint16_t{0xFFFF} : static_cast<std::uint16_t>(1000 + k + seq % 10);
     });
-    bus_->add(ranger_);
-    driver_ = std::make_unique<RangerCanSource>(config_, std::move(a));
+    rig_.wire(config_, ranger_filter(config_), {ranger_});
+    driver_ = rig_.driver.get();
     ASSERT_TRUE(driver_->start().ok);
-    bus_->start();
+    rig_.bus->start();
   }
-  void TearDown() override {
-    driver_->stop();
-    bus_->stop();
-  }
-  std::vector<hal::RangerProfile> collect(std::size_t n) {
-    std::vector<hal::RangerProfile> out;
-    eventually([&] {
-      driver_->read(out, 10ms);
-      return out.size() >= n;
-    });
-    return out;
-  }
+  std::vector<hal::RangerProfile> collect(std::size_t n) { return test::collect(*driver_, n); }
   std::uint64_t count(Counter c) const { return driver_->counters()[c]; }
 
   RangerConfig config_;
   hal::Timestamp t0_{};
-  std::unique_ptr<sim::SimCanBus> bus_;
   std::shared_ptr<sim::SimProfileRanger> ranger_;
-  std::unique_ptr<RangerCanSource> driver_;
+  test::InProcessRig<RangerCanSource> rig_;
+  RangerCanSource* driver_ = nullptr;
 };
 
 TEST_F(RangerDriver, ProfilesAt100HzArriveCompleteInOrderWithValues) {

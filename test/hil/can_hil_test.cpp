@@ -17,46 +17,23 @@
 #include "sim/can_cia402_node.hpp"
 #include "sim/can_powercube_module.hpp"
 #include "sim/can_profile_ranger.hpp"
+#include "test/hil/can_hil_rig.hpp"
 
 namespace rangefit::drivers::can {
 namespace {
 
 using namespace std::chrono_literals;
-
-const char* interface() {
-  const char* i = std::getenv("RANGEFIT_HIL_CAN");
-  return i ? i : "vcan0";
-}
-
-template <class Pred>
-bool eventually(Pred pred, std::chrono::milliseconds limit = 3000ms) {
-  const auto deadline = std::chrono::steady_clock::now() + limit;
-  while (!pred()) {
-    if (std::chrono::steady_clock::now() > deadline) return false;
-    std::this_thread::sleep_for(2ms);
-  }
-  return true;
-}
-
-std::unique_ptr<SocketCanTransport> socket_for(FrameFilter filter, bool fd = false) {
-  SocketCanConfig c;
-  c.interface = interface();
-  c.filter = std::move(filter);
-  c.fd = fd;
-  c.receive_buffer = 1 << 20;
-  return std::make_unique<SocketCanTransport>(c);
-}
-
-std::unique_ptr<sim::SimCanBus> sim_bus(bool fd) {
-  auto t = socket_for({}, fd);
-  EXPECT_TRUE(t->open().ok);
-  return std::make_unique<sim::SimCanBus>(std::move(t));
-}
+using test::cansend;
+using test::eventually;
+using test::interface;
+using test::sim_bus;
+using test::socket_for;
 
 TEST(CanHil, Cia402JointsArriveWithValuesAndSyncStampsAndSurviveInterfaceDown) {
   Cia402Config cfg;
   cfg.joints = {{1, 5, 1e-6, 0.0}, {2, 6, 1e-6, 0.0}};
   auto bus = sim_bus(false);
+  ASSERT_NE(bus, nullptr);
   const hal::Timestamp t0 = hal::monotonic_now();
   const auto angle = [t0](hal::Timestamp t) {
     return std::chrono::duration<double>(t - t0).count();
@@ -77,9 +54,11 @@ TEST(CanHil, Cia402JointsArriveWithValuesAndSyncStampsAndSurviveInterfaceDown) {
     EXPECT_NEAR(s.angle_rad, std::chrono::duration<double>(s.stamp - t0).count(), 0.02);
   }
   EXPECT_EQ(driver.counters().transport.rx_overflow, 0u);
-  EXPECT_EQ(std::system(("ip link set " + std::string(interface()) + " down").c_str()), 0);
-  ASSERT_TRUE(eventually([&] { return driver.health().state == hal::DeviceState::kDisconnected; }));
-  EXPECT_EQ(std::system(("ip link set " + std::string(interface()) + " up").c_str()), 0);
+  ASSERT_TRUE(test::set_link(false));
+  const bool disconnected =
+      eventually([&] { return driver.health().state == hal::DeviceState::kDisconnected; });
+  ASSERT_TRUE(test::set_link(true));  // before any assertion can end the test: later tests need it
+  ASSERT_TRUE(disconnected);
   ASSERT_TRUE(eventually([&] { return driver.counters()[Counter::kReconnects] >= 1; }));
   out.clear();
   EXPECT_TRUE(eventually([&] {
@@ -95,6 +74,7 @@ TEST(CanHil, PowerCubeModulesAnswerPolls) {
   cfg.modules = {{3, 1, 0.0}};
   cfg.reply_timeout = 20ms;
   auto bus = sim_bus(false);
+  ASSERT_NE(bus, nullptr);
   auto m = std::make_shared<sim::SimPowerCubeModule>(3);
   m->set_angle(0.75);
   bus->add(m);
@@ -115,6 +95,7 @@ TEST(CanHil, RangerFdStreamOf100ProfilesPerSecondIsReassembledWithoutLoss) {
   RangerConfig cfg;
   cfg.node = 0x22;
   auto bus = sim_bus(true);
+  ASSERT_NE(bus, nullptr);
   sim::SimRangerConfig rc;
   rc.node = 0x22;
   auto ranger = std::make_shared<sim::SimProfileRanger>(rc);
@@ -165,9 +146,7 @@ TEST(CanHil, CandumpSeesOurSyncAndCansendFramesReachTheDriver) {
   Cia402JointSource driver(follower, socket_for(cia402_filter(follower)));
   ASSERT_TRUE(driver.start().ok);
   std::this_thread::sleep_for(50ms);
-  EXPECT_EQ(
-      std::system(("cansend " + itf + " 080#01 && cansend " + itf + " 185#370640420F00").c_str()),
-      0);
+  EXPECT_TRUE(cansend("080#01") && cansend("185#370640420F00"));
   std::vector<hal::JointSample> out;
   ASSERT_TRUE(eventually([&] {
     driver.read(out, 10ms);
