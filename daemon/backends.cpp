@@ -11,6 +11,10 @@ namespace rangefit::daemon {
 
 DeviceBackend::DeviceBackend(DaemonConfig config) : config_(std::move(config)) {
   for (const auto& d : config_.devices) {
+    if (d.driver == DriverKind::kSim) {
+      if (!sim_) sim_ = std::make_unique<SimCell>(config_);
+      continue;  // SimCell reports these
+    }
     hal::DeviceHealth h;
     h.state = d.driver == DriverKind::kReplay ? hal::DeviceState::kReady
                                               : hal::DeviceState::kDisconnected;
@@ -25,6 +29,9 @@ std::vector<NamedHealth> DeviceBackend::health() const {
   std::lock_guard lock(mutex_);
   std::vector<NamedHealth> out;
   for (const auto& [name, h] : health_) out.push_back({name, h});
+  if (sim_) {
+    for (auto& h : sim_->health()) out.push_back(std::move(h));
+  }
   return out;
 }
 
@@ -34,6 +41,7 @@ ScanOutcome DeviceBackend::scan(const ScanRequest& request, const std::atomic<bo
   if (device == nullptr) return {hal::Status::Error("unknown sensor " + request.sensor), {}};
   if (cancel) return {hal::Status::Error("cancelled"), {}};
   if (device->driver == DriverKind::kReplay) return replay(*device, progress);
+  if (device->driver == DriverKind::kSim) return sim_->scan(*device, request, cancel, progress);
   return {hal::Status::Error(std::string(to_string(device->driver)) + " driver for " +
                              device->kind + " is not available in this build"),
           {}};
@@ -89,14 +97,10 @@ DetectionResult ModelDetector::detect_bore_request(const PointCloud& cloud,
   part.T_world_part.linear() =
       Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), r.axis).toRotationMatrix();
   part.T_world_part.translation() = r.entrance;
+  // Score: agreement of the fitted radius with the prior (informative; found is the detector's).
   const double error = std::abs(r.radius - prior.radius);
   part.score = std::max(0.0, 1.0 - error / std::max(prior.radius, 1e-9));
   out.parts.push_back(part);
-  if (error > config_.detection.bore_radius_tolerance_mm) {
-    out.found = false;
-    out.reason = "radius " + std::to_string(r.radius) + " mm differs from the prior by more than " +
-                 "detection.bore_radius_tolerance_mm";
-  }
   return out;
 }
 
@@ -128,16 +132,6 @@ DetectionResult ModelDetector::detect_object_request(const PointCloud& cloud,
     const double total = static_cast<double>(part.scores.interior + part.scores.surface);
     const double score = total > 0 ? static_cast<double>(part.scores.surface) / total : 0.0;
     out.parts.push_back({part.name, part.T_world_part, score});
-  }
-  const double best =
-      out.parts.empty()
-          ? 0.0
-          : std::min_element(out.parts.begin(), out.parts.end(), [](auto& a, auto& b) {
-              return a.score < b.score;
-            })->score;
-  if (best < config_.detection.object_min_score) {
-    out.found = false;
-    out.reason = "score " + std::to_string(best) + " below detection.object_min_score";
   }
   return out;
 }

@@ -1,20 +1,24 @@
 #pragma once
 // ScanBackend and Detector implementations rangefitd runs with.
-// - DeviceBackend dispatches each request to the configured device's driver. The replay driver
-//   returns a recorded cloud (PLY) as the scan: it replays a spooled or simulated scan through
-//   the full pipeline and DDS as fast as possible (benchmarks, offline checks).
-// - ModelDetector runs the thesis detectors of detect/ with the configured parameters.
+// - DeviceBackend dispatches each request to the configured device's driver: "sim" runs the
+//   simulated cell through fusion (daemon/sim_cell.hpp); "replay" returns a recorded cloud (PLY)
+//   as the scan, replaying a spooled or simulated scan through the full pipeline and DDS as fast
+//   as possible (benchmarks, offline checks).
+// - ModelDetector runs the thesis detectors of detect/ with the configured parameters and
+//   reports their found/reason unchanged (no gate of its own).
 
 #include <map>
 #include <mutex>
 
 #include "daemon/config.hpp"
 #include "daemon/pipeline.hpp"
+#include "daemon/sim_cell.hpp"
 
 namespace rangefit::daemon {
 
 class DeviceBackend final : public ScanBackend {
  public:
+  // Throws std::runtime_error when a simulated device's scene cannot be loaded.
   explicit DeviceBackend(DaemonConfig config);
   ScanOutcome scan(const ScanRequest& request, const std::atomic<bool>& cancel,
                    const std::function<void()>& progress) override;
@@ -27,6 +31,7 @@ class DeviceBackend final : public ScanBackend {
   mutable std::mutex mutex_;
   std::map<std::string, hal::DeviceHealth> health_;
   std::map<std::string, PointCloud> replay_cache_;
+  std::unique_ptr<SimCell> sim_;  // when a device uses driver = "sim"
 };
 
 class ModelDetector final : public Detector {

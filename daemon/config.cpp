@@ -56,6 +56,12 @@ class FieldReader {
       }
     }
   }
+  void read(std::string_view key, bool& out) {
+    if (const auto* n = find(key)) {
+      if (!n->is_boolean()) fail(key, "must be true or false");
+      out = n->as_boolean()->get();
+    }
+  }
   void read(std::string_view key, std::int64_t& out, std::int64_t lo, std::int64_t hi) {
     if (const auto* n = find(key)) {
       if (!n->is_integer()) fail(key, "must be an integer");
@@ -158,8 +164,27 @@ void read_detection(FieldReader& r, DetectionConfig& d) {
   r.read("seed", seed, 0, std::numeric_limits<std::int64_t>::max());
   d.seed = static_cast<std::uint64_t>(seed);
   r.read("timeout_s", d.timeout_s, 0.01, 3600.0);
-  r.read("bore_radius_tolerance_mm", d.bore_radius_tolerance_mm, 0.0, 1000.0);
-  r.read("object_min_score", d.object_min_score, 0.0, 1.0);
+  r.reject_unknown();
+}
+
+void read_sim(FieldReader& r, SimConfig& s) {
+  std::string scene = s.scene.string();
+  r.read("scene", scene);
+  s.scene = scene;
+  r.read("time_scale", s.time_scale, 0.0, 1000.0);
+  std::int64_t seed = static_cast<std::int64_t>(s.seed);
+  r.read("seed", seed, 0, std::numeric_limits<std::int64_t>::max());
+  s.seed = static_cast<std::uint64_t>(seed);
+  r.read("noise", s.noise);
+  r.reject_unknown();
+}
+
+void read_sim_fault(FieldReader& r, SimFaultConfig& f) {
+  r.read("disconnect_after_s", f.disconnect_after_s, -1.0, 1e6);
+  r.read("disconnect_for_s", f.disconnect_for_s, 0.0, 1e6);
+  std::int64_t scan = f.on_scan;
+  r.read("on_scan", scan, 0, 1000000);
+  f.on_scan = static_cast<int>(scan);
   r.reject_unknown();
 }
 
@@ -195,6 +220,13 @@ void read_device(FieldReader& r, DeviceConfig& d) {
   r.read("sweep_start", d.sweep_start, -kMaxDouble, kMaxDouble);
   r.read("sweep_end", d.sweep_end, -kMaxDouble, kMaxDouble);
   r.read("sweep_speed", d.sweep_speed, 0.0, kMaxDouble);
+  std::string scene;
+  r.read("scene", scene);
+  d.scene = scene;
+  if (const auto* t = r.sub_table("sim_fault")) {
+    FieldReader sub(*t, r.field("sim_fault"));
+    read_sim_fault(sub, d.sim_fault);
+  }
   r.reject_unknown();
 }
 
@@ -211,9 +243,29 @@ void read_object(FieldReader& r, ObjectModelConfig& o) {
   r.reject_unknown();
 }
 
-DaemonConfig read_root(const toml::table& root) {
+// The [fusion] table belongs to fusion/ (fusion/config.hpp), which validates it the same way.
+struct FusionTableError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+std::filesystem::path resolve(const std::filesystem::path& p, const std::filesystem::path& base) {
+  return p.empty() || p.is_absolute() || base.empty() ? p : base / p;
+}
+
+DaemonConfig read_root(const toml::table& root, std::string_view source_name,
+                       const std::filesystem::path& base_dir) {
   DaemonConfig c;
   FieldReader r(root, "");
+  if (const auto* t = r.sub_table("fusion")) {
+    auto fusion = fusion::parse_fusion_config(*t, source_name);
+    if (!fusion.config) throw FusionTableError(fusion.error);
+    c.fusion = *fusion.config;
+  }
+  if (const auto* t = r.sub_table("sim")) {
+    FieldReader sub(*t, "sim");
+    read_sim(sub, c.sim);
+  }
+  c.sim.scene = resolve(c.sim.scene, base_dir);
   if (const auto* t = r.sub_table("service")) {
     FieldReader sub(*t, "service");
     read_service(sub, c.service);
@@ -235,8 +287,15 @@ DaemonConfig read_root(const toml::table& root) {
     for (std::size_t i = 0; i < arr->size(); ++i) {
       const std::string path = "devices[" + std::to_string(i) + "]";
       FieldReader sub(*(*arr)[i].as_table(), path);
-      read_device(sub, c.devices.emplace_back());
-      if (!names.insert(c.devices.back().name).second) sub.fail("name", "duplicate device name");
+      DeviceConfig& d = c.devices.emplace_back();
+      read_device(sub, d);
+      if (!names.insert(d.name).second) sub.fail("name", "duplicate device name");
+      d.scene = resolve(d.scene, base_dir);
+      if (d.driver == DriverKind::kSim && d.scene.empty()) d.scene = c.sim.scene;
+      const bool scans = d.kind == "css" || d.kind == "stripe" || d.kind == "pan_tilt";
+      if (d.driver == DriverKind::kSim && scans && d.scene.empty()) {
+        sub.fail("scene", "is required for a simulated " + d.kind + " (or set sim.scene)");
+      }
     }
   }
   names.clear();
@@ -287,17 +346,20 @@ const ObjectModelConfig* DaemonConfig::object(std::string_view name) const {
   return nullptr;
 }
 
-ConfigResult parse_config(std::string_view toml_text, std::string_view source_name) {
+ConfigResult parse_config(std::string_view toml_text, std::string_view source_name,
+                          const std::filesystem::path& base_dir) {
   ConfigResult result;
   try {
     const toml::table root = toml::parse(toml_text, source_name);
-    result.config = read_root(root);
+    result.config = read_root(root, source_name, base_dir);
   } catch (const toml::parse_error& e) {
     std::ostringstream s;
     s << source_name << ":" << e.source().begin.line << ": " << e.description();
     result.error = s.str();
   } catch (const FieldError& e) {
     result.error = std::string(source_name) + ": " + e.what();
+  } catch (const FusionTableError& e) {
+    result.error = e.what();  // already "<source>: fusion.<table>.<field>: <problem>"
   }
   return result;
 }
@@ -307,7 +369,7 @@ ConfigResult load_config(const std::filesystem::path& path) {
   if (!in) return {std::nullopt, path.string() + ": cannot open"};
   std::ostringstream text;
   text << in.rdbuf();
-  return parse_config(text.str(), path.string());
+  return parse_config(text.str(), path.string(), path.parent_path());
 }
 
 }  // namespace rangefit::daemon

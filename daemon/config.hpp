@@ -11,10 +11,20 @@
 #include <string_view>
 #include <vector>
 
+#include "fusion/config.hpp"
+
 namespace rangefit::daemon {
 
 enum class DriverKind { kSim, kReal, kReplay };
 const char* to_string(DriverKind k);
+
+// Faults a simulated device injects (driver = "sim"): the sensor's link drops during a scan, as
+// a USB or CAN device that is unplugged and plugged back in. For tests and demos.
+struct SimFaultConfig {
+  double disconnect_after_s = -1.0;  // after the scan starts, in device time; < 0: never
+  double disconnect_for_s = 0.0;     // the link is back after this long
+  int on_scan = 0;                   // only the n-th scan of the device (1-based); 0: every scan
+};
 
 struct DeviceConfig {
   std::string name;  // unique; requests name sensors by it
@@ -26,7 +36,9 @@ struct DeviceConfig {
   std::array<double, 3> rpy_rad{};    // sensor extrinsics: roll, pitch, yaw, rad
   double sweep_start = 0.0;           // default sweep: mm (linear) or rad (rotary)
   double sweep_end = 0.0;
-  double sweep_speed = 0.0;  // per second; 0 = device default
+  double sweep_speed = 0.0;     // per second; 0 = device default
+  std::filesystem::path scene;  // sim driver: scene TOML; empty = sim.scene
+  SimFaultConfig sim_fault;     // sim driver: [devices.sim_fault]
 };
 
 struct ObjectModelConfig {
@@ -36,11 +48,18 @@ struct ObjectModelConfig {
   std::filesystem::path mesh;         // optional CAD mesh (STL) of the object
 };
 
+// found/reason of a result are the detector's own (detect/); the daemon adds no gate of its own.
 struct DetectionConfig {
-  std::uint64_t seed = 1;                 // every random algorithm is seeded from this
-  double timeout_s = 30.0;                // detection longer than this is abandoned
-  double bore_radius_tolerance_mm = 2.0;  // found radius may differ this much from the prior
-  double object_min_score = 0.5;          // fits scoring lower report found = false
+  std::uint64_t seed = 1;   // every random algorithm is seeded from this
+  double timeout_s = 30.0;  // detection longer than this is answered "detection timeout"
+};
+
+// The simulated cell (driver = "sim"): sim/ devices ray-cast a scene, fusion/ assembles them.
+struct SimConfig {
+  std::filesystem::path scene;  // scene TOML (data/scenes/*.toml); relative: to the config file
+  double time_scale = 1.0;      // virtual seconds per real second; 0 = as fast as possible
+  std::uint64_t seed = 1;       // seeds the devices' noise and faults (scan n uses seed + n)
+  bool noise = true;            // sensor noise (CSS 60 um, thesis 4.2.1) and quantisation
 };
 
 struct DdsConfig {
@@ -71,6 +90,8 @@ struct DaemonConfig {
   DdsConfig dds;
   SpoolConfig spool;
   DetectionConfig detection;
+  SimConfig sim;
+  fusion::FusionConfig fusion;  // [fusion], read by fusion::parse_fusion_config
   std::vector<DeviceConfig> devices;
   std::vector<ObjectModelConfig> objects;
 
@@ -83,7 +104,9 @@ struct ConfigResult {
   std::string error;                   // "<source>: <field>: <problem>" when not
 };
 
-ConfigResult parse_config(std::string_view toml_text, std::string_view source_name = "config");
+// Relative scene paths are resolved against base_dir (load_config: the config file's folder).
+ConfigResult parse_config(std::string_view toml_text, std::string_view source_name = "config",
+                          const std::filesystem::path& base_dir = {});
 ConfigResult load_config(const std::filesystem::path& path);
 
 }  // namespace rangefit::daemon

@@ -1,5 +1,6 @@
 #include "daemon/pipeline.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -98,26 +99,91 @@ void Pipeline::run() {
   }
 }
 
-void Pipeline::process(const ScanRequest& request) {
-  set_state(LifecycleState::kScanning, "", request.id);
-  const auto t0 = std::chrono::steady_clock::now();
+// The backend sees one cancel flag: set when the pipeline aborts or the scan deadline passes.
+// A small timer thread per scan sets it; scans last seconds, so the thread costs nothing.
+ScanOutcome Pipeline::run_scan(const ScanRequest& request, bool* timed_out) {
+  std::atomic<bool> cancel{false};
+  std::mutex m;
+  std::condition_variable cv;
+  bool done = false;
+  hal::Duration limit;
+  {
+    std::lock_guard lock(mutex_);
+    limit = options_.scan_timeout;
+  }
+  std::thread timer([&] {
+    const auto deadline = std::chrono::steady_clock::now() + limit;
+    std::unique_lock lock(m);
+    while (!done) {
+      cv.wait_for(lock, std::chrono::milliseconds(20));
+      if (cancel_) cancel = true;
+      if (limit > hal::Duration::zero() && std::chrono::steady_clock::now() >= deadline && !done &&
+          !cancel) {
+        *timed_out = true;
+        cancel = true;
+      }
+    }
+  });
   ScanOutcome outcome;
   try {
-    outcome = backend_.scan(request, cancel_, [this] { touch(); });
+    outcome = backend_.scan(request, cancel, [this] { touch(); });
   } catch (const std::exception& e) {
     outcome.status = hal::Status::Error(std::string("scan threw: ") + e.what());
   }
+  {
+    std::lock_guard lock(m);
+    done = true;
+  }
+  cv.notify_all();
+  timer.join();
+  if (*timed_out) {
+    outcome.status = hal::Status::Error(
+        fmt::format("scan timeout: not complete after {:.1f} s (service.scan_timeout_s)",
+                    std::chrono::duration<double>(limit).count()));
+    outcome.cloud = {};
+  }
+  return outcome;
+}
+
+DetectionResult Pipeline::run_detection(const PointCloud& cloud, const ScanRequest& request) {
+  hal::Duration limit;
+  {
+    std::lock_guard lock(mutex_);
+    limit = options_.detect_timeout;
+  }
+  auto detect = [this, &cloud, &request] {
+    try {
+      return detector_.detect(cloud, request);
+    } catch (const std::exception& e) {
+      return DetectionResult::error(request, std::string("detector threw: ") + e.what());
+    }
+  };
+  if (limit <= hal::Duration::zero()) return detect();
+  auto future = std::async(std::launch::async, detect);
+  if (future.wait_for(limit) == std::future_status::ready) return future.get();
+  // Answered now; the detector's thread is joined before the next request (pending_detection_).
+  pending_detection_ = std::move(future);
+  return DetectionResult::error(
+      request, fmt::format("detection timeout: no result after {:.1f} s (detection.timeout_s)",
+                           std::chrono::duration<double>(limit).count()));
+}
+
+void Pipeline::process(const ScanRequest& request) {
+  set_state(LifecycleState::kScanning, "", request.id);
+  const auto t0 = std::chrono::steady_clock::now();
+  bool scan_timed_out = false;
+  ScanOutcome outcome = run_scan(request, &scan_timed_out);
   DetectionResult result;
   const double scan_s = seconds_since(t0);
+  bool failed = !outcome.status;
   if (outcome.status) {
     set_state(LifecycleState::kDetecting, "", request.id);
     const auto t1 = std::chrono::steady_clock::now();
-    try {
-      result = detector_.detect(outcome.cloud, request);
-    } catch (const std::exception& e) {
-      result = DetectionResult::error(request, std::string("detector threw: ") + e.what());
-    }
+    result = run_detection(outcome.cloud, request);
     result.detect_seconds = seconds_since(t1);
+    failed = pending_detection_.valid();
+  } else if (scan_timed_out) {
+    result = DetectionResult::error(request, outcome.status.message);
   } else {
     result = DetectionResult::error(request, "scan failed: " + outcome.status.message);
   }
@@ -136,7 +202,7 @@ void Pipeline::process(const ScanRequest& request) {
     }
   }
   // State first, then the result: a client holding the result sees the settled state.
-  if (outcome.status) {
+  if (!failed) {
     spdlog::info("request {}: {} ({} points, scan {:.2f} s, detect {:.2f} s){}", request.id,
                  result.found ? "found" : "not found", result.num_points, result.scan_seconds,
                  result.detect_seconds, result.reason.empty() ? "" : ": " + result.reason);
@@ -153,6 +219,11 @@ void Pipeline::process(const ScanRequest& request) {
   if (!outcome.cloud.empty()) sink_.on_cloud(request, outcome.cloud);
   ++completed_;
   sink_.on_result(result);
+  if (pending_detection_.valid()) {
+    spdlog::warn("request {}: waiting for the timed-out detector to return", request.id);
+    pending_detection_.wait();  // no touch(): a detector that never returns starves the watchdog
+    pending_detection_ = {};
+  }
 }
 
 }  // namespace rangefit::daemon

@@ -9,6 +9,7 @@
 #include <condition_variable>
 #include <deque>
 #include <functional>
+#include <future>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -64,6 +65,12 @@ enum class Submit { kAccepted, kBusy, kStopping };
 
 struct PipelineOptions {
   std::size_t queue_capacity = 4;  // waiting requests; the running one is not counted
+  // A scan running longer is cancelled and answered "scan timeout"; 0 = no limit.
+  hal::Duration scan_timeout{0};
+  // A detection running longer is answered "detection timeout" at once; the worker then waits
+  // for the detector to return (detect/ cannot be interrupted) before the next request, without
+  // feeding the watchdog. 0 = no limit.
+  hal::Duration detect_timeout{0};
 };
 
 class Pipeline {
@@ -97,6 +104,8 @@ class Pipeline {
  private:
   void run();
   void process(const ScanRequest& request);
+  ScanOutcome run_scan(const ScanRequest& request, bool* timed_out);
+  DetectionResult run_detection(const PointCloud& cloud, const ScanRequest& request);
   void set_state(LifecycleState s, const std::string& detail, const std::string& active);
   void touch() { last_progress_ns_.store(clock_.now().count()); }
 
@@ -117,6 +126,7 @@ class Pipeline {
   std::atomic<std::uint64_t> completed_{0};
   std::atomic<std::uint64_t> busy_{0};
   std::string last_error_;
+  std::future<DetectionResult> pending_detection_;  // a timed-out detection still running
   std::thread worker_;
 };
 

@@ -35,8 +35,11 @@ Service::Service(DaemonConfig config, hal::Clock& clock, std::unique_ptr<ScanBac
 Service::~Service() { pipeline_->stop(true); }
 
 void Service::build_pipeline() {
-  pipeline_ = std::make_unique<Pipeline>(PipelineOptions{config_.service.queue_capacity}, *backend_,
-                                         *detector_, &spool_, dds_, clock_);
+  PipelineOptions options;
+  options.queue_capacity = config_.service.queue_capacity;
+  options.scan_timeout = seconds(config_.service.scan_timeout_s);
+  options.detect_timeout = seconds(config_.detection.timeout_s);
+  pipeline_ = std::make_unique<Pipeline>(options, *backend_, *detector_, &spool_, dds_, clock_);
 }
 
 void Service::step(std::chrono::milliseconds timeout) {
@@ -95,12 +98,22 @@ bool Service::reload(const DaemonConfig& next, std::string* why) {
   }
   Spool spool(next.spool);
   if (!spool.open(why)) return false;
+  // Devices first (a simulated scene may fail to load): a refused config changes nothing.
+  std::unique_ptr<ScanBackend> backend;
+  if (own_backend_) {
+    try {
+      backend = std::make_unique<DeviceBackend>(next);
+    } catch (const std::exception& e) {
+      *why = e.what();
+      return false;
+    }
+  }
   // Finish the running scan with the old configuration, then swap everything in.
   pipeline_->stop(false);
   config_ = next;
   spool_ = std::move(spool);
   if (own_backend_) {
-    backend_ = std::make_unique<DeviceBackend>(config_);
+    backend_ = std::move(backend);
     detector_ = std::make_unique<ModelDetector>(config_);
   }
   build_pipeline();
