@@ -177,6 +177,7 @@ CssRevolutionTruth CssRig::cast_revolution(std::uint64_t k) const {
   int n_back = 0;
   for (int i = 0; i < kN; ++i) {
     truth.range_mm[i] = kNaN;
+    truth.point_scene[i] = truth.normal_scene[i] = Vector3d::Constant(kNaN);
     truth.object[i] = -1;
     if (!hits[i].valid || hits[i].t < g.min_range_mm) continue;
     const Vector3d to_ccd = ccd[i] - hits[i].point;

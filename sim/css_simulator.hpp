@@ -29,13 +29,15 @@ struct CssScanOptions {
   std::uint64_t seed = 1;
 };
 
-// Noise-free result of one revolution, in double: for the tests and the ground truth.
+// Noise-free result of one revolution, in double: for the tests and the ground truth. Every
+// array is indexed by the sample number i of the revolution; where sample i has no return,
+// range_mm[i], point_scene[i] and normal_scene[i] are NaN and object[i] is -1.
 struct CssRevolutionTruth {
-  std::array<double, hal::CssRevolution::kSamples> range_mm{};            // NaN = no return
-  std::array<Eigen::Vector3d, hal::CssRevolution::kSamples> point_scene;  // valid samples only
-  std::array<double, hal::CssRevolution::kSamples> omega_rad{};  // joint angle at each sample
+  std::array<double, hal::CssRevolution::kSamples> range_mm{};
+  std::array<Eigen::Vector3d, hal::CssRevolution::kSamples> point_scene;  // scene frame, mm
+  std::array<double, hal::CssRevolution::kSamples> omega_rad{};  // path angle at each sample
   std::array<int, hal::CssRevolution::kSamples> object{};        // hit object, -1 = none
-  std::array<Eigen::Vector3d, hal::CssRevolution::kSamples> normal_scene;  // at valid hits
+  std::array<Eigen::Vector3d, hal::CssRevolution::kSamples> normal_scene;  // unit, scene frame
 };
 
 class CssRig {

@@ -89,7 +89,7 @@ ProfileTruth cast_profile(const RayCaster& caster, const hal::StripeRanger& rang
   ProfileTruth t;
   t.x_mm.assign(un, kNaN);
   t.z_mm.assign(un, kNaN);
-  t.point_scene.assign(un, Vector3d::Zero());
+  t.point_scene.assign(un, Vector3d::Constant(kNaN));
   t.object.assign(un, -1);
   std::vector<Ray> rays(un);
   const Vector3d origin = T_scene_ranger.translation();

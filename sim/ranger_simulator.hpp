@@ -20,10 +20,12 @@ namespace rangefit::sim {
 
 inline constexpr int kChipRows = 1536;
 
-// One profile before noise, in double; NaN x/z = no point.
+// One profile before noise, in double. Every vector has points_per_profile entries indexed by the
+// fan ray k (the profile's column): point_scene[k] is the scene point of (x_mm[k], z_mm[k]).
+// Where column k has no point, x_mm[k], z_mm[k] and point_scene[k] are NaN and object[k] is -1.
 struct ProfileTruth {
   std::vector<double> x_mm, z_mm;            // ranger frame (laser plane y = 0)
-  std::vector<Eigen::Vector3d> point_scene;  // valid points only
+  std::vector<Eigen::Vector3d> point_scene;  // scene frame, mm
   std::vector<int> object;                   // hit object, -1 = none
 };
 

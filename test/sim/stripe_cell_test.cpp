@@ -67,6 +67,42 @@ TEST(StripeCell, ProfilesLandOnTheTrueSurfacesAndShadowsAreAbsent) {
   EXPECT_GT(camera_shadowed, 100) << "objects must shadow the table for the test to mean anything";
 }
 
+// Every column k of a profile's truth describes fan ray k: x/z, point_scene and object agree
+// column for column, including where the box's shadow and the table's edge leave gaps.
+TEST(StripeCell, ProfileTruthIsAlignedColumnForColumnWithItsFanRays) {
+  Scene scene = table_scene();
+  std::get<PlaneShape>(scene.objects[0].shape).size_x_mm = 200.0;  // fan reaches past the edges
+  const RayCaster caster(scene);
+  const hal::StripeCellGeometry g;
+  const int n = g.ranger.points_per_profile;
+  int valid = 0, gaps = 0;
+  for (double s : {0.0, 50.0, 130.0}) {
+    const Eigen::Isometry3d T = g.T_world_ranger(s);
+    const ProfileTruth t = cast_profile(caster, g.ranger, T);
+    ASSERT_EQ(t.point_scene.size(), static_cast<std::size_t>(n));
+    ASSERT_EQ(t.object.size(), static_cast<std::size_t>(n));
+    for (int k = 0; k < n; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      if (std::isnan(t.z_mm[i])) {
+        ++gaps;
+        EXPECT_TRUE(t.point_scene[i].array().isNaN().all()) << "column " << k;
+        EXPECT_EQ(t.object[i], -1) << "column " << k;
+        continue;
+      }
+      ++valid;
+      const Eigen::Vector3d p_ranger = T.inverse() * t.point_scene[i];
+      ASSERT_NEAR(std::atan2(p_ranger.x(), p_ranger.z()), g.ranger.ray_angle(k, n), 1e-9)
+          << "column " << k << " at axis " << s;
+      ASSERT_NEAR(p_ranger.x(), t.x_mm[i], 1e-9);
+      ASSERT_NEAR(p_ranger.z(), t.z_mm[i], 1e-9);
+      const SceneObject& obj = scene.objects[static_cast<std::size_t>(t.object[i])];
+      ASSERT_LT(surface_distance(obj.shape, obj.T_world_object, t.point_scene[i]), 1e-6);
+    }
+  }
+  EXPECT_GT(valid, 500);
+  EXPECT_GT(gaps, 100) << "the profiles must have gaps for the alignment to be tested";
+}
+
 TEST(StripeCell, ChipQuantisationKeepsPointsOnTheirFanRayWithinOneRow) {
   hal::StripeRanger r = StripeCellOptions{}.geometry.ranger;
   const double row = (r.max_depth_mm - r.min_depth_mm) / kChipRows;
