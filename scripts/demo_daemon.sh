@@ -1,72 +1,74 @@
 #!/usr/bin/env bash
-# Starts rangefitd on a replayed synthetic bore plate (loopback-only DDS, random domain), sends a
-# bore request and an object request with the `rangefit request` client, prints both results,
-# and stops the daemon. Usage: bash scripts/demo_daemon.sh [BUILD_DIR]
+# rangefitd on the simulated cell: starts the daemon (loopback-only DDS, random domain, temporary
+# spool) with the CSS on the robot over the bore plate and the stripe cell under the table-top
+# scene of thesis fig. 5.18, sends a bore request and an object request with `rangefit request`,
+# prints both results and stops the daemon (SIGTERM, also on error or Ctrl-C). Exits non-zero
+# when either request fails. Needs a build: bash scripts/demo_daemon.sh [BUILD_DIR [TIME_SCALE]]
+# (scripts/demo.sh installs the packages and builds first). TIME_SCALE 1 = the cell's real pace
+# (about 25 s for the CSS scan and 65 s for the stripe scan), 0 = as fast as possible.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-$root/build}"
-if [[ ! -x "$build/daemon/rangefitd/rangefitd" ]]; then
-  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
-  cmake --build "$build" -j2 --target rangefitd rangefit
-fi
+time_scale="${2:-1}"
+rangefitd="$build/daemon/rangefitd/rangefitd"
+rangefit="$build/daemon/rangefit"
+for exe in "$rangefitd" "$rangefit"; do
+  [[ -x "$exe" ]] || { echo "demo: $exe is missing; run scripts/demo.sh" >&2; exit 1; }
+done
 work="$(mktemp -d)"
-trap 'kill "$pid" 2>/dev/null || true; wait "$pid" 2>/dev/null || true; rm -rf "$work"' EXIT
+pid=""
+cleanup() {
+  if [[ -n "$pid" ]] && kill -0 "$pid" 2>/dev/null; then
+    kill -TERM "$pid"
+    wait "$pid" || true
+  fi
+  rm -rf "$work"
+}
+trap cleanup EXIT
+trap 'exit 130' INT TERM
 domain=$((RANDOM % 200 + 1))
 export CYCLONEDDS_URI="file://$root/systemd/cyclonedds-loopback.xml"
-
-# The scan the CSS "device" returns: a plate (z = 0) with a 5 mm bore along z at the origin,
-# 0.2 mm spacing, seen from above at a slant so part of the wall is visible (ASCII PLY, mm).
-python3 - "$work/plate.ply" <<'PY'
-import math, random, sys
-random.seed(1)
-pts = []
-s = 0.2
-n = int(13 / s)
-for i in range(-n, n + 1):
-    for j in range(-n, n + 1):
-        x, y = i * s, j * s
-        if x * x + y * y > 25.0:
-            pts.append((x, y, random.gauss(0, 0.02)))
-for k in range(1, 100):
-    z = -k * s
-    for a in range(180):
-        t = 2 * math.pi * a / 180
-        if math.cos(t) < 0.2:  # the wall side the slanted sensor sees
-            r = 5.0 + random.gauss(0, 0.02)
-            pts.append((r * math.cos(t), r * math.sin(t), z))
-with open(sys.argv[1], "w") as f:
-    f.write("ply\nformat ascii 1.0\nelement vertex %d\n" % len(pts))
-    f.write("property double x\nproperty double y\nproperty double z\nend_header\n")
-    for p in pts:
-        f.write("%.4f %.4f %.4f\n" % p)
-PY
 
 cat > "$work/rangefitd.toml" <<TOML
 [service]
 bore_sensor = "css"
-object_sensor = "css"
+object_sensor = "stripe"
 [dds]
 domain_id = $domain
 [spool]
 directory = "$work/spool"
+[sim]
+time_scale = $time_scale
 [[devices]]
 name = "css"
 kind = "css"
-driver = "replay"
-replay_file = "$work/plate.ply"
+driver = "sim"
+scene = "$root/data/scenes/bore_plate.toml"
+[[devices]]
+name = "stripe"
+kind = "stripe"
+driver = "sim"
+scene = "$root/data/scenes/table_top_fig5_18.toml"
 [[objects]]
-name = "box"
-scale_mm = [40.0, 30.0, 20.0]
-shape = [0.1, 0.1]
+name = "sphere"
+scale_mm = [50.0, 50.0, 50.0]
+shape = [1.0, 1.0]
 TOML
 
-"$build/daemon/rangefitd/rangefitd" --config "$work/rangefitd.toml" &
+"$rangefitd" --config "$work/rangefitd.toml" &
 pid=$!
-echo "== bore request =="
-"$build/daemon/rangefit" request bore --domain "$domain" --id demo-bore \
-  --position 0 0 0 --axis 0 0 1 --radius 5 --timeout 60 || true
-echo "== object request =="
-"$build/daemon/rangefit" request object --domain "$domain" --id demo-object --model box \
-  --timeout 60 || true
+status=0
+# CAD prior of the 12 mm straight bore the plate puts under the CSS; the simulated true entrance
+# is (0, 0, 285.8) mm with the axis along z (data/scenes/bore_plate.toml).
+echo "== bore request (CSS on the robot, bore plate) =="
+"$rangefit" request bore --domain "$domain" --id demo-bore \
+  --position 0.8 -0.5 285.8 --axis 0 0 1 --radius 6 --timeout 300 || status=1
+# The sphere of fig. 5.18; truth: centre (160, 65, 50) mm, radius 50 mm.
+echo "== object request (stripe cell, table-top scene) =="
+"$rangefit" request object --domain "$domain" --id demo-object --model sphere \
+  --timeout 300 || status=1
 kill -TERM "$pid"
-wait "$pid"
+wait "$pid" || status=1
+pid=""
+if ((status)); then echo "demo: a request failed" >&2; else echo "demo: both requests answered, both found"; fi
+exit "$status"
