@@ -6,7 +6,6 @@
 #include <numbers>
 #include <vector>
 
-#include "detect/kdtree.hpp"
 #include "detect/normals.hpp"
 #include "detect/pca.hpp"
 
@@ -125,17 +124,12 @@ BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const Bo
   no.min_neighbours = o.min_neighbours;
   no.view_dir = view;
   no.sensor_position = o.sensor_position;
-  std::vector<std::uint32_t> queries;  // indices into the cloud
-  NormalEstimate normals;
-  if (cloud.organised()) {
-    queries = subsample_evenly(roi, o.normal_keep);
-    normals = estimate_normals_organised(cloud, queries, no);
-  } else {
-    const std::vector<std::uint32_t> pool_queries = subsample_evenly(pool_of_roi, o.normal_keep);
-    const KdTree tree(pool);
-    normals = estimate_normals(pool, tree, pool_queries, no);
-    queries = subsample_evenly(roi, o.normal_keep);  // same selection, cloud indices
-  }
+  // Exact R-neighbourhoods from a grid binned along the view, for organised and unorganised
+  // scans alike (faster than the k-d tree or the scan-grid windows, and never misses a
+  // neighbour the way a fixed window can where the scan is denser than its median spacing).
+  const std::vector<std::uint32_t> queries = subsample_evenly(roi, o.normal_keep);
+  const NormalEstimate normals =
+      estimate_normals_binned(pool, subsample_evenly(pool_of_roi, o.normal_keep), no);
   res.counts.normal_queries = queries.size();
   res.counts.normals = normals.kept;
   res.time_ms.normals = ms_since(t);

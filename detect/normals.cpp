@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "detect/normals_grid.hpp"
 #include "detect/pca.hpp"
 
 namespace rangefit {
@@ -15,8 +16,10 @@ Eigen::Vector3d patch_normal(const pca::Moments& m, const Eigen::Vector3d& towar
   if (m.count < std::max(3, o.min_neighbours)) return Eigen::Vector3d::Zero();
   // Eq. 4.4: the patch must be centred on the point, else it straddles an edge or boundary.
   if (m.mean().norm() >= o.max_centroid_offset * o.radius) return Eigen::Vector3d::Zero();
-  const pca::Eigen3 e = pca::eigen_symmetric(m.covariance());
-  if (!(e.values(1) > 0.0)) return Eigen::Vector3d::Zero();  // collinear neighbours
+  // A patch's smallest eigenvalue is well separated unless it is degenerate: closed form.
+  const pca::Eigen3 e = pca::eigen_symmetric_direct(m.covariance());
+  // Collinear neighbours: the second eigenvalue is rounding noise of the largest (float offsets).
+  if (!(e.values(1) > 1e-6 * e.values(2))) return Eigen::Vector3d::Zero();
   Eigen::Vector3d n = e.vectors.col(0);
   if (n.dot(toward) < 0.0) n = -n;
   return n;
@@ -25,6 +28,9 @@ Eigen::Vector3d patch_normal(const pca::Moments& m, const Eigen::Vector3d& towar
 Eigen::Vector3d toward_sensor(const Eigen::Vector3d& p, const NormalOptions& o) {
   return o.sensor_position ? Eigen::Vector3d(*o.sensor_position - p) : o.view_dir;
 }
+
+// Grid cell size as a share of R: smaller cells clip the ball's disc tighter but add rows.
+constexpr double kCellShare = 0.5;
 
 }  // namespace
 
@@ -40,6 +46,31 @@ NormalEstimate estimate_normals(std::span<const Eigen::Vector3d> points, const K
     pca::Moments m;
     for (const std::uint32_t j : nb) m.add(points[j] - p);
     out.normals[i] = patch_normal(m, toward_sensor(p, options), options);
+    if (!out.normals[i].isZero()) ++out.kept;
+  }
+  return out;
+}
+
+NormalEstimate estimate_normals_binned(std::span<const Eigen::Vector3d> points,
+                                       std::span<const std::uint32_t> queries,
+                                       const NormalOptions& options) {
+  NormalEstimate out;
+  out.normals.assign(queries.size(), Eigen::Vector3d::Zero());
+  if (queries.empty() || !(options.radius > 0.0)) return out;
+  // Bin along the view (the sensor's position seen from the points' centre when given).
+  Eigen::Vector3d dir = options.view_dir;
+  if (options.sensor_position) {
+    const Eigen::Vector3d c = pca::centroid(points);
+    if (c.allFinite() && (*options.sensor_position - c).norm() > 1e-9) {
+      dir = *options.sensor_position - c;
+    }
+  }
+  if (!(dir.norm() > 1e-12) || !dir.allFinite()) dir = Eigen::Vector3d::UnitZ();
+  const NeighbourGrid grid(points, dir, kCellShare * options.radius);
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    if (queries[i] >= points.size()) continue;
+    const Eigen::Vector3d& p = points[queries[i]];
+    out.normals[i] = patch_normal(grid.ball(p, options.radius), toward_sensor(p, options), options);
     if (!out.normals[i].isZero()) ++out.kept;
   }
   return out;

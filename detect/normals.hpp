@@ -36,6 +36,16 @@ NormalEstimate estimate_normals(std::span<const Eigen::Vector3d> points, const K
                                 std::span<const std::uint32_t> queries,
                                 const NormalOptions& options);
 
+// Exact and fast, organised or not: the same neighbourhoods as the k-d tree (every point within
+// R), found through a 2-D grid of cells on the plane normal to the view direction. A range scan
+// is nearly a height field along its view, so a query's ball covers a few short rows of cells,
+// each stored contiguously and scanned with SIMD-friendly loops (single-precision offsets of
+// ~1e-6 mm, far below any sensor noise). Non-finite points are ignored; a non-finite query gets
+// no normal.
+NormalEstimate estimate_normals_binned(std::span<const Eigen::Vector3d> points,
+                                       std::span<const std::uint32_t> queries,
+                                       const NormalOptions& options);
+
 // Organised: neighbours come from a window of the scan grid around each query, sized from the
 // grid's median cell spacing, then filtered by 3-D distance. Falls back to nothing (all zero)
 // when the cloud has no grid.

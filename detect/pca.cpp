@@ -37,6 +37,16 @@ Eigen3 eigen_symmetric(const Eigen::Matrix3d& cov) {
   return out;
 }
 
+Eigen3 eigen_symmetric_direct(const Eigen::Matrix3d& cov) {
+  Eigen3 out;
+  if (!cov.allFinite()) return out;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+  solver.computeDirect(cov);
+  out.values = solver.eigenvalues();
+  out.vectors = solver.eigenvectors();
+  return out;
+}
+
 Eigen::Vector3d smallest_eigenvector(const Eigen::Matrix3d& cov) {
   return eigen_symmetric(cov).vectors.col(0);
 }

@@ -36,6 +36,10 @@ struct Eigen3 {
   Eigen::Matrix3d vectors = Eigen::Matrix3d::Identity();
 };
 Eigen3 eigen_symmetric(const Eigen::Matrix3d& cov);
+// The same by the closed-form solver: ~10x faster, and as accurate for the smallest eigenvector
+// when the smallest eigenvalue is well separated (a surface patch: the normal). The iterative
+// solver above stays the choice for nearly coincident smallest eigenvalues.
+Eigen3 eigen_symmetric_direct(const Eigen::Matrix3d& cov);
 
 // C n = lambda_min n: the normal of a surface patch (sign arbitrary).
 Eigen::Vector3d smallest_eigenvector(const Eigen::Matrix3d& cov);

@@ -4,7 +4,11 @@
 
 #include <cmath>
 #include <numeric>
+#include <random>
 #include <vector>
+
+#include "detect/normals_grid.hpp"
+#include "sim/synthetic_bore.hpp"
 
 namespace rangefit {
 namespace {
@@ -40,20 +44,22 @@ TEST(Normals, EmptyQueriesGiveNoNormals) {
 }
 
 TEST(Normals, PlateNormalsPointTowardTheViewAndBoundaryPatchesAreRejected) {
-  for (const bool organised : {false, true}) {
+  for (const int method : {0, 1, 2}) {
+    const bool organised = method == 1;
     const PointCloud c = plate(organised);
     const KdTree tree(c.points);
     NormalOptions o;
     o.view_dir = -Eigen::Vector3d::UnitZ();
     const auto idx = all(c);
-    const NormalEstimate e = organised ? estimate_normals_organised(c, idx, o)
-                                       : estimate_normals(c.points, tree, idx, o);
+    const NormalEstimate e = method == 1   ? estimate_normals_organised(c, idx, o)
+                             : method == 2 ? estimate_normals_binned(c.points, idx, o)
+                                           : estimate_normals(c.points, tree, idx, o);
     ASSERT_EQ(e.normals.size(), c.size());
     std::size_t centre_kept = 0, corner_kept = 0;
     for (std::size_t i = 0; i < c.size(); ++i) {
       const bool corner = std::abs(c.points[i].x()) > 4.5 && std::abs(c.points[i].y()) > 4.5;
       if (e.normals[i].isZero()) continue;
-      EXPECT_NEAR(e.normals[i].z(), -1.0, 1e-9) << "organised " << organised;
+      EXPECT_NEAR(e.normals[i].z(), -1.0, 1e-9) << "method " << method;
       if (corner) ++corner_kept;
       if (c.points[i].head<2>().norm() < 2.0) ++centre_kept;
     }
@@ -69,6 +75,71 @@ TEST(Normals, SensorPositionOrientsEachNormal) {
   o.sensor_position = Eigen::Vector3d(0, 0, 100);
   const std::vector<std::uint32_t> centre{1300};
   EXPECT_NEAR(estimate_normals(c.points, tree, centre, o).normals[0].z(), 1.0, 1e-9);
+}
+
+TEST(Normals, BinnedGridOfNoPointsGivesNoNormals) {
+  const std::vector<Eigen::Vector3d> none;
+  const std::vector<std::uint32_t> one{0};
+  EXPECT_TRUE(estimate_normals_binned(none, {}, {}).normals.empty());
+  // An out-of-range query index gets no normal instead of a crash.
+  EXPECT_EQ(estimate_normals_binned(none, one, {}).kept, 0u);
+}
+
+// The binned grid must find the k-d tree's neighbourhoods: same kept set, same normals, on a
+// noisy bore scan with outliers and ghosts (the detector's real input).
+TEST(Normals, BinnedNormalsMatchTheKdTreeOnANoisyBoreScan) {
+  sim::SyntheticBoreOptions so;
+  so.seed = 5;
+  so.slant_deg = 30.0;
+  const sim::SyntheticBoreScan scan = sim::make_synthetic_bore(so);
+  const auto& pts = scan.cloud.points;
+  const KdTree tree(pts);
+  NormalOptions o;
+  o.view_dir = scan.truth.view_dir;
+  const auto idx = all(scan.cloud);
+  const NormalEstimate a = estimate_normals(pts, tree, idx, o);
+  const NormalEstimate b = estimate_normals_binned(pts, idx, o);
+  ASSERT_EQ(b.normals.size(), a.normals.size());
+  ASSERT_GT(a.kept, pts.size() / 2);
+  std::size_t differ = 0, off = 0;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < idx.size(); ++i) {
+    if (a.normals[i].isZero() != b.normals[i].isZero()) {
+      ++differ;  // only a centroid offset within float rounding of 0.1 R may flip
+    } else if (!a.normals[i].isZero()) {
+      const double d = (a.normals[i] - b.normals[i]).norm();
+      worst = std::max(worst, d);
+      if (d > 1e-4) ++off;
+    }
+  }
+  EXPECT_LE(differ, a.kept / 1000 + 1);
+  // The scan's lattice puts many neighbours at |x - p| = R to within float rounding: one may be
+  // in one set and not the other, which moves a normal by ~1e-4 at most on a full patch.
+  EXPECT_LE(off, a.kept / 100) << "normals must agree to within float rounding";
+  EXPECT_LT(worst, 0.05);
+}
+
+TEST(Normals, BinnedBallCountsExactlyThePointsWithinTheRadius) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-5.0, 5.0);
+  std::vector<Eigen::Vector3d> pts;
+  for (int i = 0; i < 3000; ++i) pts.emplace_back(u(rng), u(rng), 0.3 * u(rng));
+  const NeighbourGrid grid(pts, Eigen::Vector3d(0.2, -0.1, 1.0), 0.4);
+  for (int q = 0; q < 50; ++q) {
+    const Eigen::Vector3d p(u(rng), u(rng), 0.3 * u(rng));
+    double n = 0.0;
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (const auto& x : pts) {
+      if ((x - p).squaredNorm() <= 1.5 * 1.5) {
+        n += 1.0;
+        sum += x - p;
+      }
+    }
+    const pca::Moments m = grid.ball(p, 1.5);
+    EXPECT_EQ(m.count, n);
+    EXPECT_LT((m.sum - sum).norm(), 1e-4);
+  }
+  EXPECT_EQ(grid.ball(Eigen::Vector3d::Constant(NAN), 1.5).count, 0.0);
 }
 
 TEST(Normals, SubsamplingKeepsTheRequestedShareEvenly) {
