@@ -15,16 +15,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // rounding at ~300 mm from the origin (~3e-5 mm), well below any feature of a scene.
 constexpr double kSurfaceEps = 1e-3;
 
-hal::Duration seconds(double s) {
-  return hal::Duration(static_cast<std::int64_t>(std::llround(s * 1e9)));
-}
-
-hal::Duration jitter(const FaultOptions& f, std::mt19937_64& rng) {
-  if (f.stamp_jitter_sigma.count() <= 0) return hal::Duration(0);
-  std::normal_distribution<double> n(0.0, static_cast<double>(f.stamp_jitter_sigma.count()));
-  return hal::Duration(static_cast<std::int64_t>(n(rng)));
-}
-
 }  // namespace
 
 class CssRig::CssDevice final : public SimulatedStream<hal::CssRevolution> {
@@ -44,8 +34,9 @@ class CssRig::CssDevice final : public SimulatedStream<hal::CssRevolution> {
     const hal::CssGeometry& g = rig_.options_.geometry;
     const CssRevolutionTruth truth = rig_.cast_revolution(k);
     rev.sequence = static_cast<std::uint32_t>(k);
-    rev.stamp = rig_.revolution_stamp(k) + jitter(f, rng);
-    rev.stamp = std::chrono::duration_cast<std::chrono::microseconds>(rev.stamp);  // us stamps
+    // The device stamps with 1 us resolution.
+    rev.stamp = std::chrono::duration_cast<std::chrono::microseconds>(
+        stamp_at(rig_.revolution_stamp(k), rng));
     rev.period = seconds(rig_.revolution_period_s());
     rev.flags = hal::kCssMotorLocked | hal::kCssLaserOn;
     std::normal_distribution<double> noise(0.0, 1.0);
@@ -84,22 +75,17 @@ class CssRig::CssDevice final : public SimulatedStream<hal::CssRevolution> {
   const CssRig& rig_;
 };
 
-class CssRig::JointDevice final : public SimulatedStream<hal::JointSample> {
+class CssRig::JointDevice final : public PolledStream<hal::JointSample> {
  public:
   JointDevice(const CssRig& rig, hal::Clock& clock)
-      : SimulatedStream("sim-robot-joint", clock, rig.options_.joint_faults, rig.options_.seed, 2),
+      : PolledStream("sim-robot-joint", clock, rig.options_.joint_faults, rig.options_.seed, 2,
+                     rig.start_, rig.options_.joint_rate_hz),
         rig_(rig) {}
 
  protected:
-  hal::Timestamp due(std::uint64_t k) const override { return sample_time(k); }
-
-  void make(std::uint64_t k, std::mt19937_64& rng, hal::JointSample& s) override {
-    const FaultOptions& f = faults();
-    const bool stale = k > 0 && std::bernoulli_distribution(f.stale_probability)(rng);
-    const hal::Timestamp t = sample_time(k);
+  void fill(hal::Timestamp t, hal::Timestamp read_at, hal::JointSample& s) override {
     s.joint = rig_.options_.joint_id;
-    s.stamp = t + jitter(f, rng);
-    s.angle_rad = rig_.omega_at(stale ? sample_time(k - 1) : t);
+    s.angle_rad = rig_.omega_at(read_at);
     const bool moving = t >= rig_.start_ && t < rig_.scan_end();
     s.velocity_rad_s =
         moving ? rig_.options_.speed_mm_s / rig_.options_.geometry.pivot_radius_mm : 0.0;
@@ -108,9 +94,6 @@ class CssRig::JointDevice final : public SimulatedStream<hal::JointSample> {
   }
 
  private:
-  hal::Timestamp sample_time(std::uint64_t k) const {
-    return rig_.start_ + seconds(static_cast<double>(k) / rig_.options_.joint_rate_hz);
-  }
   const CssRig& rig_;
 };
 
@@ -149,8 +132,8 @@ double CssRig::omega_at(hal::Timestamp t) const {
 hal::Timestamp CssRig::revolution_stamp(std::uint64_t k) const {
   // The device stamps revolutions with 1 us resolution (thesis 4.2.1); its samples follow from
   // that stamp, so fusion can reproduce the beam's exact timing from the stream.
-  const hal::Duration offset = seconds(static_cast<double>(k) / options_.rotation_hz);
-  return std::chrono::duration_cast<std::chrono::microseconds>(start_ + offset);
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+      tick(start_, options_.rotation_hz, k));
 }
 
 CssRevolutionTruth CssRig::cast_revolution(std::uint64_t k) const {

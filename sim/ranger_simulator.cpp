@@ -12,8 +12,6 @@ using Eigen::Vector3d;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kSurfaceEps = 1e-3;  // see css_simulator.cpp
 
-hal::Duration seconds(double s) { return hal::Duration(std::llround(s * 1e9)); }
-
 class RangerDevice final : public SimulatedStream<hal::RangerProfile> {
  public:
   RangerDevice(std::string name, const RayCaster& caster, RangerOptions options, RangerPoseFn pose,
@@ -35,11 +33,7 @@ class RangerDevice final : public SimulatedStream<hal::RangerProfile> {
     const hal::Timestamp t = exposure_centre(k);
     const ProfileTruth truth = cast_profile(caster_, r, pose_(t));
     p.sequence = static_cast<std::uint32_t>(k);
-    p.stamp = t;
-    if (f.stamp_jitter_sigma.count() > 0) {
-      std::normal_distribution<double> j(0.0, static_cast<double>(f.stamp_jitter_sigma.count()));
-      p.stamp += hal::Duration(static_cast<std::int64_t>(j(rng)));
-    }
+    p.stamp = stamp_at(t, rng);
     p.exposure = options_.exposure;
     const int n = r.points_per_profile;
     p.x_mm.assign(static_cast<std::size_t>(n), hal::kNoReturn);
@@ -71,7 +65,7 @@ class RangerDevice final : public SimulatedStream<hal::RangerProfile> {
 
  private:
   hal::Timestamp exposure_centre(std::uint64_t k) const {
-    return start_ + seconds(static_cast<double>(k) / options_.profile_rate_hz);
+    return tick(start_, options_.profile_rate_hz, k);
   }
 
   const RayCaster& caster_;

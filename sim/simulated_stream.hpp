@@ -6,6 +6,7 @@
 // device. Dropped frames, disconnects and reconnects are reported through health() and show in
 // the stream as missing sequence numbers, as a real driver reports them.
 
+#include <cmath>
 #include <cstdint>
 #include <mutex>
 #include <random>
@@ -16,6 +17,16 @@
 #include "sim/fault_options.hpp"
 
 namespace rangefit::sim {
+
+// A duration of s seconds, rounded to the nanosecond.
+inline hal::Duration seconds(double s) {
+  return hal::Duration(static_cast<std::int64_t>(std::llround(s * 1e9)));
+}
+
+// Instant of event k of a periodic schedule: start + k / rate (a device's sampling clock).
+inline hal::Timestamp tick(hal::Timestamp start, double rate_hz, std::uint64_t k) {
+  return start + seconds(static_cast<double>(k) / rate_hz);
+}
 
 // Base is the HAL interface the device implements (a SampleSource<Sample> or a class derived from
 // it, such as hal::LinearAxis).
@@ -82,6 +93,20 @@ class SimulatedStream : public Base {
   const FaultOptions& faults() const { return faults_; }
   hal::Clock& clock() const { return clock_; }
 
+  // The stamp a device puts on a frame taken at t: t plus the configured Gaussian jitter.
+  hal::Timestamp stamp_at(hal::Timestamp t, std::mt19937_64& rng) const {
+    if (faults_.stamp_jitter_sigma.count() <= 0) return t;
+    std::normal_distribution<double> n(0.0,
+                                       static_cast<double>(faults_.stamp_jitter_sigma.count()));
+    return t + hal::Duration(static_cast<std::int64_t>(n(rng)));
+  }
+  // The reading frame k reports: k itself, or k - 1 when the device repeats its last reading
+  // (a stale position or angle, with a fresh stamp).
+  std::uint64_t reading_of(std::uint64_t k, std::mt19937_64& rng) const {
+    const bool stale = k > 0 && std::bernoulli_distribution(faults_.stale_probability)(rng);
+    return stale ? k - 1 : k;
+  }
+
  private:
   bool disconnected_at(hal::Timestamp t) const {
     if (faults_.disconnect_after.count() < 0) return false;
@@ -134,6 +159,39 @@ class SimulatedStream : public Base {
   bool streaming_ = false;
   std::uint64_t next_ = 0;
   hal::Timestamp started_at_{};
+};
+
+// A device polled at a fixed rate whose replies carry a reading of something that moves (joint
+// angle, axis position, pan/tilt angles): sample k is taken at tick(start, rate, k), delivered
+// reply_delay later, stamped with the configured jitter, and repeats the previous reading when
+// stale. fill() writes the reading; the stamp is set here.
+template <class Sample, class Base = hal::SampleSource<Sample>>
+class PolledStream : public SimulatedStream<Sample, Base> {
+ protected:
+  PolledStream(std::string name, hal::Clock& clock, FaultOptions faults, std::uint64_t seed,
+               std::uint64_t device_id, hal::Timestamp start, double rate_hz,
+               hal::Duration reply_delay = hal::Duration(0))
+      : SimulatedStream<Sample, Base>(std::move(name), clock, faults, seed, device_id),
+        start_(start),
+        rate_hz_(rate_hz),
+        reply_delay_(reply_delay) {}
+
+  // Instant sample k is taken.
+  hal::Timestamp taken(std::uint64_t k) const { return tick(start_, rate_hz_, k); }
+  // Writes the reading of sample k taken at t; read_at is the instant whose state it reports.
+  virtual void fill(hal::Timestamp t, hal::Timestamp read_at, Sample& out) = 0;
+
+  hal::Timestamp due(std::uint64_t k) const override { return taken(k) + reply_delay_; }
+  void make(std::uint64_t k, std::mt19937_64& rng, Sample& out) override {
+    const hal::Timestamp read_at = taken(this->reading_of(k, rng));
+    out.stamp = this->stamp_at(taken(k), rng);
+    fill(taken(k), read_at, out);
+  }
+
+ private:
+  const hal::Timestamp start_;
+  const double rate_hz_;
+  const hal::Duration reply_delay_;
 };
 
 }  // namespace rangefit::sim

@@ -8,7 +8,6 @@
 namespace rangefit::sim {
 namespace {
 
-hal::Duration seconds(double s) { return hal::Duration(std::llround(s * 1e9)); }
 double to_s(hal::Duration d) { return static_cast<double>(d.count()) * 1e-9; }
 
 }  // namespace
@@ -59,12 +58,13 @@ bool AxisMotion::done(hal::Timestamp now) const {
 }
 
 // The FESTO axis as the driver presents it: commands plus polled position samples.
-class StripeCell::AxisDevice final : public SimulatedStream<hal::AxisSample, hal::LinearAxis> {
+// Polled: a position reply arrives half a round trip after the drive sampled it.
+class StripeCell::AxisDevice final : public PolledStream<hal::AxisSample, hal::LinearAxis> {
  public:
   AxisDevice(StripeCell& cell, hal::Clock& clock, hal::Timestamp start)
-      : SimulatedStream("sim-linear-axis", clock, cell.options_.axis_faults, cell.options_.seed, 4),
-        cell_(cell),
-        start_(start) {}
+      : PolledStream("sim-linear-axis", clock, cell.options_.axis_faults, cell.options_.seed, 4,
+                     start, cell.options_.axis_poll_hz, cell.options_.axis_round_trip / 2),
+        cell_(cell) {}
 
   hal::Status enable() override {
     enabled_ = true;
@@ -85,21 +85,9 @@ class StripeCell::AxisDevice final : public SimulatedStream<hal::AxisSample, hal
   bool motion_complete() const override { return cell_.motion_.done(clock().now()); }
 
  protected:
-  hal::Timestamp due(std::uint64_t k) const override {
-    return poll_time(k) + cell_.options_.axis_round_trip / 2;
-  }
-
-  void make(std::uint64_t k, std::mt19937_64& rng, hal::AxisSample& s) override {
-    const FaultOptions& f = faults();
-    const bool stale = k > 0 && std::bernoulli_distribution(f.stale_probability)(rng);
-    const hal::Timestamp t = poll_time(k);
+  void fill(hal::Timestamp t, hal::Timestamp read_at, hal::AxisSample& s) override {
     const double res = cell_.options_.axis_resolution_mm;
-    const double p = cell_.motion_.position(stale ? poll_time(k - 1) : t);
-    s.stamp = t;
-    if (f.stamp_jitter_sigma.count() > 0) {
-      std::normal_distribution<double> j(0.0, static_cast<double>(f.stamp_jitter_sigma.count()));
-      s.stamp += hal::Duration(static_cast<std::int64_t>(j(rng)));
-    }
+    const double p = cell_.motion_.position(read_at);
     s.uncertainty = cell_.options_.axis_round_trip;
     s.position_mm = std::round(p / res) * res;
     s.velocity_mm_s = cell_.motion_.velocity(t);
@@ -109,11 +97,7 @@ class StripeCell::AxisDevice final : public SimulatedStream<hal::AxisSample, hal
   }
 
  private:
-  hal::Timestamp poll_time(std::uint64_t k) const {
-    return start_ + seconds(static_cast<double>(k) / cell_.options_.axis_poll_hz);
-  }
   StripeCell& cell_;
-  const hal::Timestamp start_;
   std::atomic<bool> enabled_{false};
 };
 
@@ -123,15 +107,14 @@ StripeCell::StripeCell(const Scene& scene, const RayCaster& caster, StripeCellOp
       T_scene_world_(scene.mounts.T_scene_stripe),
       motion_(options_.geometry.max_speed_mm_s, options_.geometry.axis_travel_mm) {
   const hal::Timestamp start = clock.now();
-  RangerOptions r;
-  r.ranger = options_.geometry.ranger;
-  r.profile_rate_hz = options_.profile_rate_hz;
-  r.quantise = options_.quantise;
-  r.faults = options_.ranger_faults;
-  r.seed = options_.seed;
   ranger_ = make_simulated_ranger(
-      "sim-stripe-ranger", caster, r, [this](hal::Timestamp t) { return T_scene_ranger(t); }, clock,
-      start);
+      "sim-stripe-ranger", caster,
+      {.ranger = options_.geometry.ranger,
+       .profile_rate_hz = options_.profile_rate_hz,
+       .quantise = options_.quantise,
+       .faults = options_.ranger_faults,
+       .seed = options_.seed},
+      [this](hal::Timestamp t) { return T_scene_ranger(t); }, clock, start);
   axis_ = std::make_unique<AxisDevice>(*this, clock, start);
 }
 
