@@ -59,10 +59,31 @@ void normal_equations(std::span<const Eigen::Vector3d> pts, const Cylinder& c, d
   }
 }
 
+// Gradient J^T W r alone: all a steepest-descent step needs (no 5x5 outer products).
+Vector5d gradient(std::span<const Eigen::Vector3d> pts, const Cylinder& c, double delta) {
+  const Eigen::Vector3d b1 = c.axis.unitOrthogonal(), b2 = c.axis.cross(b1);
+  Vector5d g = Vector5d::Zero();
+  for (const auto& q : pts) {
+    const Eigen::Vector3d d = q - c.point;
+    const double h = d.dot(c.axis);
+    const Eigen::Vector3d w = d - h * c.axis;
+    const double dist = w.norm();
+    if (dist < 1e-12) continue;
+    const double r = dist - c.radius;
+    const double wr = (delta <= 0.0 || std::abs(r) <= delta ? 1.0 : delta / std::abs(r)) * r;
+    const double mb1 = w.dot(b1) / dist, mb2 = w.dot(b2) / dist;
+    g(0) -= wr * mb1;
+    g(1) -= wr * mb2;
+    g(2) -= wr * h * mb1;
+    g(3) -= wr * h * mb2;
+    g(4) -= wr;
+  }
+  return g;
+}
+
 // Keeps the axis point at the foot of the points' centroid, so the tilt parameters act about
 // the data and stay well conditioned.
-Cylinder recentre(std::span<const Eigen::Vector3d> pts, Cylinder c) {
-  const Eigen::Vector3d m = pca::centroid(pts);
+Cylinder recentre(const Eigen::Vector3d& m, Cylinder c) {
   c.point += (m - c.point).dot(c.axis) * c.axis;
   return c;
 }
@@ -76,14 +97,19 @@ CylinderLsfResult fit_cylinder_lsf(std::span<const Eigen::Vector3d> pts, const C
   if (pts.size() < 5 || !(initial.radius > 0.0) || !(initial.axis.norm() > 0.0)) return res;
   Cylinder c = initial;
   c.axis.normalize();
-  c = recentre(pts, c);
+  const Eigen::Vector3d centroid = pca::centroid(pts);
+  c = recentre(centroid, c);
   double f = cost(pts, c, o.huber_delta);
   double lambda = 1e-3;
   double step = 1e-4;  // steepest descent step length, adapted
   Matrix5d jtj;
   Vector5d jtr;
   for (res.iterations = 0; res.iterations < o.max_iterations; ++res.iterations) {
-    normal_equations(pts, c, o.huber_delta, jtj, jtr);
+    if (o.method == LsfMethod::kLevenbergMarquardt) {
+      normal_equations(pts, c, o.huber_delta, jtj, jtr);
+    } else {
+      jtr = gradient(pts, c, o.huber_delta);
+    }
     bool improved = false;
     double f_new = f;
     Cylinder next = c;
@@ -92,7 +118,7 @@ CylinderLsfResult fit_cylinder_lsf(std::span<const Eigen::Vector3d> pts, const C
         Matrix5d a = jtj;
         a.diagonal() += lambda * (jtj.diagonal().array() + 1e-9).matrix();
         const Vector5d d = -a.ldlt().solve(jtr);
-        next = recentre(pts, apply(c, d));
+        next = recentre(centroid, apply(c, d));
         f_new = cost(pts, next, o.huber_delta);
         improved = f_new < f;
         lambda = improved ? std::max(lambda / 3.0, 1e-12) : lambda * 4.0;
@@ -100,7 +126,7 @@ CylinderLsfResult fit_cylinder_lsf(std::span<const Eigen::Vector3d> pts, const C
     } else {
       // Steepest descent with a backtracking step, as the thesis's baseline (4.2.4).
       for (int tries = 0; tries < 20 && !improved; ++tries) {
-        next = recentre(pts, apply(c, -step * jtr));
+        next = recentre(centroid, apply(c, -step * jtr));
         f_new = cost(pts, next, o.huber_delta);
         improved = f_new < f;
         step = improved ? step * 1.5 : step * 0.5;

@@ -1,7 +1,11 @@
 // Bore detection speed on a ~75,000-point synthetic scan with a ~7,500-point region (5 mm bore,
 // 0.2 mm spacing): the whole pipeline, the RSF step and the LSF baselines in one run, each with
-// its accuracy against the ground truth as counters (axis_deg, radius_mm, entrance_mm).
-//   build-bore/test/bench/bore_benchmark
+// its accuracy against the ground truth as counters (axis_deg, radius_mm, entrance_mm); the
+// session-1 k-d tree normals as the in-run baseline of the binned normals; the thesis's
+// steepest-descent LSF both at its 200 iterations and at the iterations it needs to match the
+// RSF's accuracy (BM_LsfSteepestToRsfAccuracy), the in-run baselines of BM_Rsf.
+//   taskset -c 0 build-bore/test/bench/bore_benchmark --benchmark_repetitions=20 \
+//       --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -89,6 +93,36 @@ void BM_PipelineKeep20(benchmark::State& s) { run_pipeline(s, false, 0.2); }
 void BM_PipelineOrganised(benchmark::State& s) { run_pipeline(s, true, 1.0); }
 void BM_PipelineOrganisedKeep20(benchmark::State& s) { run_pipeline(s, true, 0.2); }
 
+// Normals of every region point (R = 2 mm, neighbours from the region plus an R margin): the
+// k-d tree baseline of session 1 against the binned grid the pipeline uses, in the same run.
+void run_normals(benchmark::State& state, bool binned) {
+  const Fixture& f = fixture(false);
+  std::vector<Eigen::Vector3d> pool;
+  std::vector<std::uint32_t> queries;
+  for (const auto& p : f.scan.cloud.points) {
+    const double d = (p - f.prior.entrance).norm();
+    if (d > 12.0) continue;
+    if (d <= 10.0) queries.push_back(static_cast<std::uint32_t>(pool.size()));
+    pool.push_back(p);
+  }
+  NormalOptions no;
+  no.view_dir = f.scan.truth.view_dir;
+  NormalEstimate e;
+  for (auto _ : state) {
+    if (binned) {
+      e = estimate_normals_binned(pool, queries, no);
+    } else {
+      const KdTree tree(pool);
+      e = estimate_normals(pool, tree, queries, no);
+    }
+    benchmark::DoNotOptimize(e);
+  }
+  state.counters["queries"] = static_cast<double>(queries.size());
+  state.counters["kept"] = static_cast<double>(e.kept);
+}
+void BM_NormalsKdTree(benchmark::State& s) { run_normals(s, false); }
+void BM_NormalsBinned(benchmark::State& s) { run_normals(s, true); }
+
 void BM_Rsf(benchmark::State& state) {
   const Fixture& f = fixture(false);
   RsfResult r;
@@ -106,6 +140,8 @@ void run_lsf(benchmark::State& state, LsfMethod method, int iterations, bool fro
   o.method = method;
   o.max_iterations = iterations;
   o.huber_delta = 0.0;  // plain least squares, as the thesis's baseline
+  // The thesis runs steepest descent for a fixed number of iterations.
+  if (method == LsfMethod::kSteepestDescent) o.tolerance = 0.0;
   const Cylinder start = from_pca ? cylinder_from_pca(f.wall, 5.0)
                                   : Cylinder{f.prior.entrance, f.prior.axis, f.prior.radius};
   CylinderLsfResult r;
@@ -115,6 +151,37 @@ void run_lsf(benchmark::State& state, LsfMethod method, int iterations, bool fro
   }
   accuracy(state, r.cylinder.axis, r.cylinder.radius);
   state.counters["iterations"] = r.iterations;
+}
+
+// The thesis's "equal accuracy" comparison (4.2.4, fig. 4.35): the fewest steepest-descent
+// iterations from the CAD pose whose axis and radius errors are both within the RSF's.
+int iterations_to_rsf_accuracy() {
+  const Fixture& f = fixture(false);
+  const auto& t = f.scan.truth;
+  const RsfResult rsf =
+      fit_cylinder_rsf(f.wall, f.wall_normals, f.prior.axis, f.prior.entrance, 5.0, {}, 1);
+  const auto axis_cos = [&](const Cylinder& c) {
+    return std::abs(c.axis.normalized().dot(t.axis));
+  };
+  CylinderLsfOptions o;
+  o.method = LsfMethod::kSteepestDescent;
+  o.huber_delta = 0.0;
+  o.tolerance = 0.0;
+  const Cylinder start{f.prior.entrance, f.prior.axis, f.prior.radius};
+  for (int k = 1; k <= 2000; k = k < 20 ? k + 1 : k + k / 10) {
+    o.max_iterations = k;
+    const Cylinder c = fit_cylinder_lsf(f.wall, start, o).cylinder;
+    if (axis_cos(c) >= axis_cos(rsf.cylinder) &&
+        std::abs(c.radius - t.radius) <= std::abs(rsf.cylinder.radius - t.radius)) {
+      return k;
+    }
+  }
+  return 2000;
+}
+
+void BM_LsfSteepestToRsfAccuracy(benchmark::State& s) {
+  static const int k = iterations_to_rsf_accuracy();
+  run_lsf(s, LsfMethod::kSteepestDescent, k, false);
 }
 
 void BM_LsfSteepestFromCad(benchmark::State& s) {
@@ -131,7 +198,10 @@ BENCHMARK(BM_Pipeline)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PipelineKeep20)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PipelineOrganised)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PipelineOrganisedKeep20)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_NormalsKdTree)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_NormalsBinned)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Rsf)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LsfSteepestToRsfAccuracy)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LsfSteepestFromCad)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LsfSteepestFromPca)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LsfLevenbergMarquardtFromCad)->Unit(benchmark::kMillisecond);
