@@ -129,11 +129,11 @@ bool CssUsbDriver::connect() {
   }
   if (ever_connected_) ++reconnects_;
   ever_connected_ = true;
-  set_state(hal::DeviceState::kConnecting, "streaming");
   {
     std::lock_guard lock(mutex_);
-    incomplete_ = false;
+    incomplete_ = false;  // streaming resumed: the next health message no longer says incomplete
   }
+  set_state(hal::DeviceState::kConnecting, "streaming");
   spdlog::info("{}: streaming from {} (firmware {:#x})", options_.name, info->serial,
                info->firmware);
   std::lock_guard lock(mutex_);

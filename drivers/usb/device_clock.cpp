@@ -71,7 +71,16 @@ void DeviceClock::fit() {
   double slope = 1000.0;
   if (span_us * 1e3 >= static_cast<double>(options_.min_fit_span.count()) && sxx > 0.0) {
     slope = sxy / sxx;
-    if (!std::isfinite(slope) || std::abs(slope / 1000.0 - 1.0) * 1e6 > options_.max_drift_ppm) {
+    // Standard error of the weighted slope from the residuals (ns/us -> ppm: x 1000).
+    double srr = 0.0;
+    for (const Sample& s : samples_) {
+      const double r = s.host_ns - my - slope * (s.device_us - mx);
+      srr += weight(s) * r * r;
+    }
+    const double n = static_cast<double>(samples_.size());
+    const double error_ppm = n > 2.0 ? std::sqrt(srr / (n - 2.0) / sxx) * 1e3 : 1e9;
+    if (!std::isfinite(slope) || std::abs(slope / 1000.0 - 1.0) * 1e6 > options_.max_drift_ppm ||
+        !(error_ppm <= options_.max_slope_error_ppm)) {
       slope = 1000.0;
     }
   }

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Hardware-in-the-loop runner: boots a Debian kernel under qemu (TCG), shares the host root
 # read-only over 9p (tmpfs overlay on top) and the build folder read-write, creates vcan0 and
-# runs the ctest tests labelled `hil` inside the VM. Exits with their exit code; 124 when the
+# loads dummy_hcd/libcomposite/usb_f_fs with configfs mounted and systemd-udevd running (libusb
+# hotplug needs it), and runs the ctest tests labelled `hil` inside the VM. Exits with their exit code; 124 when the
 # VM timed out, 125 when it never reported one. Facts behind each step: ../shared/HIL.md.
 # Usage: bash test/hil/run_vm.sh BUILD_DIR   (build first: cmake --build BUILD_DIR)
 #   HIL_CMD="..." runs that command in the VM instead of the hil tests (e.g. a benchmark).
@@ -12,24 +13,30 @@ bash "$here/deps.sh"
 cache=$build/hil-cache
 mkdir -p "$cache"
 
-# 1. Kernel: the package linux-image-amd64 depends on, cached by its name.
+# 1. Kernel: the package linux-image-amd64 depends on, cached by its name and the module list.
 pkg=$(apt-cache depends linux-image-amd64 | awk '/Depends: linux-image-[0-9]/{print $2; exit}')
-tree=$cache/$pkg
+mods=(net/can drivers/net/can net/9p fs/9p fs/netfs fs/fscache fs/overlayfs drivers/virtio
+      drivers/usb/common drivers/usb/core drivers/usb/gadget fs/configfs)
+tree=$cache/$pkg-$(echo "${mods[*]}" | md5sum | cut -c1-8)
 if [[ ! -f $tree/.done ]]; then
   rm -rf "$tree" && mkdir -p "$tree/deb"
   (cd "$tree/deb" && apt-get download -o APT::Sandbox::User=root "$pkg" >/dev/null)
   ex=$tree/x && mkdir -p "$ex"
   dpkg-deb --fsys-tarfile "$tree"/deb/*.deb | tar -x -C "$ex" --wildcards './boot/vmlinuz-*' \
-    './lib/modules/*/kernel/net/can' './lib/modules/*/kernel/drivers/net/can' \
-    './lib/modules/*/kernel/net/9p' './lib/modules/*/kernel/fs/9p' './lib/modules/*/kernel/fs/netfs' \
-    './lib/modules/*/kernel/fs/fscache' './lib/modules/*/kernel/fs/overlayfs' \
-    './lib/modules/*/kernel/drivers/virtio' './lib/modules/*/modules.*' 2>/dev/null || true
+    "${mods[@]/#/./lib/modules/*/kernel/}" './lib/modules/*/modules.*' 2>/dev/null || true
   ver=$(ls "$ex/lib/modules")
   depmod -b "$ex" "$ver"
   mv "$ex"/boot/vmlinuz-* "$tree/vmlinuz"
+  # The uncompressed vmlinux boots via PVH and skips ~2.5 s of emulated decompression.
+  off=$(LC_ALL=C grep -abo -m1 $'\xfd7zXZ' "$tree/vmlinuz" | head -1 | cut -d: -f1 || true)
+  if [[ -n $off ]]; then
+    tail -c +$((off + 1)) "$tree/vmlinuz" | xz -dcq > "$tree/vmlinux" 2>/dev/null || true
+  fi
   mv "$ex/lib/modules/$ver" "$tree/modules" && echo "$ver" > "$tree/version"
   rm -rf "$ex" "$tree/deb" && touch "$tree/.done"
 fi
+kernel=$tree/vmlinuz
+[[ -s $tree/vmlinux ]] && kernel=$tree/vmlinux
 ver=$(cat "$tree/version")
 
 # 2. Initramfs: busybox, the 9p/overlay modules, and an init that chroots into the host root.
@@ -69,13 +76,17 @@ export PATH=/usr/sbin:/usr/bin:/sbin:/bin
 modprobe vcan; modprobe can_raw
 ip link add dev vcan0 type vcan && ip link set vcan0 mtu 72 && ip link set up vcan0
 ip link set lo up
+# USB: a dummy host+device controller pair, configfs gadgets with FunctionFS, udevd for hotplug.
+modprobe dummy_hcd; modprobe libcomposite; modprobe usb_f_fs
+mountpoint -q /sys/kernel/config || mount -t configfs none /sys/kernel/config
+/usr/lib/systemd/systemd-udevd --daemon >/dev/null 2>&1 || echo "HIL: udevd did not start"
 ${HIL_CMD:-ctest --test-dir $build -L hil --output-on-failure ${HIL_CTEST_ARGS:-}}
 CMD
 
 log=$work/console.log
 set +e
 timeout "${HIL_TIMEOUT:-240}" qemu-system-x86_64 -machine q35,accel=tcg -cpu max -smp 2 -m 1024 \
-  -nodefaults -display none -serial stdio -no-reboot -kernel "$tree/vmlinuz" \
+  -nodefaults -display none -serial stdio -no-reboot -kernel "$kernel" \
   -initrd "$work/initramfs.cpio" -append 'console=ttyS0 panic=-1 quiet' \
   -fsdev local,id=r,path=/,security_model=none,readonly=on,multidevs=remap \
   -device virtio-9p-pci,fsdev=r,mount_tag=hostroot \
