@@ -13,15 +13,11 @@ DeviceBackend::DeviceBackend(DaemonConfig config) : config_(std::move(config)) {
   for (const auto& d : config_.devices) {
     if (d.driver == DriverKind::kSim) {
       if (!sim_) sim_ = std::make_unique<SimCell>(config_);
-      continue;  // SimCell reports these
+    } else if (d.driver == DriverKind::kReal) {
+      if (!real_) real_ = std::make_unique<RealDevices>(config_);
+    } else {
+      health_[d.name].state = hal::DeviceState::kReady;
     }
-    hal::DeviceHealth h;
-    h.state = d.driver == DriverKind::kReplay ? hal::DeviceState::kReady
-                                              : hal::DeviceState::kDisconnected;
-    if (d.driver != DriverKind::kReplay) {
-      h.message = std::string(to_string(d.driver)) + " driver for " + d.kind + " not wired yet";
-    }
-    health_[d.name] = h;
   }
 }
 
@@ -31,6 +27,9 @@ std::vector<NamedHealth> DeviceBackend::health() const {
   for (const auto& [name, h] : health_) out.push_back({name, h});
   if (sim_) {
     for (auto& h : sim_->health()) out.push_back(std::move(h));
+  }
+  if (real_) {
+    for (auto& h : real_->health()) out.push_back(std::move(h));
   }
   return out;
 }
@@ -42,9 +41,7 @@ ScanOutcome DeviceBackend::scan(const ScanRequest& request, const std::atomic<bo
   if (cancel) return {hal::Status::Error("cancelled"), {}};
   if (device->driver == DriverKind::kReplay) return replay(*device, progress);
   if (device->driver == DriverKind::kSim) return sim_->scan(*device, request, cancel, progress);
-  return {hal::Status::Error(std::string(to_string(device->driver)) + " driver for " +
-                             device->kind + " is not available in this build"),
-          {}};
+  return real_->scan(*device, request, cancel, progress);
 }
 
 ScanOutcome DeviceBackend::replay(const DeviceConfig& device,

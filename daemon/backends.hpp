@@ -1,7 +1,8 @@
 #pragma once
 // ScanBackend and Detector implementations rangefitd runs with.
 // - DeviceBackend dispatches each request to the configured device's driver: "sim" runs the
-//   simulated cell through fusion (daemon/sim_cell.hpp); "replay" returns a recorded cloud (PLY)
+//   simulated cell through fusion (daemon/sim_cell.hpp), "real" the cell's drivers
+//   (daemon/real_devices.hpp); "replay" returns a recorded cloud (PLY)
 //   as the scan, replaying a spooled or simulated scan through the full pipeline and DDS as fast
 //   as possible (benchmarks, offline checks).
 // - ModelDetector runs the thesis detectors of detect/ with the configured parameters and
@@ -12,6 +13,7 @@
 
 #include "daemon/config.hpp"
 #include "daemon/pipeline.hpp"
+#include "daemon/real_devices.hpp"
 #include "daemon/sim_cell.hpp"
 
 namespace rangefit::daemon {
@@ -31,7 +33,8 @@ class DeviceBackend final : public ScanBackend {
   mutable std::mutex mutex_;
   std::map<std::string, hal::DeviceHealth> health_;
   std::map<std::string, PointCloud> replay_cache_;
-  std::unique_ptr<SimCell> sim_;  // when a device uses driver = "sim"
+  std::unique_ptr<SimCell> sim_;       // when a device uses driver = "sim"
+  std::unique_ptr<RealDevices> real_;  // when a device uses driver = "real"
 };
 
 class ModelDetector final : public Detector {

@@ -220,6 +220,7 @@ void read_device(FieldReader& r, DeviceConfig& d) {
   r.read("sweep_start", d.sweep_start, -kMaxDouble, kMaxDouble);
   r.read("sweep_end", d.sweep_end, -kMaxDouble, kMaxDouble);
   r.read("sweep_speed", d.sweep_speed, 0.0, kMaxDouble);
+  r.read("motion", d.motion);
   std::string scene;
   r.read("scene", scene);
   d.scene = scene;
@@ -296,6 +297,12 @@ DaemonConfig read_root(const toml::table& root, std::string_view source_name,
       if (d.driver == DriverKind::kSim && scans && d.scene.empty()) {
         sub.fail("scene", "is required for a simulated " + d.kind + " (or set sim.scene)");
       }
+    }
+  }
+  for (std::size_t i = 0; i < c.devices.size(); ++i) {
+    const std::string& m = c.devices[i].motion;
+    if (!m.empty() && c.device(m) == nullptr) {
+      throw FieldError("devices[" + std::to_string(i) + "].motion: no device named \"" + m + "\"");
     }
   }
   names.clear();

@@ -36,7 +36,8 @@ struct DeviceConfig {
   std::array<double, 3> rpy_rad{};    // sensor extrinsics: roll, pitch, yaw, rad
   double sweep_start = 0.0;           // default sweep: mm (linear) or rad (rotary)
   double sweep_end = 0.0;
-  double sweep_speed = 0.0;     // per second; 0 = device default
+  double sweep_speed = 0.0;  // per second; 0 = device default
+  std::string motion;        // real: device moving this sensor (robot, axis); empty = the only one
   std::filesystem::path scene;  // sim driver: scene TOML; empty = sim.scene
   SimFaultConfig sim_fault;     // sim driver: [devices.sim_fault]
 };

@@ -37,16 +37,6 @@ hal::StreamCounters operator+(hal::StreamCounters a, const hal::StreamCounters& 
   return a;
 }
 
-Eigen::Isometry3d extrinsics(const DeviceConfig& d) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.translation() = Eigen::Vector3d(d.xyz_mm[0], d.xyz_mm[1], d.xyz_mm[2]);
-  T.linear() = (Eigen::AngleAxisd(d.rpy_rad[2], Eigen::Vector3d::UnitZ()) *
-                Eigen::AngleAxisd(d.rpy_rad[1], Eigen::Vector3d::UnitY()) *
-                Eigen::AngleAxisd(d.rpy_rad[0], Eigen::Vector3d::UnitX()))
-                   .toRotationMatrix();
-  return T;
-}
-
 bool scans(const DeviceConfig& d) {
   return d.kind == "css" || d.kind == "stripe" || d.kind == "pan_tilt";
 }
@@ -67,6 +57,16 @@ bool half_sweep(const ScanRequest& r, double fallback, double* half, std::string
 }
 
 }  // namespace
+
+Eigen::Isometry3d device_extrinsics(const DeviceConfig& d) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(d.xyz_mm[0], d.xyz_mm[1], d.xyz_mm[2]);
+  T.linear() = (Eigen::AngleAxisd(d.rpy_rad[2], Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(d.rpy_rad[1], Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(d.rpy_rad[0], Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  return T;
+}
 
 struct SimCell::LoadedScene {
   explicit LoadedScene(const std::string& path) : scene(sim::load_scene(path)), caster(scene) {}
@@ -128,7 +128,7 @@ struct SimCell::Run {
 
   ScanOutcome finish(fusion::FusedScan scan, const Eigen::Isometry3d& T_scene_sensor) {
     if (scan.bad) return {hal::Status::Error(device.name + ": fusion: " + scan.reason), {}};
-    const Eigen::Isometry3d T = extrinsics(device) * T_scene_sensor;
+    const Eigen::Isometry3d T = device_extrinsics(device) * T_scene_sensor;
     for (auto& p : scan.cloud.points) p = T * p;
     for (auto& n : scan.cloud.normals) n = T.linear() * n;
     return {hal::Status::Ok(), std::move(scan.cloud)};

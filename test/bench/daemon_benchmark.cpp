@@ -2,6 +2,10 @@
 //   BM_CloudConvertOnly        baseline: building the PointCloud2 of 140,000 points
 //   BM_PublishCloud140k        write + receive of that cloud through DDS (p50/p99 counters)
 //   BM_BoreRequestToResult     DetectRequest → Detection through the service, replayed bore scan
+//   BM_SimCssScanOnly          baseline: one full simulated CSS scan of the bore plate, fused,
+//                              as fast as possible (daemon/sim_cell, no detection, no DDS)
+//   BM_SimCssBoreRequestToResult  DetectRequest → Detection with that scan + bore detection +
+//                              spool + cloud publication through the service (driver = "sim")
 // Counters: p50_ms, p99_ms per run and rss_mb of the process after the run (steady state).
 #include <benchmark/benchmark.h>
 
@@ -14,6 +18,7 @@
 
 #include "daemon/client.hpp"
 #include "daemon/service.hpp"
+#include "daemon/sim_cell.hpp"
 #include "io/ply.hpp"
 #include "sim/synthetic_bore.hpp"
 
@@ -140,6 +145,73 @@ void BM_BoreRequestToResult(benchmark::State& state) {
   std::filesystem::remove_all(dir);
 }
 BENCHMARK(BM_BoreRequestToResult)->Unit(benchmark::kMillisecond)->Iterations(10);
+
+daemon::DaemonConfig sim_css_config(const std::filesystem::path& dir) {
+  daemon::DaemonConfig config;
+  config.dds.domain_id = domain();
+  config.spool.directory = dir / "spool";
+  config.service.bore_sensor = "css";
+  config.sim.time_scale = 0.0;  // as fast as possible
+  daemon::DeviceConfig css;
+  css.name = css.kind = "css";
+  css.driver = daemon::DriverKind::kSim;
+  css.scene = std::string(RANGEFIT_SOURCE_DIR) + "/data/scenes/bore_plate.toml";
+  config.devices.push_back(css);
+  return config;
+}
+
+void BM_SimCssScanOnly(benchmark::State& state) {
+  const auto config = sim_css_config(std::filesystem::temp_directory_path());
+  daemon::SimCell cell(config);
+  daemon::ScanRequest req;
+  req.id = "scan";
+  std::atomic<bool> cancel{false};
+  std::vector<double> ms;
+  std::size_t points = 0;
+  for (auto _ : state) {
+    const auto t0 = Clock::now();
+    const auto out = cell.scan(config.devices[0], req, cancel, [] {});
+    ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    if (!out.status) state.SkipWithError(out.status.message.c_str());
+    points = out.cloud.size();
+  }
+  percentiles(state, ms);
+  state.counters["points"] = static_cast<double>(points);
+}
+BENCHMARK(BM_SimCssScanOnly)->Unit(benchmark::kMillisecond)->Iterations(10);
+
+void BM_SimCssBoreRequestToResult(benchmark::State& state) {
+  const auto dir = std::filesystem::temp_directory_path() / "rangefit_daemon_benchmark_sim";
+  std::filesystem::create_directories(dir);
+  const auto config = sim_css_config(dir);
+  hal::MonotonicClock clock;
+  daemon::Service service(config, clock);
+  std::atomic<bool> running{true};
+  std::thread loop([&] {
+    while (running) service.step(std::chrono::milliseconds(5));
+  });
+  daemon::DdsClient client(domain());
+  client.wait_for_daemon(std::chrono::seconds(20));
+  std::vector<double> ms;
+  int n = 0;
+  for (auto _ : state) {
+    daemon::ScanRequest req;
+    req.id = "s" + std::to_string(++n);
+    req.bore.position_mm = Eigen::Vector3d(0.8, -0.5, 285.8);  // 12 mm bore at (0, 0, 285.8)
+    req.bore.axis = Eigen::Vector3d::UnitZ();
+    req.bore.radius_mm = 6.0;
+    const auto t0 = Clock::now();
+    client.send(req, false);
+    auto r = client.wait_result(req.id, std::chrono::seconds(60));
+    ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    if (!r || !r->found) state.SkipWithError("bore not found");
+  }
+  running = false;
+  loop.join();
+  percentiles(state, ms);
+  std::filesystem::remove_all(dir);
+}
+BENCHMARK(BM_SimCssBoreRequestToResult)->Unit(benchmark::kMillisecond)->Iterations(10);
 
 }  // namespace
 
