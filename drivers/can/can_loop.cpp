@@ -98,6 +98,7 @@ void CanLoop::run() {
     hal::Timestamp now = hal::monotonic_now();
     if (now >= next_tick) {
       next_tick = handler_.on_tick(now);
+      handler_.on_batch_end();
       now = hal::monotonic_now();
     }
     // Wake at least every 50 ms so stop() is honoured on a silent bus.
@@ -117,6 +118,7 @@ void CanLoop::run() {
         handler_.on_frame(frames[i]);
       }
     }
+    handler_.on_batch_end();
   }
 }
 

@@ -39,6 +39,8 @@ class CanLoopHandler {
   virtual void on_frame(const CanFrame& frame) = 0;
   // The link went down (false) or was reopened (true).
   virtual void on_link(bool up) = 0;
+  // After each received batch and each tick: publish what the frames produced.
+  virtual void on_batch_end() {}
 };
 
 struct LoopConfig {

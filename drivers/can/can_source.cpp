@@ -32,6 +32,9 @@ hal::DeviceHealth compose_health(bool started, const CanLoop& loop, bool devices
     h.message = to_string(problem);
     if (node != 0) h.message += " (node " + std::to_string(node) + ")";
   }
+  if (const Problem rt = loop.realtime_problem(); rt != Problem::kNone) {
+    h.message += (h.message.empty() ? "" : "; ") + std::string(to_string(rt));
+  }
   return h;
 }
 

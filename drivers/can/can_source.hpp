@@ -26,7 +26,8 @@ namespace rangefit::drivers::can {
 // Opens the transport for start(); a failure is logged and the loop retries with back-off.
 bool open_for_start(CanTransport& transport, const std::string& name);
 // Disconnected while the link is down; fault while bus-off or a device is faulted; the message
-// names the current bus state first, then the last problem (and its node when known).
+// names the current bus state first, then the last problem (and its node when known), then a
+// failure to apply the configured real-time settings.
 hal::DeviceHealth compose_health(bool started, const CanLoop& loop, bool devices_faulted,
                                  Problem problem, std::uint8_t node, const CanCounters& counters);
 
@@ -100,6 +101,7 @@ class CanSource : public hal::SampleSource<Sample>, protected CanLoopHandler {
     return r;
   }
   void bump(Counter c, std::uint64_t n = 1) { counters_.bump(c, n); }
+  void on_batch_end() override { ring_.publish(); }
 
  private:
   std::string name_;

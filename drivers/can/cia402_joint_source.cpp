@@ -94,8 +94,12 @@ hal::Timestamp Cia402JointSource::on_tick(hal::Timestamp now) {
       pending_counter_ = counter;
       pending_echo_ = true;
     }
+    // Fell behind: skip the missed slots but keep the grid. Restarting the grid at `now` made a
+    // timer that fires on scheduler ticks (a loaded or tickless-less VM) lose every other SYNC.
     next_sync_ += config_.sync_period;
-    if (next_sync_ <= now) next_sync_ = now + config_.sync_period;  // fell behind: skip slots
+    if (next_sync_ <= now) {
+      next_sync_ += ((now - next_sync_) / config_.sync_period + 1) * config_.sync_period;
+    }
   }
   return std::min(next, next_sync_);
 }
