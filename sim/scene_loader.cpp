@@ -197,6 +197,27 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
     if (!t) top.fail("object", "must be an array of tables");
     read_object(Ctx{name, *t, "object"}, base_dir, scene);
   }
+  // Ground truth of bores in mesh objects (a bore_plate object gives its own).
+  if (const toml::array* bores = root.get_as<toml::array>("bore")) {
+    for (const toml::node& n : *bores) {
+      const toml::table* t = n.as_table();
+      if (!t) top.fail("bore", "must be an array of tables");
+      const Ctx c{name, *t, "bore"};
+      BoreTruth b;
+      b.name = c.text("name");
+      b.kind = c.text("kind", "straight");
+      BoreKind kind;
+      if (!parse_bore_kind(b.kind, kind)) {
+        c.fail("kind", "must be straight, slanted, chamfered, rounded or notched");
+      }
+      b.diameter_mm = c.positive("diameter");
+      b.opening_mm = c.vec<3>("opening");
+      const Vector3d axis = c.vec<3>("axis");
+      if (axis.norm() < 1e-9) c.fail("axis", "must not be the zero vector");
+      b.axis = axis.normalized();
+      scene.bores.push_back(b);
+    }
+  }
   if (const toml::table* sensors = root.get_as<toml::table>("sensors")) {
     const std::pair<const char*, Eigen::Isometry3d*> mounts[] = {
         {"css", &scene.mounts.T_scene_css},

@@ -3,10 +3,10 @@
 //
 //   [[object]]
 //   name = "table"
-//   type = "plane"              # plane | box | cylinder | sphere | superquadric | mesh |
-//   bore_plate size = [800.0, 600.0]       # plane: x, y; box: x, y, z position = [0.0, 0.0, 0.0]
-//   # mm, scene frame rpy_deg = [0.0, 0.0, 0.0]   # R = Rz(yaw) Ry(pitch) Rx(roll); or z_axis = [x,
-//   y, z]
+//   type = "plane"            # plane | box | cylinder | sphere | superquadric | mesh | bore_plate
+//   size = [800.0, 600.0]     # plane: x, y; box: x, y, z
+//   position = [0.0, 0.0, 0.0]  # mm, scene frame
+//   rpy_deg = [0.0, 0.0, 0.0]   # R = Rz(yaw) Ry(pitch) Rx(roll); or z_axis = [x, y, z]
 //
 //   cylinder: radius, height          sphere: radius
 //   superquadric: a = [a1, a2, a3], eps = [e1, e2], taper = [kx, ky]
@@ -15,6 +15,8 @@
 //     (straight | slanted | chamfered | rounded | notched), diameter, slant_deg, edge, notches,
 //     notch_depth, notch_width_deg
 //
+//   [[bore]]           ground truth of a bore in a mesh: name, kind, diameter, opening = [x, y, z]
+//                      (scene frame, on the surface), axis = [x, y, z] (into the material)
 //   [sensors.css]      position/rpy_deg: pose of the CSS eq. 4.17 world frame in the scene
 //   [sensors.stripe]   pose of the stripe cell's world frame
 //   [sensors.pantilt]  pose of the pan-tilt head's world frame (eq. 5.7)
