@@ -4,11 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "drivers/can/cia402_joint_source.hpp"
 #include "drivers/can/powercube_joint_source.hpp"
@@ -50,9 +52,16 @@ TEST(CanHil, Cia402JointsArriveWithValuesAndSyncStampsAndSurviveInterfaceDown) {
     driver.read(out, 10ms);
     return out.size() >= 100;
   }));
+  // The joints turn at 1 rad/s, so the angle error in rad is the stamp error in s. Typically the
+  // TPDO answers its own SYNC; when the VM stalls the simulated node for longer than a cycle,
+  // its late TPDO belongs to a later SYNC (TPDOs carry no counter), hence the looser bound.
+  std::vector<double> error;
   for (const auto& s : out) {
-    EXPECT_NEAR(s.angle_rad, std::chrono::duration<double>(s.stamp - t0).count(), 0.02);
+    error.push_back(std::abs(s.angle_rad - std::chrono::duration<double>(s.stamp - t0).count()));
   }
+  std::sort(error.begin(), error.end());
+  EXPECT_LT(error[error.size() / 2], 0.002);
+  EXPECT_LT(error.back(), 0.1);
   EXPECT_EQ(driver.counters().transport.rx_overflow, 0u);
   ASSERT_TRUE(test::set_link(false));
   const bool disconnected =
