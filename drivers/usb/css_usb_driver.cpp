@@ -114,7 +114,13 @@ bool CssUsbDriver::connect() {
     std::lock_guard lock(translator_mutex_);
     translator_.reset();  // a (re)connected device has restarted its counters
   }
-  sync_clock();
+  // Stream synchronised from the first revolution: under load a whole burst can exceed the
+  // round-trip limit, so retry a few bursts before falling back to completion stamps.
+  for (int burst = 0; burst < 10; ++burst) {
+    sync_clock();
+    std::lock_guard lock(translator_mutex_);
+    if (translator_.clock().synchronised()) break;
+  }
   const hal::Status rate = transport_->control_out(Request::kSetRate, options_.rate_centi_hz);
   const hal::Status streaming =
       rate ? transport_->start_streaming(
@@ -160,9 +166,11 @@ void CssUsbDriver::sync_clock() {
   for (int k = 0; k < options_.sync_burst; ++k) {
     std::array<std::uint8_t, 8> reply{};
     std::size_t received = 0;
-    const hal::Timestamp before = clock_.now();
-    const hal::Status s = transport_->control_in(Request::kGetTime, 0, reply, received);
-    const hal::Timestamp after = clock_.now();
+    UsbTransport::Window window;
+    const hal::Status s =
+        transport_->control_in_timed(Request::kGetTime, 0, reply, received, window);
+    const hal::Timestamp before = window.submitted;
+    const hal::Timestamp after = window.completed;
     if (!s || received != reply.size()) continue;
     std::uint64_t device_us = 0;
     for (int i = 7; i >= 0; --i) device_us = device_us << 8 | reply[static_cast<std::size_t>(i)];

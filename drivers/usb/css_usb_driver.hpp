@@ -35,7 +35,8 @@ struct CssUsbOptions {
 
 class CssUsbDriver final : public hal::CssSource {
  public:
-  // `clock` stamps GET_TIME exchanges; it must be the CLOCK_MONOTONIC the transport stamps with.
+  // `clock` must be CLOCK_MONOTONIC, the base the transport stamps in (bulk completions and the
+  // GET_TIME windows of UsbTransport::control_in_timed); the driver takes no stamps of its own.
   CssUsbDriver(std::unique_ptr<UsbTransport> transport, CssUsbOptions options, hal::Clock& clock);
   ~CssUsbDriver() override;
 

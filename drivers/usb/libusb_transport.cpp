@@ -2,6 +2,8 @@
 
 #include <libusb.h>
 
+#include <algorithm>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -101,6 +103,70 @@ hal::Status LibusbTransport::control_in(Request request, std::uint16_t value,
       static_cast<std::uint16_t>(data.size()), options_.control_timeout_ms);
   if (rc < 0) return usb_error("control IN", rc);
   received = static_cast<std::size_t>(rc);
+  return hal::Status::Ok();
+}
+
+namespace {
+
+struct ControlWait {  // on the heap: leaked with its transfer if libusb never gives it back
+  std::vector<std::uint8_t> buffer;
+  std::mutex mutex;
+  std::condition_variable done_cv;
+  bool done = false;
+  hal::Timestamp completed{};
+};
+
+void LIBUSB_CALL control_done(libusb_transfer* t) {
+  const hal::Timestamp now = hal::monotonic_now();  // first thing: this stamp closes the window
+  auto* wait = static_cast<ControlWait*>(t->user_data);
+  // Notified under the lock: the waiter frees `wait` as soon as it sees done.
+  std::lock_guard lock(wait->mutex);
+  wait->completed = now;
+  wait->done = true;
+  wait->done_cv.notify_all();
+}
+
+}  // namespace
+
+hal::Status LibusbTransport::control_in_timed(Request request, std::uint16_t value,
+                                              std::span<std::uint8_t> data, std::size_t& received,
+                                              Window& window) {
+  received = 0;
+  if (!handle_) return hal::Status::Error("not open");
+  auto wait = std::make_unique<ControlWait>();
+  wait->buffer.resize(LIBUSB_CONTROL_SETUP_SIZE + data.size());
+  libusb_fill_control_setup(wait->buffer.data(), kVendorIn, static_cast<std::uint8_t>(request),
+                            value, 0, static_cast<std::uint16_t>(data.size()));
+  libusb_transfer* t = libusb_alloc_transfer(0);
+  if (!t) return hal::Status::Error("control IN: out of memory");
+  libusb_fill_control_transfer(t, handle_, wait->buffer.data(), control_done, wait.get(),
+                               options_.control_timeout_ms);
+  window.submitted = hal::monotonic_now();
+  if (const int rc = libusb_submit_transfer(t); rc != 0) {
+    libusb_free_transfer(t);
+    return usb_error("control IN", rc);
+  }
+  std::unique_lock lock(wait->mutex);
+  const auto limit = std::chrono::milliseconds(options_.control_timeout_ms + 500);
+  if (!wait->done_cv.wait_for(lock, limit, [&] { return wait->done; })) {
+    libusb_cancel_transfer(t);
+    if (!wait->done_cv.wait_for(lock, std::chrono::seconds(2), [&] { return wait->done; })) {
+      lock.unlock();
+      wait.release();  // libusb still owns the transfer and its buffer: leak rather than free
+      return hal::Status::Error("control IN: transfer never completed");
+    }
+  }
+  lock.unlock();
+  window.completed = wait->completed;
+  if (t->status != LIBUSB_TRANSFER_COMPLETED) {
+    const int status = t->status;
+    libusb_free_transfer(t);
+    return hal::Status::Error("control IN: transfer status " + std::to_string(status) +
+                              (status == LIBUSB_TRANSFER_STALL ? " (stall)" : ""));
+  }
+  received = std::min(data.size(), static_cast<std::size_t>(t->actual_length));
+  std::copy_n(libusb_control_transfer_get_data(t), received, data.begin());
+  libusb_free_transfer(t);
   return hal::Status::Ok();
 }
 

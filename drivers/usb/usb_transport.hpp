@@ -40,6 +40,20 @@ class UsbTransport {
   // Vendor control IN; returns the bytes received in `received`.
   virtual hal::Status control_in(Request request, std::uint16_t value, std::span<std::uint8_t> data,
                                  std::size_t& received) = 0;
+  // Like control_in, with host CLOCK_MONOTONIC stamps that bracket the device's handling of the
+  // request as tightly as the transport can (GET_TIME). Default: stamps around control_in.
+  struct Window {
+    hal::Timestamp submitted{};
+    hal::Timestamp completed{};
+  };
+  virtual hal::Status control_in_timed(Request request, std::uint16_t value,
+                                       std::span<std::uint8_t> data, std::size_t& received,
+                                       Window& window) {
+    window.submitted = hal::monotonic_now();
+    const hal::Status s = control_in(request, value, data, received);
+    window.completed = hal::monotonic_now();
+    return s;
+  }
   virtual hal::Status control_out(Request request, std::uint16_t value) = 0;
   // Keeps `in_flight` bulk IN transfers queued, resubmitted on completion.
   virtual hal::Status start_streaming(DataHandler handler, int in_flight) = 0;

@@ -123,7 +123,8 @@ TEST(UsbCssHil, AbsentAtStartThenUnplugMidScanIsReportedAndReplugResumes) {
   ASSERT_TRUE(rig.collect(20));
   ASSERT_TRUE(rig.gadget.unplug());
   ASSERT_TRUE(eventually([&] { return rig.health().state == hal::DeviceState::kDisconnected; }));
-  EXPECT_NE(rig.health().message.find("scan incomplete"), std::string::npos) << rig.health().message;
+  EXPECT_NE(rig.health().message.find("scan incomplete"), std::string::npos)
+      << rig.health().message;
   rig.driver->read(rig.got, 50ms);
   const std::uint32_t last = rig.got.back().sequence;
   rig.got.clear();
@@ -184,7 +185,10 @@ TEST(UsbCssHil, DeviceCounterWrappingAt2To32KeepsStampsContinuous) {
   ASSERT_EQ(rig.gadget.start(), "");
   ASSERT_TRUE(rig.driver->start());
   const std::uint64_t before = rig.gadget.clock().read(hal::monotonic_now());
-  ASSERT_TRUE(eventually([&] { return rig.gadget.clock().read(hal::monotonic_now()) < before; }));
+  ASSERT_TRUE(eventually([&] {
+    rig.driver->read(rig.got, 5ms);  // keep the driver's queue (64 revolutions) drained
+    return rig.gadget.clock().read(hal::monotonic_now()) < before;
+  }));
   const std::size_t n = rig.got.size() + 70;  // another second at 70 Hz past the wrap
   ASSERT_TRUE(rig.collect(n));
   for (std::size_t k = 1; k < rig.got.size(); ++k) {
@@ -193,7 +197,7 @@ TEST(UsbCssHil, DeviceCounterWrappingAt2To32KeepsStampsContinuous) {
     EXPECT_NEAR(error_us(r.stamp, rig.got[k - 1].stamp), 14286.0, 1000.0) << "at " << r.sequence;
     EXPECT_NEAR(error_us(r.stamp, *rig.gadget.truth(r.sequence)), 0.0, 1000.0);
   }
-  EXPECT_EQ(rig.health().counters.gaps, 0u);
+  EXPECT_EQ(rig.health().counters.gaps + rig.health().counters.dropped, 0u);
 }
 
 TEST(UsbCssHil, GetTimeReadingLiesWithinEveryExchangeWindow) {
@@ -205,12 +209,14 @@ TEST(UsbCssHil, GetTimeReadingLiesWithinEveryExchangeWindow) {
   LibusbTransport usb;
   ASSERT_TRUE(eventually([&] { return static_cast<bool>(usb.open()); }));
   std::vector<double> trips, asym;
-  for (int k = 0; k < 200; ++k) {
+  for (int k = 0; k < 100; ++k) {
     std::array<std::uint8_t, 8> reply{};
     std::size_t received = 0;
-    const hal::Timestamp before = hal::monotonic_now();
-    ASSERT_TRUE(usb.control_in(drivers::css_usb::Request::kGetTime, 0, reply, received));
-    const hal::Timestamp after = hal::monotonic_now();
+    LibusbTransport::Window window;
+    ASSERT_TRUE(
+        usb.control_in_timed(drivers::css_usb::Request::kGetTime, 0, reply, received, window));
+    const hal::Timestamp before = window.submitted;
+    const hal::Timestamp after = window.completed;
     ASSERT_EQ(received, 8u);
     std::uint64_t device = 0;
     for (int i = 7; i >= 0; --i) device = device << 8 | reply[static_cast<std::size_t>(i)];
@@ -225,7 +231,7 @@ TEST(UsbCssHil, GetTimeReadingLiesWithinEveryExchangeWindow) {
   std::vector<std::size_t> order(trips.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](auto a, auto b) { return trips[a] < trips[b]; });
-  for (std::size_t q : {0u, 10u, 50u, 100u, 150u, 199u}) {
+  for (std::size_t q : {0u, 10u, 50u, 90u, 99u}) {
     std::printf("[ info ] round trip rank %zu: %.1f us, reading - midpoint %.1f us\n", q,
                 trips[order[q]], asym[order[q]]);
   }
