@@ -77,11 +77,21 @@ void CssGadget::teardown() {
 
 void CssGadget::inject(Fault fault) {
   switch (fault) {
-    case Fault::kStall: ++stall_; break;
-    case Fault::kTruncate: ++truncate_; break;
-    case Fault::kSplit: ++split_; break;
-    case Fault::kBadCrc: ++bad_crc_; break;
-    case Fault::kGap: ++gap_; break;
+    case Fault::kStall:
+      ++stall_;
+      break;
+    case Fault::kTruncate:
+      ++truncate_;
+      break;
+    case Fault::kSplit:
+      ++split_;
+      break;
+    case Fault::kBadCrc:
+      ++bad_crc_;
+      break;
+    case Fault::kGap:
+      ++gap_;
+      break;
   }
 }
 
@@ -230,9 +240,11 @@ void CssGadget::stream_loop() {
       r.sequence = sequence_++;
       truth_[r.sequence] = clock.host_time(pulse_us);
       lock.unlock();
-      const std::uint64_t wrap_mask =
-          clock.counter_bits >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << clock.counter_bits) - 1;
-      r.device_time_us = static_cast<std::uint64_t>(static_cast<std::int64_t>(pulse_us)) & wrap_mask;
+      const std::uint64_t wrap_mask = clock.counter_bits >= 64
+                                          ? ~std::uint64_t{0}
+                                          : (std::uint64_t{1} << clock.counter_bits) - 1;
+      r.device_time_us =
+          static_cast<std::uint64_t>(static_cast<std::int64_t>(pulse_us)) & wrap_mask;
       r.period_us = static_cast<std::uint32_t>(period_us);
       r.flags = hal::kCssMotorLocked | hal::kCssLaserOn;
       r.samples = source_.samples(r.sequence);

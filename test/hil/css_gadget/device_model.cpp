@@ -74,7 +74,8 @@ RevolutionSource::RevolutionSource(const std::string& scene_path) {
 void RevolutionSource::load(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   std::vector<std::uint8_t> frame(drivers::css_usb::kFrameBytes);
-  while (f.read(reinterpret_cast<char*>(frame.data()), static_cast<std::streamsize>(frame.size()))) {
+  while (
+      f.read(reinterpret_cast<char*>(frame.data()), static_cast<std::streamsize>(frame.size()))) {
     const auto r = drivers::css_usb::decode_revolution(frame);
     if (!r) {
       error_ = path + ": frame " + std::to_string(samples_.size()) + " is damaged";

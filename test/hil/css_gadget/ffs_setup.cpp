@@ -101,10 +101,17 @@ std::vector<std::uint8_t> descriptors() {
   };
   auto speed = [](std::uint16_t max_packet) {
     Speed s{};
-    s.interface = {sizeof(usb_interface_descriptor), USB_DT_INTERFACE, 0, 0, 1,
-                   USB_CLASS_VENDOR_SPEC, 0, 0, 1};
-    s.in = {USB_DT_ENDPOINT_SIZE, USB_DT_ENDPOINT, 1 | USB_DIR_IN, USB_ENDPOINT_XFER_BULK,
-            htole16(max_packet), 0};
+    s.interface = {sizeof(usb_interface_descriptor),
+                   USB_DT_INTERFACE,
+                   0,
+                   0,
+                   1,
+                   USB_CLASS_VENDOR_SPEC,
+                   0,
+                   0,
+                   1};
+    s.in = {USB_DT_ENDPOINT_SIZE,   USB_DT_ENDPOINT,     1 | USB_DIR_IN,
+            USB_ENDPOINT_XFER_BULK, htole16(max_packet), 0};
     return s;
   };
   usb_functionfs_descs_head_v2 head{};

@@ -35,24 +35,37 @@ int main(int argc, char** argv) {
     char* end = nullptr;
     const double number = std::strtod(v, &end);
     const bool numeric = end != v && *end == '\0';
-    if (arg == "--scene") o.scene_path = v;
-    else if (arg == "--serial") o.serial = v;
-    else if (arg == "--udc") o.udc = v;
-    else if (arg == "--record") record = v;
-    else if (!numeric) return usage(("not a number: " + std::string(v)).c_str());
-    else if (arg == "--vid") o.vendor_id = static_cast<std::uint16_t>(std::strtoul(v, nullptr, 0));
-    else if (arg == "--pid") o.product_id = static_cast<std::uint16_t>(std::strtoul(v, nullptr, 0));
-    else if (arg == "--offset-us") o.clock.offset_us = number;
-    else if (arg == "--drift-ppm") o.clock.drift_ppm = number;
-    else if (arg == "--counter-bits" && number >= 16 && number <= 64) o.clock.counter_bits = static_cast<int>(number);
-    else if (arg == "--wrap-after-s" && number >= 0) wrap_after_s = number;
-    else return usage(("unknown option or bad value: " + arg).c_str());
+    if (arg == "--scene")
+      o.scene_path = v;
+    else if (arg == "--serial")
+      o.serial = v;
+    else if (arg == "--udc")
+      o.udc = v;
+    else if (arg == "--record")
+      record = v;
+    else if (!numeric)
+      return usage(("not a number: " + std::string(v)).c_str());
+    else if (arg == "--vid")
+      o.vendor_id = static_cast<std::uint16_t>(std::strtoul(v, nullptr, 0));
+    else if (arg == "--pid")
+      o.product_id = static_cast<std::uint16_t>(std::strtoul(v, nullptr, 0));
+    else if (arg == "--offset-us")
+      o.clock.offset_us = number;
+    else if (arg == "--drift-ppm")
+      o.clock.drift_ppm = number;
+    else if (arg == "--counter-bits" && number >= 16 && number <= 64)
+      o.clock.counter_bits = static_cast<int>(number);
+    else if (arg == "--wrap-after-s" && number >= 0)
+      wrap_after_s = number;
+    else
+      return usage(("unknown option or bad value: " + arg).c_str());
   }
   if (wrap_after_s >= 0) {
-    o.clock.offset_us = DeviceClockModel::offset_wrapping_after(
-        rangefit::hal::monotonic_now(),
-        std::chrono::duration_cast<rangefit::hal::Duration>(std::chrono::duration<double>(wrap_after_s)),
-        o.clock.drift_ppm, o.clock.counter_bits);
+    o.clock.offset_us =
+        DeviceClockModel::offset_wrapping_after(rangefit::hal::monotonic_now(),
+                                                std::chrono::duration_cast<rangefit::hal::Duration>(
+                                                    std::chrono::duration<double>(wrap_after_s)),
+                                                o.clock.drift_ppm, o.clock.counter_bits);
   }
   if (!record.empty()) {
     const RevolutionSource source(o.scene_path);
@@ -71,14 +84,22 @@ int main(int argc, char** argv) {
   std::printf("css_gadget: bound, %zu revolutions per scan\n", gadget.source().size());
   std::fflush(stdout);
   for (std::string line; std::getline(std::cin, line) && line != "quit";) {
-    if (line == "stall") gadget.inject(Fault::kStall);
-    else if (line == "truncate") gadget.inject(Fault::kTruncate);
-    else if (line == "split") gadget.inject(Fault::kSplit);
-    else if (line == "crc") gadget.inject(Fault::kBadCrc);
-    else if (line == "gap") gadget.inject(Fault::kGap);
-    else if (line == "unplug") gadget.unplug();
-    else if (line == "replug") gadget.replug();
-    else if (line != "status") std::fprintf(stderr, "css_gadget: unknown command %s\n", line.c_str());
+    if (line == "stall")
+      gadget.inject(Fault::kStall);
+    else if (line == "truncate")
+      gadget.inject(Fault::kTruncate);
+    else if (line == "split")
+      gadget.inject(Fault::kSplit);
+    else if (line == "crc")
+      gadget.inject(Fault::kBadCrc);
+    else if (line == "gap")
+      gadget.inject(Fault::kGap);
+    else if (line == "unplug")
+      gadget.unplug();
+    else if (line == "replug")
+      gadget.replug();
+    else if (line != "status")
+      std::fprintf(stderr, "css_gadget: unknown command %s\n", line.c_str());
     std::printf("frames %llu streaming %d rate %u starts %llu\n",
                 static_cast<unsigned long long>(gadget.frames_sent()), gadget.streaming() ? 1 : 0,
                 static_cast<unsigned>(gadget.rate_centi_hz()),
