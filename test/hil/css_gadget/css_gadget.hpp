@@ -59,7 +59,7 @@ class CssGadget {
   std::optional<hal::Timestamp> truth(std::uint32_t sequence) const;
   const RevolutionSource& source() const { return source_; }
   const DeviceClockModel& clock() const { return options_.clock; }
-  // Revolutions written completely, and faults actually applied (by kind order above).
+  // Revolutions written completely; whether START is in force; the rate; STARTs received.
   std::uint64_t frames_sent() const { return frames_sent_; }
   bool streaming() const { return streaming_; }
   std::uint16_t rate_centi_hz() const { return rate_; }
