@@ -74,6 +74,7 @@ void CanLoop::run() {
   std::array<CanFrame, 64> frames{};
   hal::Duration backoff = config_.backoff_min;
   hal::Timestamp next_tick = handler_.on_tick(hal::monotonic_now());
+  int drained = 0;  // full batches taken while a tick was due
   while (!stop_.load(std::memory_order_relaxed)) {
     if (!link_up_.load(std::memory_order_relaxed)) {
       // Sleep in short slices so stop() stays prompt during long back-offs.
@@ -95,15 +96,17 @@ void CanLoop::run() {
       }
       continue;
     }
-    hal::Timestamp now = hal::monotonic_now();
-    if (now >= next_tick) {
-      next_tick = handler_.on_tick(now);
-      handler_.on_batch_end();
-      now = hal::monotonic_now();
-    }
+    // A due tick first takes what is already queued, so a thread that was not scheduled for a
+    // while does not time out a profile or a reply whose frames wait in the socket; under a
+    // flood it runs after at most kMaxDrain full batches anyway.
+    constexpr int kMaxDrain = 4;
+    const hal::Timestamp now = hal::monotonic_now();
+    const bool tick_due = now >= next_tick;
     // Wake at least every 50 ms so stop() is honoured on a silent bus.
-    const hal::Duration wait =
-        std::clamp<hal::Duration>(next_tick - now, hal::Duration{0}, std::chrono::milliseconds(50));
+    const hal::Duration wait = tick_due
+                                   ? hal::Duration{0}
+                                   : std::clamp<hal::Duration>(next_tick - now, hal::Duration{0},
+                                                               std::chrono::milliseconds(50));
     const RxResult r = transport_.receive(frames, wait);
     if (r.link_down) {
       link_up_ = false;
@@ -117,6 +120,11 @@ void CanLoop::run() {
       } else {
         handler_.on_frame(frames[i]);
       }
+    }
+    drained = tick_due ? drained + 1 : 0;
+    if (tick_due && (r.frames < frames.size() || drained >= kMaxDrain)) {
+      next_tick = handler_.on_tick(hal::monotonic_now());
+      drained = 0;
     }
     handler_.on_batch_end();
   }
