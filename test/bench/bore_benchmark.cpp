@@ -4,8 +4,8 @@
 // session-1 k-d tree normals as the in-run baseline of the binned normals; the thesis's
 // steepest-descent LSF both at its 200 iterations and at the iterations it needs to match the
 // RSF's accuracy (BM_LsfSteepestToRsfAccuracy), the in-run baselines of BM_Rsf.
-//   taskset -c 0 build-bore/test/bench/bore_benchmark --benchmark_repetitions=20 \
-//       --benchmark_report_aggregates_only=true
+//   taskset -c 0 build-bore/test/bench/bore_benchmark --benchmark_repetitions=20
+//       (add --benchmark_report_aggregates_only=true for the medians alone)
 #include <benchmark/benchmark.h>
 
 #include <cmath>
