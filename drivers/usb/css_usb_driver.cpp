@@ -116,10 +116,11 @@ bool CssUsbDriver::connect() {
   }
   // Stream synchronised from the first revolution: under load a whole burst can exceed the
   // round-trip limit, so retry a few bursts before falling back to completion stamps.
+  // Two bursts at least: the first exchange after opening is often slow.
   for (int burst = 0; burst < 10; ++burst) {
     sync_clock();
     std::lock_guard lock(translator_mutex_);
-    if (translator_.clock().synchronised()) break;
+    if (burst >= 1 && translator_.clock().synchronised()) break;
   }
   const hal::Status rate = transport_->control_out(Request::kSetRate, options_.rate_centi_hz);
   const hal::Status streaming =
@@ -242,6 +243,11 @@ std::size_t CssUsbDriver::read(std::vector<hal::CssRevolution>& out, hal::Durati
 std::optional<DeviceInfo> CssUsbDriver::info() const {
   std::lock_guard lock(mutex_);
   return info_;
+}
+
+double CssUsbDriver::clock_drift_ppm() const {
+  std::lock_guard lock(translator_mutex_);
+  return translator_.clock().drift_ppm();
 }
 
 std::uint64_t CssUsbDriver::host_stamped() const {

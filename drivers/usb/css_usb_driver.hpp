@@ -48,6 +48,8 @@ class CssUsbDriver final : public hal::CssSource {
   std::size_t read(std::vector<hal::CssRevolution>& out, hal::Duration timeout) override;
 
   std::optional<DeviceInfo> info() const;
+  // Fitted device clock rate relative to the host, ppm (0 until the drift fit is trusted).
+  double clock_drift_ppm() const;
   // Revolutions stamped from transfer completion because the clock was not synchronised.
   std::uint64_t host_stamped() const;
 

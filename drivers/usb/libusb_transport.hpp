@@ -22,9 +22,9 @@ namespace rangefit::drivers::css_usb {
 struct LibusbOptions {
   std::uint16_t vendor_id = 0x1d6b;  // configurable VID:PID (PROTOCOLS.md)
   std::uint16_t product_id = 0x0105;
-  std::uint8_t endpoint = 0x81;  // bulk IN
-  unsigned control_timeout_ms = 200;
-  unsigned bulk_timeout_ms = 1000;  // > one revolution (143 ms at 7 Hz)
+  std::uint8_t endpoint = 0x81;       // bulk IN
+  unsigned control_timeout_ms = 500;  // a loaded host (HIL VM) needed more than 200 ms
+  unsigned bulk_timeout_ms = 1000;    // > one revolution (143 ms at 7 Hz)
 };
 
 class LibusbTransport final : public UsbTransport {
