@@ -258,14 +258,15 @@ ScanOutcome SimCell::scan_stripe(Run& run) {
   std::string why;
   hal::Status st = axis.enable();
   if (st) st = axis.start();
-  if (st) st = ranger.start();
-  // Move to the sweep's start first (not fused), then sweep at the requested speed.
+  // Move to the sweep's start first (not fused; the ranger is off meanwhile so no profile is
+  // ray-cast in vain), then sweep at the requested speed.
   if (st && from != 0.0) st = axis.move_to(from, o.geometry.max_speed_mm_s);
   bool ok = static_cast<bool>(st);
   for (int leg = 0; ok && leg < 2; ++leg) {
     if (leg == 1) {
       assembler.begin_scan();
-      st = axis.move_to(to, speed);
+      st = ranger.start();
+      if (st) st = axis.move_to(to, speed);
       ok = static_cast<bool>(st);
     }
     while (ok && !axis.motion_complete()) {
