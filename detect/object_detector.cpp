@@ -6,6 +6,7 @@
 #include <numbers>
 #include <thread>
 
+#include "detect/object_coverage.hpp"
 #include "detect/object_hypotheses.hpp"
 #include "detect/object_vote.hpp"
 
@@ -13,6 +14,12 @@ namespace rangefit {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// The early stop trusts a leader only when almost no points lie inside it: a part fitted into
+// a larger object (a cone into a cylinder) is found again and again, with ~10% of its points
+// inside, and would otherwise stop the search before the real one turns up. Stricter than
+// max_interior_ratio, which has to allow for noise; a noisy leader only costs the early stop.
+constexpr double kCleanInteriorRatio = 0.02;
 
 double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -33,10 +40,19 @@ bool model_ok(const ObjectModel& model) {
 }
 
 bool options_ok(const ObjectDetectOptions& o) {
-  return o.hypotheses >= 1 && o.trials >= 1 && o.sample_points >= 6 && o.iterations >= 1 &&
-         o.init_iterations >= 1 && o.refine_rounds >= 0 && o.gamma > 0.0 && o.gamma < 1.0 &&
-         o.neighbourhood_factor > 0.0 && o.instances >= 1 && o.batch >= 1 && o.confirmations >= 1 &&
-         o.refine_trim >= 0.0;
+  return o.hypotheses >= 1 && o.compound_hypotheses >= 1 && o.trials >= 1 && o.sample_points >= 6 &&
+         o.iterations >= 1 && o.init_iterations >= 1 && o.refine_rounds >= 0 && o.gamma > 0.0 &&
+         o.gamma < 1.0 && o.neighbourhood_factor > 0.0 && o.instances >= 1 && o.batch >= 1 &&
+         o.confirmations >= 1 && o.refine_trim >= 0.0 && o.max_measure > 0.0 &&
+         o.max_interior_ratio >= 0.0 && o.min_coverage >= 0.0 && o.max_candidates >= 1;
+}
+
+// Confirmation of one hypothesis (see ObjectDetectOptions::max_measure).
+bool plausible(const PartHypothesis& h, const ObjectDetectOptions& o) {
+  const double in = static_cast<double>(h.scores.interior);
+  const double on = static_cast<double>(h.scores.surface);
+  return h.valid && h.scores.measure <= o.max_measure && h.scores.surface >= o.min_surface_points &&
+         in <= o.max_interior_ratio * (in + on);
 }
 
 // Same physical pose: the centres agree to 5% of the smallest size.
@@ -83,12 +99,14 @@ void run_batch(const HypothesisContext& ctx, const Superquadric& part, std::size
 // Hypotheses of one part, stopping early (single-part models) once the vote leader has been
 // found again by `confirmations` hypotheses. Batches are fixed, so the stop is deterministic.
 std::vector<PartHypothesis> search_part(const HypothesisContext& ctx, const Superquadric& part,
-                                        std::size_t part_index, bool allow_early_stop) {
+                                        std::size_t part_index, bool compound,
+                                        const CoverageOptions& cover) {
+  const bool allow_early_stop = !compound && ctx.options->early_stop;
   const ObjectDetectOptions& o = *ctx.options;
   const int threads = o.threads > 0
                           ? o.threads
                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  const std::size_t m = static_cast<std::size_t>(o.hypotheses);
+  const std::size_t m = static_cast<std::size_t>(compound ? o.compound_hypotheses : o.hypotheses);
   std::vector<PartHypothesis> all(m);
   std::size_t done = 0;
   while (done < m) {
@@ -98,7 +116,7 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& ctx, const Supe
     if (!allow_early_stop || done >= m) continue;
     std::vector<PartHypothesis> valid;
     for (std::size_t i = 0; i < done; ++i) {
-      if (all[i].valid) valid.push_back(all[i]);
+      if (plausible(all[i], o)) valid.push_back(all[i]);
     }
     if (valid.empty()) continue;
     const std::vector<int> sums = part_rank_sums(valid, o.selection);
@@ -108,7 +126,14 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& ctx, const Supe
     for (const PartHypothesis& h : valid) {
       if (same_place(h.T_world_part, valid[lead].T_world_part, part)) ++agree;
     }
-    if (agree >= o.confirmations) break;
+    const PartScores& ls = valid[lead].scores;
+    const bool clean = static_cast<double>(ls.interior) <=
+                       kCleanInteriorRatio * static_cast<double>(ls.interior + ls.surface);
+    if (agree >= o.confirmations && clean &&
+        surface_coverage(part, valid[lead].T_world_part, ctx.points, *ctx.tree, cover) >=
+            o.min_coverage) {
+      break;
+    }
   }
   all.resize(done);
   return all;
@@ -122,6 +147,13 @@ double axis_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 double folded(double angle) {
   const double a = std::fmod(std::abs(angle), std::numbers::pi);
   return std::min(a, std::numbers::pi - a);
+}
+
+// A and D of one link for two posed parts (eq. 5.5-5.6).
+std::pair<double, double> link_errors(const PartLink& l, const Eigen::Isometry3d& ti,
+                                      const Eigen::Isometry3d& tj) {
+  return {std::abs(folded(l.angle_rad) - axis_angle(ti.linear().col(2), tj.linear().col(2))),
+          std::abs(l.distance_mm - (ti.translation() - tj.translation()).norm())};
 }
 
 struct Combination {
@@ -147,9 +179,9 @@ std::vector<Combination> vote(const ObjectModel& model,
     for (const PartLink& l : model.links) {
       const Eigen::Isometry3d& ti = hyps[l.first][pick[l.first]].T_world_part;
       const Eigen::Isometry3d& tj = hyps[l.second][pick[l.second]].T_world_part;
-      c.a.push_back(
-          std::abs(folded(l.angle_rad) - axis_angle(ti.linear().col(2), tj.linear().col(2))));
-      c.d.push_back(std::abs(l.distance_mm - (ti.translation() - tj.translation()).norm()));
+      const auto [a, d] = link_errors(l, ti, tj);
+      c.a.push_back(a);
+      c.d.push_back(d);
     }
     combos.push_back(std::move(c));
     std::size_t p = 0;
@@ -166,7 +198,7 @@ std::vector<Combination> vote(const ObjectModel& model,
     }
     if (ok) linked.push_back(c);
   }
-  if (!linked.empty()) combos = std::move(linked);
+  combos = std::move(linked);
   const auto add_ranks = [&](const std::vector<double>& v, bool larger_better) {
     const std::vector<int> r = ranks(v, larger_better);
     for (std::size_t i = 0; i < combos.size(); ++i) combos[i].rank_sum += r[i];
@@ -212,6 +244,44 @@ std::vector<PartHypothesis> best_of(std::vector<PartHypothesis> valid, Selection
   return out;
 }
 
+// Compound models: each part of the chosen combination is refined once more with the points its
+// sibling parts explain left out, best-fitting part first. Each part's hypotheses were refined
+// alone, so points of the head leak into the shaft's trimmed least squares and pull its centre
+// along its axis (the thesis's "false negative along the axis"); explained away, they cannot.
+void refine_jointly(const HypothesisContext& ctx, const ObjectModel& model,
+                    DetectedInstance& inst) {
+  const std::size_t n = model.parts.size();
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return inst.parts[a].scores.measure < inst.parts[b].scores.measure;
+  });
+  const auto siblings = [&](std::size_t p) {
+    std::vector<PlacedPart> out;
+    for (std::size_t q = 0; q < n; ++q) {
+      if (q != p) out.push_back({model.parts[q].shape, inst.parts[q].T_world_part});
+    }
+    return out;
+  };
+  for (std::size_t p : order) {
+    inst.parts[p].T_world_part =
+        refine_pose(ctx, model.parts[p].shape, inst.parts[p].T_world_part, siblings(p));
+  }
+  for (std::size_t p = 0; p < n; ++p) {
+    const int rank_sum = inst.parts[p].scores.rank_sum;
+    inst.parts[p].scores =
+        verify_pose(ctx, model.parts[p].shape, inst.parts[p].T_world_part, siblings(p));
+    inst.parts[p].scores.rank_sum = rank_sum;
+  }
+  for (std::size_t l = 0; l < model.links.size(); ++l) {
+    const PartLink& link = model.links[l];
+    const auto [a, d] = link_errors(link, inst.parts[link.first].T_world_part,
+                                    inst.parts[link.second].T_world_part);
+    inst.link_angle_error_rad[l] = a;
+    inst.link_distance_error_mm[l] = d;
+  }
+}
+
 }  // namespace
 
 const char* to_string(DetectReason reason) {
@@ -226,6 +296,10 @@ const char* to_string(DetectReason reason) {
       return "invalid options";
     case DetectReason::kNoHypothesis:
       return "no hypothesis";
+    case DetectReason::kNotConfirmed:
+      return "not confirmed";
+    case DetectReason::kNotLinked:
+      return "parts not linked";
   }
   return "unknown";
 }
@@ -272,18 +346,24 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
   const KdTree tree(cloud);
   result.time.search_index_ms = ms_since(t0);
 
+  CoverageOptions cover;
+  cover.viewpoint = options.viewpoint;
+  if (result.plane.removed()) cover.removed_plane = result.plane.plane;
+
   // 5.1.2: m hypotheses per part.
   t0 = Clock::now();
   const HypothesisContext ctx{cloud, &tree, &options};
   const bool single = model.parts.size() == 1;
   std::vector<std::vector<PartHypothesis>> hyps(model.parts.size());
+  bool any_valid = false, all_confirmed = true;
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
-    std::vector<PartHypothesis> all =
-        search_part(ctx, model.parts[p].shape, p, single && options.early_stop);
+    std::vector<PartHypothesis> all = search_part(ctx, model.parts[p].shape, p, !single, cover);
     result.hypotheses_evaluated += static_cast<int>(all.size());
     for (PartHypothesis& h : all) {
-      if (h.valid) hyps[p].push_back(std::move(h));
+      any_valid = any_valid || h.valid;
+      if (plausible(h, options)) hyps[p].push_back(std::move(h));
     }
+    all_confirmed = all_confirmed && !hyps[p].empty();
     if (!single) hyps[p] = best_of(std::move(hyps[p]), options.selection, 40);
   }
   result.time.hypotheses_ms = ms_since(t0);
@@ -291,20 +371,36 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
   // Selection: ranked vote (5.1.2) extended by the links (5.1.3), then K distinct instances.
   t0 = Clock::now();
   const std::vector<Combination> combos = vote(model, hyps, options);
+  // Candidates already checked, by part centres: a rejected place is not checked again, and no
+  // part of a new instance may sit where a part of an accepted one does.
+  std::vector<std::vector<Eigen::Vector3d>> rejected, accepted;
+  const auto overlaps = [&](const std::vector<Eigen::Vector3d>& a,
+                            const std::vector<Eigen::Vector3d>& b, bool any) {
+    bool all_same = true, any_same = false;
+    for (std::size_t p = 0; p < a.size(); ++p) {
+      const double r = 0.5 * model.parts[p].shape.min_size();
+      all_same = all_same && (a[p] - b[p]).norm() < r;
+      for (const Eigen::Vector3d& q : b) any_same = any_same || (a[p] - q).norm() < r;
+    }
+    return any ? any_same : all_same;
+  };
   for (const Combination& c : combos) {
     if (static_cast<int>(result.instances.size()) >= options.instances) break;
-    bool duplicate = false;
-    for (const DetectedInstance& prev : result.instances) {
-      for (std::size_t p = 0; p < model.parts.size() && !duplicate; ++p) {
-        const Eigen::Vector3d centre = hyps[p][c.pick[p]].T_world_part.translation();
-        for (const DetectedPart& q : prev.parts) {
-          if ((q.center() - centre).norm() < 0.5 * model.parts[p].shape.min_size()) {
-            duplicate = true;
-          }
-        }
-      }
+    std::vector<Eigen::Vector3d> centres;
+    for (std::size_t p = 0; p < model.parts.size(); ++p) {
+      centres.push_back(hyps[p][c.pick[p]].T_world_part.translation());
     }
-    if (duplicate) continue;
+    const auto same = [&](const std::vector<Eigen::Vector3d>& x) {
+      return overlaps(centres, x, false);
+    };
+    const auto clash = [&](const std::vector<Eigen::Vector3d>& x) {
+      return overlaps(centres, x, true);
+    };
+    if (std::any_of(accepted.begin(), accepted.end(), clash) ||
+        std::any_of(rejected.begin(), rejected.end(), same)) {
+      continue;
+    }
+    if (static_cast<int>(rejected.size() + accepted.size()) >= options.max_candidates) break;
     DetectedInstance inst;
     inst.rank_sum = c.rank_sum;
     inst.link_angle_error_rad = c.a;
@@ -318,10 +414,30 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
       part.scores.rank_sum = c.rank_sum;
       inst.parts.push_back(std::move(part));
     }
+    if (!single) refine_jointly(ctx, model, inst);
+    bool covered = true;
+    for (std::size_t p = 0; p < model.parts.size(); ++p) {
+      DetectedPart& part = inst.parts[p];
+      part.scores.coverage =
+          surface_coverage(model.parts[p].shape, part.T_world_part, cloud, tree, cover);
+      covered = covered && part.scores.coverage >= options.min_coverage;
+    }
+    if (!covered) {
+      rejected.push_back(std::move(centres));
+      continue;
+    }
+    for (std::size_t p = 0; p < model.parts.size(); ++p) centres.push_back(inst.parts[p].center());
+    accepted.push_back(std::move(centres));
     result.instances.push_back(std::move(inst));
   }
   result.time.vote_ms = ms_since(t0);
-  result.reason = result.instances.empty() ? DetectReason::kNoHypothesis : DetectReason::kFound;
+  if (!result.instances.empty()) {
+    result.reason = DetectReason::kFound;
+  } else if (!any_valid) {
+    result.reason = DetectReason::kNoHypothesis;
+  } else {
+    result.reason = all_confirmed ? DetectReason::kNotLinked : DetectReason::kNotConfirmed;
+  }
   result.time.total_ms = ms_since(t_start);
   return result;
 }

@@ -28,23 +28,35 @@ enum class Selection {
 };
 
 struct ObjectDetectOptions {
-  int hypotheses = 10;       // m per part
-  int trials = 10;           // n RANSAC trials per hypothesis
-  int sample_points = 30;    // points of each RANSAC sample (thesis: 20-50)
-  int iterations = 20;       // LM iterations of each fit
-  int init_iterations = 10;  // LM iterations of each of the moment-direction fits (5.1.2)
-  int refine_rounds = 5;     // at most this many refinements "until M stops improving"
+  int hypotheses = 32;           // m, at most: single-part models stop early once confirmed
+  int compound_hypotheses = 12;  // m per part of compound models (always all of them)
+  int trials = 10;               // n RANSAC trials per hypothesis
+  int sample_points = 30;        // points of each RANSAC sample (thesis: 20-50)
+  int iterations = 20;           // LM iterations of each fit
+  int init_iterations = 10;      // LM iterations of each of the moment-direction fits (5.1.2)
+  int refine_rounds = 5;         // at most this many refinements "until M stops improving"
   std::size_t max_refine_points = 1500;  // even subsample of the neighbourhood per refinement
   bool refine_each_trial = false;        // method B/D: refine every trial, not only the best
   // Refinement uses only neighbourhood points with G < 1 + refine_trim (clutter and the remains of
   // other objects stay out of the least squares); 0 uses all of them as the thesis does.
   double refine_trim = 0.6;
-  double gamma = 0.2;                 // surface band of eq. 5.3-5.4
+  double gamma = 0.2;  // surface band of eq. 5.3-5.4
+  // Confirmation (beyond the thesis, whose vote always returns its best hypothesis): a part is
+  // only reported when it fits its points (M <= max_measure) and is not full of points (a
+  // single-view scan sees surfaces, so I <= max_interior_ratio (I + S)). A scene without the
+  // object then gives found() == false instead of the least bad misfit.
+  double max_measure = 0.25;
+  double max_interior_ratio = 0.2;
+  std::size_t min_surface_points = 20;
+  // And the scan holds points on this share of the surface the part shows the sensor
+  // (object_coverage.hpp); checked on the vote's best candidates, occlusion lowers it.
+  double min_coverage = 0.6;
+  int max_candidates = 20;            // candidates checked for coverage before giving up
   double neighbourhood_factor = 1.2;  // r = factor * max(a) for refinement and verification
   Selection selection = Selection::kRankedVote;
-  // Compound models: combinations whose links deviate less than this (A of eq. 5.5, and D of
-  // eq. 5.6 relative to d_k) are voted on first; only if none qualifies are all of them ranked.
-  // Keeps perfect fits of look-alike parts from outvoting a correctly linked object.
+  // Compound models: only combinations whose links deviate less than this (A of eq. 5.5, and D
+  // of eq. 5.6 relative to d_k, plus 5 mm) are voted on; none: not found (kNotLinked). Keeps
+  // perfect fits of look-alike parts from outvoting a correctly linked object.
   double link_angle_tolerance_rad = 0.26;
   double link_distance_tolerance = 0.15;
   int instances = 1;  // K instances wanted, best first, no two sharing a part position
@@ -64,6 +76,8 @@ enum class DetectReason {
   kInvalidModel,    // no parts, invalid part parameters or links to missing parts
   kInvalidOptions,  // non-positive counts or tolerances
   kNoHypothesis,    // no RANSAC sample had enough neighbours to fit
+  kNotConfirmed,    // hypotheses were fitted, but none fits and covers well enough
+  kNotLinked,       // compound model: confirmed parts, but no combination matches the links
 };
 
 const char* to_string(DetectReason reason);
@@ -73,6 +87,7 @@ struct PartScores {
   std::size_t interior = 0;  // I, eq. 5.3
   std::size_t surface = 0;   // S, eq. 5.4
   int rank_sum = 0;          // sum of this part's ranks in the vote
+  double coverage = 0.0;     // share of the visible surface with scan points (object_coverage)
 };
 
 struct DetectedPart {

@@ -28,9 +28,33 @@ double verification_radius(const ObjectDetectOptions& o, const Superquadric& par
   return o.neighbourhood_factor * part.max_size();
 }
 
+// Point filter for the parts already placed: true when one of them explains the point.
+class ExplainedBy {
+ public:
+  ExplainedBy(std::span<const PlacedPart> parts, const ObjectDetectOptions& o)
+      : gate_(1.0 + (o.refine_trim > 0.0 ? o.refine_trim : o.gamma)) {
+    for (const PlacedPart& p : parts) {
+      metrics_.emplace_back(p.shape);
+      inverse_.push_back(p.T_world_part.inverse());
+    }
+  }
+  bool operator()(const Eigen::Vector3d& p) const {
+    for (std::size_t i = 0; i < metrics_.size(); ++i) {
+      if (metrics_[i].value(inverse_[i] * p) < gate_) return true;
+    }
+    return false;
+  }
+
+ private:
+  double gate_;
+  std::vector<SuperquadricMetric> metrics_;
+  std::vector<Eigen::Isometry3d> inverse_;
+};
+
 // Even subsample of the neighbourhood (capped), trimmed to points near or inside the surface.
 std::vector<Eigen::Vector3d> refinement_points(const HypothesisContext& ctx,
                                                const Superquadric& part, const Eigen::Isometry3d& T,
+                                               const ExplainedBy& explained,
                                                std::vector<std::uint32_t>& scratch) {
   const ObjectDetectOptions& o = *ctx.options;
   ctx.tree->radius_search(T.translation(), verification_radius(o, part), scratch);
@@ -45,19 +69,20 @@ std::vector<Eigen::Vector3d> refinement_points(const HypothesisContext& ctx,
   for (double f = 0.0; f < static_cast<double>(scratch.size()); f += stride) {
     const Eigen::Vector3d& p = ctx.points[scratch[static_cast<std::size_t>(f)]];
     if (o.refine_trim > 0.0 && m.value(inv * p) >= 1.0 + o.refine_trim) continue;
+    if (explained(p)) continue;
     out.push_back(p);
   }
   return out;
 }
 
-// Iterative refinement on the full-resolution neighbourhood until M stops improving (5.1.2).
 Eigen::Isometry3d refine(const HypothesisContext& ctx, const Superquadric& part,
-                         Eigen::Isometry3d T, std::vector<std::uint32_t>& scratch) {
+                         Eigen::Isometry3d T, const ExplainedBy& explained,
+                         std::vector<std::uint32_t>& scratch) {
   const ObjectDetectOptions& o = *ctx.options;
   PoseFitOptions fit;
   fit.max_iterations = o.iterations;
   for (int round = 0; round < o.refine_rounds; ++round) {
-    const std::vector<Eigen::Vector3d> sel = refinement_points(ctx, part, T, scratch);
+    const std::vector<Eigen::Vector3d> sel = refinement_points(ctx, part, T, explained, scratch);
     if (sel.size() < kMinPatchPoints) break;
     const double before = measure_of_fit(part, T, sel);
     const PoseFitResult r = fit_pose(part, sel, T, fit);
@@ -79,9 +104,16 @@ std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t a, std::uint64_t b) {
   return s;
 }
 
+Eigen::Isometry3d refine_pose(const HypothesisContext& ctx, const Superquadric& part,
+                              const Eigen::Isometry3d& T, std::span<const PlacedPart> explained) {
+  std::vector<std::uint32_t> scratch;
+  return refine(ctx, part, T, ExplainedBy(explained, *ctx.options), scratch);
+}
+
 PartScores verify_pose(const HypothesisContext& ctx, const Superquadric& part,
-                       const Eigen::Isometry3d& T) {
+                       const Eigen::Isometry3d& T, std::span<const PlacedPart> explained) {
   const ObjectDetectOptions& o = *ctx.options;
+  const ExplainedBy explained_by(explained, o);
   PartScores s;
   std::vector<std::uint32_t> nbr;
   ctx.tree->radius_search(T.translation(), verification_radius(o, part), nbr);
@@ -92,6 +124,7 @@ PartScores verify_pose(const HypothesisContext& ctx, const Superquadric& part,
   double sum_sq = 0.0;
   std::size_t used = 0;
   for (std::uint32_t i : nbr) {
+    if (!explained.empty() && explained_by(ctx.points[i])) continue;
     const double g = m.value(inv * ctx.points[i]);
     if (g < 1.0 - o.gamma) {
       ++s.interior;  // eq. 5.3
@@ -121,6 +154,7 @@ PartHypothesis generate_hypothesis(const HypothesisContext& ctx, const Superquad
   init.short_iterations = o.init_iterations;
   init.full_iterations = o.iterations;
   init.viewpoint = o.viewpoint;
+  const ExplainedBy none({}, o);
   double best_measure = std::numeric_limits<double>::infinity();
   for (int trial = 0; trial < o.trials; ++trial) {
     // A random seed point and a random patch within the smallest size parameter (5.1.2).
@@ -139,7 +173,7 @@ PartHypothesis generate_hypothesis(const HypothesisContext& ctx, const Superquad
     Eigen::Isometry3d T = fit.T_world_part;
     double measure = fit.measure;
     if (o.refine_each_trial) {
-      T = refine(ctx, part, T, nbr);
+      T = refine(ctx, part, T, none, nbr);
       measure = verify_pose(ctx, part, T).measure;
     }
     if (measure < best_measure) {
@@ -149,7 +183,7 @@ PartHypothesis generate_hypothesis(const HypothesisContext& ctx, const Superquad
     }
   }
   if (!best.valid) return best;
-  if (!o.refine_each_trial) best.T_world_part = refine(ctx, part, best.T_world_part, nbr);
+  if (!o.refine_each_trial) best.T_world_part = refine(ctx, part, best.T_world_part, none, nbr);
   best.scores = verify_pose(ctx, part, best.T_world_part);
   return best;
 }

@@ -26,13 +26,27 @@ struct HypothesisContext {
   const ObjectDetectOptions* options = nullptr;
 };
 
+// A part already placed (another part of the same compound object): the points it explains
+// (G < 1 + refine_trim of its own, or 1 + gamma without trimming) stay out of the refinement
+// and scores of the part being fitted, so a head does not drag its shaft towards itself.
+struct PlacedPart {
+  Superquadric shape;
+  Eigen::Isometry3d T_world_part = Eigen::Isometry3d::Identity();
+};
+
 // Deterministic: the same context, part and seed give the same hypothesis.
 PartHypothesis generate_hypothesis(const HypothesisContext& ctx, const Superquadric& part,
                                    std::uint64_t seed);
 
+// Iterative refinement on the full-resolution neighbourhood until M stops improving (5.1.2).
+Eigen::Isometry3d refine_pose(const HypothesisContext& ctx, const Superquadric& part,
+                              const Eigen::Isometry3d& T_world_part,
+                              std::span<const PlacedPart> explained = {});
+
 // M over the refinement selection, I and S over the neighbourhood within the verification radius.
 PartScores verify_pose(const HypothesisContext& ctx, const Superquadric& part,
-                       const Eigen::Isometry3d& T_world_part);
+                       const Eigen::Isometry3d& T_world_part,
+                       std::span<const PlacedPart> explained = {});
 
 // splitmix64: seeds per hypothesis from (seed, part, index), and the samplers' generator.
 std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t a, std::uint64_t b);

@@ -23,23 +23,34 @@ struct Linearisation {
 
 Linearisation linearise(const SuperquadricMetric& m, const Eigen::Isometry3d& T,
                         std::span<const Eigen::Vector3d> points) {
+  // Accumulated for the increment with dt in the part frame, where dq/d(dt) = -I, then turned
+  // into the world-frame dt once: J_world = J_part diag(R^T, I). Only the upper triangle of
+  // J^T J is summed per point (21 products instead of 36).
   Linearisation lin;
   const Eigen::Matrix3d R = T.linear();
   const Eigen::Matrix3d Rt = R.transpose();
   const Eigen::Vector3d t = T.translation();
   Eigen::Vector3d grad;
   Vector6d j;
+  Matrix6d& a = lin.jtj;
   for (const Eigen::Vector3d& p : points) {
     const Eigen::Vector3d q = Rt * (p - t);
     const double r = m.value_and_gradient(q, grad) - 1.0;
-    // q = exp(-[w]x) R^T (p - t - dt): dq/d(dt) = -R^T, dq/dw = [q]x, so dr/dw = (grad x q)^T.
-    j.head<3>() = -(R * grad);
+    // q = exp(-[w]x) (R^T (p - t) - dt): dr/d(dt) = -grad^T, dr/dw = (grad x q)^T.
+    j.head<3>() = -grad;
     j.tail<3>() = grad.cross(q);
     lin.cost += 0.5 * r * r;
-    lin.jtj.selfadjointView<Eigen::Upper>().rankUpdate(j);
+    for (int c = 0; c < 6; ++c) {
+      for (int k = 0; k <= c; ++k) a(k, c) += j[k] * j[c];
+    }
     lin.g += j * r;
   }
-  lin.jtj.triangularView<Eigen::StrictlyLower>() = lin.jtj.transpose();
+  a.triangularView<Eigen::StrictlyLower>() = a.transpose();
+  // Back to the world-frame translation increment: B = diag(R, I), A <- B A B^T, g <- B g.
+  a.topLeftCorner<3, 3>() = R * a.topLeftCorner<3, 3>() * Rt;
+  a.topRightCorner<3, 3>() = R * a.topRightCorner<3, 3>();
+  a.bottomLeftCorner<3, 3>() = a.topRightCorner<3, 3>().transpose();
+  lin.g.head<3>() = R * lin.g.head<3>();
   return lin;
 }
 

@@ -13,12 +13,12 @@ constexpr double kTinyRatio = 1e-12;
 // G saturates here instead of overflowing (finite points farther than ~1e150 part sizes).
 constexpr double kMaxScale = 1e150;
 
-double sign_of(double v) { return v < 0.0 ? -1.0 : 1.0; }
-
 // Signed power used by the explicit form (eq. 2.14).
-double spow(double c, double e) { return sign_of(c) * std::pow(std::abs(c), e); }
+double spow(double c, double e) { return std::copysign(std::pow(std::abs(c), e), c); }
 
-double integer_power(double x, int n) {
+}  // namespace
+
+double SuperquadricMetric::Power::integer_power(double x, int n) {
   double r = 1.0;
   while (n > 0) {
     if (n & 1) r *= x;
@@ -27,8 +27,6 @@ double integer_power(double x, int n) {
   }
   return r;
 }
-
-}  // namespace
 
 double Superquadric::min_size() const { return std::min({a1, a2, a3}); }
 double Superquadric::max_size() const { return std::max({a1, a2, a3}); }
@@ -40,10 +38,6 @@ bool Superquadric::valid() const {
   };
   return finite_pos(a1) && finite_pos(a2) && finite_pos(a3) && in(eps1, 0.1, 2.0) &&
          in(eps2, 0.1, 2.0) && in(kx, -1.0, 1.0) && in(ky, -1.0, 1.0);
-}
-
-double SuperquadricMetric::Power::operator()(double x) const {
-  return n >= 0 ? integer_power(x, n) : std::pow(x, e);
 }
 
 SuperquadricMetric::SuperquadricMetric(const Superquadric& sq) : sq_(sq) {
@@ -58,50 +52,69 @@ SuperquadricMetric::SuperquadricMetric(const Superquadric& sq) : sq_(sq) {
   p_a_ = make(sq.eps2 / sq.eps1);
   p_z_ = make(2.0 / sq.eps1);
   p_g_ = make(sq.eps1);
+  inv_a1_ = 1.0 / sq.a1;
+  inv_a2_ = 1.0 / sq.a2;
+  inv_a3_ = 1.0 / sq.a3;
+  tapered_ = sq.kx != 0.0 || sq.ky != 0.0;
 }
 
 double SuperquadricMetric::value(const Eigen::Vector3d& p) const {
-  Eigen::Vector3d unused;
-  return value_and_gradient(p, unused);
+  return evaluate<false>(p, nullptr);
 }
 
 double SuperquadricMetric::value_and_gradient(const Eigen::Vector3d& p,
                                               Eigen::Vector3d& gradient) const {
-  gradient.setZero();
-  // Undo eq. 2.19-2.21: X = fx(z) x, Y = fy(z) y, Z = z.
-  const double fx_raw = 1.0 + sq_.kx / sq_.a3 * p.z();
-  const double fy_raw = 1.0 + sq_.ky / sq_.a3 * p.z();
-  const double fx = std::max(fx_raw, kMinTaperFactor);
-  const double fy = std::max(fy_raw, kMinTaperFactor);
-  const double x = p.x() / fx, y = p.y() / fy, z = p.z();
-  const double nx = std::abs(x) / sq_.a1, ny = std::abs(y) / sq_.a2, nz = std::abs(z) / sq_.a3;
-  const double s = std::max({nx, ny, nz});
+  return evaluate<true>(p, &gradient);
+}
+
+template <bool kGradient>
+double SuperquadricMetric::evaluate(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const {
+  if constexpr (kGradient) gradient->setZero();
+  // Undo eq. 2.19-2.21: X = fx(z) x, Y = fy(z) y, Z = z (skipped for untapered parts).
+  double fx_raw = 1.0, fy_raw = 1.0, fx = 1.0, fy = 1.0, x = p.x(), y = p.y();
+  const double z = p.z();
+  if (tapered_) {
+    fx_raw = 1.0 + sq_.kx / sq_.a3 * z;
+    fy_raw = 1.0 + sq_.ky / sq_.a3 * z;
+    fx = std::max(fx_raw, kMinTaperFactor);
+    fy = std::max(fy_raw, kMinTaperFactor);
+    x /= fx;
+    y /= fy;
+  }
+  const double nx = std::abs(x) * inv_a1_, ny = std::abs(y) * inv_a2_, nz = std::abs(z) * inv_a3_;
+  const double s = std::max(std::max(nx, ny), nz);
   if (!(s > 0.0)) return 0.0;  // the centre (or NaN input, which gives 0 rather than NaN)
-  if (!std::isfinite(s) || s > kMaxScale) return kMaxScale * kMaxScale;
+  if (!(s <= kMaxScale)) return kMaxScale * kMaxScale;  // also catches infinity
   // Eq. 2.15 on the scaled point: every term is in [0, 1], F' in [1, 1 + 2^(eps2/eps1)].
-  const double sx = nx / s, sy = ny / s, sz = nz / s;
+  const double inv_s = 1.0 / s;
+  const double sx = nx * inv_s, sy = ny * inv_s, sz = nz * inv_s;
   const double ax = p_xy_(sx), ay = p_xy_(sy);
   const double a = ax + ay;
   const double u = a > 0.0 ? p_a_(a) : 0.0;
   const double v = p_z_(sz);
   const double f = u + v;
   const double g = s * s * p_g_(f);  // eq. 5.1: G = F^eps1 = s^2 F'^eps1
-  // dG/dx = 2 G (u/F)(ax/A) / x and dG/dz = 2 G (v/F) / z, written with the scaled terms.
-  const double gx = (a > 0.0 && sx > kTinyRatio)
-                        ? sign_of(x) * 2.0 * g * (u / f) * (ax / a) / (sx * s * sq_.a1)
-                        : 0.0;
-  const double gy = (a > 0.0 && sy > kTinyRatio)
-                        ? sign_of(y) * 2.0 * g * (u / f) * (ay / a) / (sy * s * sq_.a2)
-                        : 0.0;
-  const double gz = sz > kTinyRatio ? sign_of(z) * 2.0 * g * (v / f) / (sz * s * sq_.a3) : 0.0;
-  // Chain rule through the inverse taper: x = X / fx(Z), dx/dZ = -x kx / (a3 fx).
-  const double dx_dz = fx_raw < kMinTaperFactor ? 0.0 : -x * sq_.kx / (sq_.a3 * fx);
-  const double dy_dz = fy_raw < kMinTaperFactor ? 0.0 : -y * sq_.ky / (sq_.a3 * fy);
-  gradient.x() = gx / fx;
-  gradient.y() = gy / fy;
-  gradient.z() = gz + gx * dx_dz + gy * dy_dz;
-  if (!gradient.allFinite()) gradient.setZero();
-  return g;
+  if constexpr (!kGradient) {
+    return g;
+  } else {
+    // dG/dx = 2 G (u/F)(ax/A) / x and dG/dz = 2 G (v/F) / z (x, z unscaled; |x| = sx s a1).
+    const double two_g_f = 2.0 * g / f;
+    const double gu = a > 0.0 ? two_g_f * u / a : 0.0;
+    const double gx = sx > kTinyRatio ? gu * ax / x : 0.0;
+    const double gy = sy > kTinyRatio ? gu * ay / y : 0.0;
+    const double gz = sz > kTinyRatio ? two_g_f * v / z : 0.0;
+    Eigen::Vector3d& grad = *gradient;
+    if (!tapered_) {
+      grad = Eigen::Vector3d(gx, gy, gz);
+    } else {
+      // Chain rule through the inverse taper: x = X / fx(Z), dx/dZ = -x kx / (a3 fx).
+      const double dx_dz = fx_raw < kMinTaperFactor ? 0.0 : -x * sq_.kx / (sq_.a3 * fx);
+      const double dy_dz = fy_raw < kMinTaperFactor ? 0.0 : -y * sq_.ky / (sq_.a3 * fy);
+      grad = Eigen::Vector3d(gx / fx, gy / fy, gz + gx * dx_dz + gy * dy_dz);
+    }
+    if (!grad.allFinite()) grad.setZero();
+    return g;
+  }
 }
 
 double metric(const Superquadric& sq, const Eigen::Vector3d& p_part) {

@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cmath>
 
 namespace rangefit {
 
@@ -44,10 +45,38 @@ class SuperquadricMetric {
   struct Power {
     double e = 1.0;
     int n = -1;  // >= 0: e is this integer
-    double operator()(double x) const;
+    // Inline: the pose fit evaluates four of these per point and iteration.
+    double operator()(double x) const {
+      // The exponents of the usual shapes (eps 0.1, 0.5, 1, 2) multiplied out without a loop;
+      // x^e as exp(e log x) for the rest (x > 0 here), cheaper than the general pow().
+      switch (n) {
+        case -1:
+          return x > 0.0 ? std::exp(e * std::log(x)) : std::pow(x, e);
+        case 1:
+          return x;
+        case 2:
+          return x * x;
+        case 10: {
+          const double x2 = x * x, x4 = x2 * x2;
+          return x4 * x4 * x2;
+        }
+        case 20: {
+          const double x2 = x * x, x4 = x2 * x2, x10 = x4 * x4 * x2;
+          return x10 * x10;
+        }
+        default:
+          return integer_power(x, n);
+      }
+    }
+    static double integer_power(double x, int n);
   };
+  template <bool kGradient>
+  double evaluate(const Eigen::Vector3d& p_part, Eigen::Vector3d* gradient) const;
+
   Superquadric sq_;
   Power p_xy_, p_a_, p_z_, p_g_;  // 2/eps2, eps2/eps1, 2/eps1, eps1
+  double inv_a1_ = 1.0, inv_a2_ = 1.0, inv_a3_ = 1.0;
+  bool tapered_ = false;
 };
 
 // G = F^eps1 (eq. 2.15 with tapering undone, raised to eps1 as in eq. 5.1) at a point given in

@@ -18,7 +18,7 @@ namespace {
 struct ObjectArgs {
   std::string cloud;
   std::string model;
-  int hypotheses = 10;
+  int hypotheses = 0;  // 0: the detector's defaults (32 with early stop, 12 per compound part)
   int trials = 10;
   int instances = 1;
   std::uint64_t seed = 1;
@@ -53,7 +53,8 @@ nlohmann::json to_json(const ObjectModel& model, const ObjectDetectResult& r) {
                         {{"M", p.scores.measure},
                          {"I", p.scores.interior},
                          {"S", p.scores.surface},
-                         {"rank_sum", p.scores.rank_sum}}}});
+                         {"rank_sum", p.scores.rank_sum},
+                         {"coverage", p.scores.coverage}}}});
     }
     instances.push_back({{"parts", parts},
                          {"rank_sum", inst.rank_sum},
@@ -81,7 +82,7 @@ void print_text(const ObjectModel& model, const ObjectDetectResult& r) {
       std::cout << "  [" << i << "] " << p.name << " centre " << c.x() << " " << c.y() << " "
                 << c.z() << " mm, z-axis " << z.x() << " " << z.y() << " " << z.z() << ", M "
                 << p.scores.measure << " I " << p.scores.interior << " S " << p.scores.surface
-                << "\n";
+                << " coverage " << p.scores.coverage << "\n";
     }
   }
 }
@@ -97,7 +98,7 @@ int run(const ObjectArgs& a) {
     return kExitBadInput;
   }
   ObjectDetectOptions o;
-  o.hypotheses = a.hypotheses;
+  if (a.hypotheses > 0) o.hypotheses = o.compound_hypotheses = a.hypotheses;
   o.trials = a.trials;
   o.instances = a.instances;
   o.seed = a.seed;
@@ -128,7 +129,9 @@ void add_object_command(CLI::App& app, int* exit_code) {
   cmd->add_option("--model", args->model, "object model file (TOML, see data/models)")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("--hypotheses", args->hypotheses, "m: pose hypotheses per part")
+  cmd->add_option("--hypotheses", args->hypotheses,
+                  "m: pose hypotheses per part (default: up to 32, "
+                  "stopping once confirmed; 12 per part of compound models)")
       ->check(CLI::Range(1, 10000));
   cmd->add_option("--trials", args->trials, "n: RANSAC trials per hypothesis")
       ->check(CLI::Range(1, 10000));

@@ -56,6 +56,8 @@ ObjectDetectOptions ours(const Scene& s, std::uint64_t seed) {
   return o;
 }
 
+ObjectDetectOptions method(char which, const Scene& s);
+
 void BM_PoseFit50Points(benchmark::State& state) {
   const Superquadric cyl = test::cylinder_model();
   const Eigen::Isometry3d truth = test::pose_from_axis({100, 50, 60}, {0.3, -0.2, 0.9});
@@ -95,6 +97,23 @@ BENCHMARK(BM_DetectFig518)
     ->Repetitions(5)
     ->ReportAggregatesOnly(true);
 
+// Baseline in the same run: the thesis's method C (10 hypotheses x 10 trials, ranked vote).
+void BM_DetectFig518MethodC(benchmark::State& state) {
+  const Scene& s = fig_scene();
+  const ObjectModel model = fig_model(static_cast<int>(state.range(0)));
+  ObjectDetectOptions o = method('C', s);
+  for (auto _ : state) {
+    ++o.seed;
+    benchmark::DoNotOptimize(detect_object(model, s.rendered.cloud.points, o));
+  }
+  state.SetLabel(model.name + ", method C");
+}
+BENCHMARK(BM_DetectFig518MethodC)
+    ->DenseRange(0, 3)
+    ->Unit(benchmark::kMillisecond)
+    ->Repetitions(5)
+    ->ReportAggregatesOnly(true);
+
 void BM_DetectMallet(benchmark::State& state) {
   const Scene& s = mallet_scene();
   std::uint64_t seed = 1;
@@ -105,6 +124,20 @@ void BM_DetectMallet(benchmark::State& state) {
   state.SetLabel(std::to_string(s.rendered.cloud.size()) + " points");
 }
 BENCHMARK(BM_DetectMallet)
+    ->Unit(benchmark::kMillisecond)
+    ->Repetitions(5)
+    ->ReportAggregatesOnly(true);
+
+void BM_DetectMalletMethodC(benchmark::State& state) {
+  const Scene& s = mallet_scene();
+  ObjectDetectOptions o = method('C', s);
+  for (auto _ : state) {
+    ++o.seed;
+    benchmark::DoNotOptimize(detect_object(test::mallet_model(), s.rendered.cloud.points, o));
+  }
+  state.SetLabel("method C");
+}
+BENCHMARK(BM_DetectMalletMethodC)
     ->Unit(benchmark::kMillisecond)
     ->Repetitions(5)
     ->ReportAggregatesOnly(true);
@@ -166,21 +199,27 @@ Stats run_seeds(const ObjectModel& model, const Scene& s, std::size_t truth, boo
   return st;
 }
 
+// TP rate and median time of ours, and of the thesis's method C (hierarchical RANSAC with the
+// ranked vote, 10 x 10) in the same run as the time baseline.
 void print_tp(int seeds) {
   std::printf("True positives over %d seeds (centre < 3 mm, axis < 5 deg except the sphere)\n",
               seeds);
-  std::printf("%-10s %8s %8s %12s\n", "object", "points", "TP", "median ms");
+  std::printf("%-10s %8s %8s %10s | %8s %10s | %9s\n", "object", "points", "TP", "median ms",
+              "C: TP", "median ms", "ours / C");
+  const auto row = [&](const char* name, const ObjectModel& m, const Scene& s, std::size_t truth,
+                       bool axis) {
+    Stats a = run_seeds(m, s, truth, axis, seeds, ours(s, 1));
+    Stats c = run_seeds(m, s, truth, axis, seeds, method('C', s));
+    const double ma = a.median_ms(), mc = c.median_ms();
+    std::printf("%-10s %8zu %7.1f%% %10.1f | %7.1f%% %10.1f | %9.2f\n", name,
+                s.rendered.cloud.size(), 100.0 * a.tp / seeds, ma, 100.0 * c.tp / seeds, mc,
+                ma / mc);
+  };
   for (int i = 0; i < 4; ++i) {
     const ObjectModel m = fig_model(i);
-    Stats st =
-        run_seeds(m, fig_scene(), static_cast<std::size_t>(i), i != 2, seeds, ours(fig_scene(), 1));
-    std::printf("%-10s %8zu %7.1f%% %12.1f\n", m.name.c_str(), fig_scene().rendered.cloud.size(),
-                100.0 * st.tp / seeds, st.median_ms());
+    row(m.name.c_str(), m, fig_scene(), static_cast<std::size_t>(i), i != 2);
   }
-  Stats st =
-      run_seeds(test::mallet_model(), mallet_scene(), 0, true, seeds, ours(mallet_scene(), 1));
-  std::printf("%-10s %8zu %7.1f%% %12.1f\n", "mallet", mallet_scene().rendered.cloud.size(),
-              100.0 * st.tp / seeds, st.median_ms());
+  row("mallet", test::mallet_model(), mallet_scene(), 0, true);
 }
 
 // Thesis 5.2.2 methods as detector configurations (20 LM iterations each, no trimming, every
@@ -190,19 +229,25 @@ ObjectDetectOptions method(char which, const Scene& s) {
   if (which == 'O') return o;
   o.refine_trim = 0.0;
   o.early_stop = false;
+  // The thesis's vote always returns its best hypothesis: no confirmation thresholds.
+  o.max_measure = 1e300;
+  o.max_interior_ratio = 1.0;
+  o.min_surface_points = 0;
+  o.min_coverage = 0.0;
   switch (which) {
     case 'A':  // classical RANSAC: 100 samples, best M, one final refinement
-      o.hypotheses = 1, o.trials = 100, o.selection = Selection::kMeasure;
+      o.hypotheses = o.compound_hypotheses = 1, o.trials = 100;
+      o.selection = Selection::kMeasure;
       break;
     case 'B':  // 100 samples, each refined on full resolution, best M
-      o.hypotheses = 1, o.trials = 100, o.refine_each_trial = true,
+      o.hypotheses = o.compound_hypotheses = 1, o.trials = 100, o.refine_each_trial = true;
       o.selection = Selection::kMeasure;
       break;
     case 'C':  // hierarchical: 10 hypotheses of 10 trials, ranked vote over M, I, S
-      o.hypotheses = 10, o.trials = 10;
+      o.hypotheses = o.compound_hypotheses = 10, o.trials = 10;
       break;
     default:  // 'D': 100 hypotheses of one sample each, refined, ranked vote
-      o.hypotheses = 100, o.trials = 1;
+      o.hypotheses = o.compound_hypotheses = 100, o.trials = 1;
       break;
   }
   return o;

@@ -12,7 +12,11 @@ using test::Scene;
 // Reduced resolution (~50,000 points) and a few seeds keep the suite fast; the benchmark runs
 // the full 140,000-point scene over 100 seeds.
 constexpr double kScale = 0.6;
+#if defined(__SANITIZE_ADDRESS__)
+constexpr int kSeeds = 2;  // ASan+UBSan runs ~10x slower; the Release build runs them all
+#else
 constexpr int kSeeds = 5;
+#endif
 
 const Scene& fig_scene() {
   static const Scene s = test::fig_5_18_scene(0.0, 1, kScale);
@@ -57,26 +61,49 @@ TEST(ObjectDetector, FindsTheTaperedConeForAlmostEverySeed) {
             kSeeds - 1);
 }
 
-// The link vote picks the real mallet (head and shaft) over the look-alikes. Known limit, see
-// the issue note: the shaft centre is biased ~13 mm along its axis towards the head (head points
-// enter the shaft's trimmed refinement), the thesis's "false negative along the axis"; so the
-// shaft is checked for axis and off-axis position only.
-TEST(ObjectDetector, PicksTheLinkedMalletAmongLookAlikes) {
+// The link vote picks the real mallet (head and shaft) over the look-alikes, and the joint
+// refinement keeps the head's points out of the shaft's fit: both parts are true positives
+// (before it, the shaft centre sat ~13 mm along its axis towards the head).
+TEST(ObjectDetector, FindsBothPartsOfTheLinkedMalletAmongLookAlikes) {
   const Scene& s = mallet_scene();
-  const Eigen::Vector3d shaft_axis = s.parts[1].T_world_part.linear().col(2);
   for (int seed = 1; seed <= kSeeds; ++seed) {
     const ObjectDetectResult r = detect_object(test::mallet_model(), s.rendered.cloud.points,
                                                options_for(s, static_cast<std::uint64_t>(seed)));
-    ASSERT_TRUE(r.found());
+    ASSERT_TRUE(r.found()) << to_string(r.reason);
     ASSERT_EQ(r.instances[0].parts.size(), 2u);
     EXPECT_EQ(r.instances[0].parts[1].name, "shaft");
     EXPECT_TRUE(test::true_positive(r.instances[0].parts[0].T_world_part, s.parts[0])) << seed;
-    const DetectedPart& shaft = r.instances[0].parts[1];
-    const Eigen::Vector3d d = shaft.center() - s.parts[1].T_world_part.translation();
-    EXPECT_LT((d - d.dot(shaft_axis) * shaft_axis).norm(), 3.0) << seed;
-    EXPECT_LT(std::abs(d.dot(shaft_axis)), 20.0) << seed;
-    EXPECT_GT(std::abs(shaft.z_axis().dot(shaft_axis)), std::cos(5.0 * std::numbers::pi / 180.0));
+    EXPECT_TRUE(test::true_positive(r.instances[0].parts[1].T_world_part, s.parts[1])) << seed;
+    EXPECT_LT(r.instances[0].link_distance_error_mm[0], 3.0);
   }
+}
+
+// The daemon's demo asks for models that are not on the table: the detector must say so rather
+// than return its least bad misfit (a mallet head on the cylinder without its shaft, a rod along
+// an edge, a small ball in a corner). Known limit: a flat 80 x 80 x 20 mm slab laid against one
+// face of the 50 x 50 x 100 mm box covers enough of its visible surface to be confirmed.
+TEST(ObjectDetector, ReportsNotFoundForObjectsThatAreNotInTheScene) {
+  const Scene& s = fig_scene();
+  const ObjectModel absent[] = {test::mallet_model(),
+                                test::single("rod", {12, 10, 120, 0.1, 1.0, 0, 0}),
+                                test::single("ball", {20, 20, 20, 1.0, 1.0, 0, 0})};
+  for (const ObjectModel& model : absent) {
+    for (int seed = 1; seed <= 2; ++seed) {
+      const ObjectDetectResult r = detect_object(model, s.rendered.cloud.points,
+                                                 options_for(s, static_cast<std::uint64_t>(seed)));
+      EXPECT_FALSE(r.found()) << model.name << " seed " << seed << " at "
+                              << r.instances[0].parts[0].center().transpose();
+      EXPECT_TRUE(r.reason == DetectReason::kNotConfirmed || r.reason == DetectReason::kNotLinked)
+          << model.name << ": " << to_string(r.reason);
+    }
+  }
+  // Without the viewpoint the visible side is inferred from the points: still not found.
+  ObjectDetectOptions o = options_for(s, 1);
+  o.viewpoint.reset();
+  EXPECT_FALSE(detect_object(absent[1], s.rendered.cloud.points, o).found());
+  EXPECT_FALSE(detect_object(absent[2], s.rendered.cloud.points, o).found());
+  EXPECT_TRUE(
+      detect_object(test::single("box", test::box_model()), s.rendered.cloud.points, o).found());
 }
 
 TEST(ObjectDetector, ReportsTheRemovedTablePlane) {
@@ -105,30 +132,32 @@ TEST(ObjectDetector, ResultDependsOnlyOnTheSeedNotOnThreads) {
 }
 
 TEST(ObjectDetector, ReturnsSeveralInstancesWithoutDuplicates) {
-  // Two equal spheres: both are found once each.
+  // Three equal cylinders standing and lying on the table: asked for three, each is found once.
   std::vector<sim::ScenePart> parts = {
-      {"a", test::sphere_model(), test::pose_from_axis({60, 100, 50}, {0, 0, 1})},
-      {"b", test::sphere_model(), test::pose_from_axis({230, 120, 50}, {0, 0, 1})}};
+      {"a", test::cylinder_model(), test::pose_from_axis({40, 60, 50}, {0, 0, 1})},
+      {"b", test::cylinder_model(), test::pose_from_axis({200, 40, 30}, {1, 0.3, 0})},
+      {"c", test::cylinder_model(), test::pose_from_axis({150, 200, 50}, {0.2, 0, 1})}};
   sim::SceneView view = test::table_view();
   view.width = 264;
   view.height = 198;
   const Scene s = test::render(parts, view);
+  const ObjectModel model = test::single("cylinder", test::cylinder_model());
   ObjectDetectOptions o = options_for(s, 3);
-  o.instances = 2;
-  o.hypotheses = 16;
+  o.instances = 3;
   o.early_stop = false;
-  const ObjectDetectResult r =
-      detect_object(test::single("sphere", test::sphere_model()), s.rendered.cloud.points, o);
-  ASSERT_EQ(r.instances.size(), 2u);
-  const Eigen::Vector3d c0 = r.instances[0].parts[0].center(),
-                        c1 = r.instances[1].parts[0].center();
-  EXPECT_GT((c0 - c1).norm(), 100.0);
-  for (const auto& inst : r.instances) {
-    const Eigen::Vector3d c = inst.parts[0].center();
-    EXPECT_LT(std::min((c - parts[0].T_world_part.translation()).norm(),
-                       (c - parts[1].T_world_part.translation()).norm()),
-              3.0);
+  const ObjectDetectResult r = detect_object(model, s.rendered.cloud.points, o);
+  ASSERT_EQ(r.instances.size(), 3u);
+  std::vector<int> hits(parts.size(), 0);
+  for (const DetectedInstance& inst : r.instances) {
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      if (test::true_positive(inst.parts[0].T_world_part, parts[k])) ++hits[k];
+    }
   }
+  EXPECT_EQ(hits, std::vector<int>({1, 1, 1}));
+  // Asked for more than there are: still no duplicate, and the extra one is not invented.
+  o.instances = 5;
+  const ObjectDetectResult more = detect_object(model, s.rendered.cloud.points, o);
+  EXPECT_EQ(more.instances.size(), 3u);
 }
 
 TEST(ObjectDetector, EmptyCloudInvalidModelAndOptionsAreReasonsNotCrashes) {
