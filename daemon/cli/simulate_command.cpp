@@ -3,6 +3,7 @@
 #include <cmath>
 #include <exception>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -67,62 +68,70 @@ nlohmann::json health_json(const hal::Device& d) {
           {"message", h.message}};
 }
 
-// Each run_* scans the scene, fuses the streams and returns the scan in the sensor's world frame
-// plus the devices' health.
-fusion::FusedScan run_css(const sim::Scene& scene, const sim::RayCaster& caster,
-                          const SimulateArgs& a, nlohmann::json& health) {
-  sim::SimClock clock;
-  sim::CssScanOptions o;
-  o.seed = a.seed;
-  if (!a.exact) o.css_faults.range_noise_sigma_mm = 0.06;  // thesis 4.2.1: 60 um in depth
-  sim::CssRig rig(scene, caster, o, clock);
-  std::vector<hal::CssRevolution> revs;
-  std::vector<hal::JointSample> joints;
-  rig.css().start();
-  rig.joint().start();
-  while (clock.now() < rig.scan_end() + milliseconds(300)) {
-    rig.css().read(revs, milliseconds(100));
-    rig.joint().read(joints, milliseconds(0));
-  }
-  health = {health_json(rig.css()), health_json(rig.joint())};
-  fusion::CssFusionConfig config;
-  config.geometry = o.geometry;
-  config.deflection_rad = o.deflection_rad;
-  return fusion::fuse_css_scan(config, revs, joints);
-}
-
-fusion::FusedScan run_stripe(const sim::Scene& scene, const sim::RayCaster& caster,
-                             const SimulateArgs& a, nlohmann::json& health) {
-  sim::SimClock clock;
-  sim::StripeCellOptions o;
-  o.seed = a.seed;
-  o.quantise = !a.exact;
-  sim::StripeCell cell(scene, caster, o, clock);
-  fusion::StripeCellFusionConfig config;
-  config.geometry = o.geometry;
-  fusion::StripeCellAssembler assembler(config);
+// Streams a simulated sensor and the device that moves it into the sensor's assembler, as the
+// frames arrive, until `running` turns false: the one scan loop of every sensor.
+template <class Frame, class Pose, class Assembler, class AddFrame, class AddPose>
+fusion::FusedScan stream(hal::SampleSource<Frame>& sensor, hal::SampleSource<Pose>& motion,
+                         Assembler& assembler, AddFrame add_frame, AddPose add_pose,
+                         const std::function<bool()>& running, nlohmann::json& health) {
   assembler.begin_scan();
-  cell.axis().enable();
-  cell.axis().start();
-  cell.ranger().start();
-  cell.axis().move_to(o.geometry.axis_travel_mm, o.geometry.max_speed_mm_s);
-  std::vector<hal::RangerProfile> profiles;
-  std::vector<hal::AxisSample> axis;
-  while (!cell.axis().motion_complete()) {
-    profiles.clear();
-    axis.clear();
-    cell.axis().read(axis, milliseconds(100));
-    cell.ranger().read(profiles, milliseconds(0));
-    for (const auto& s : axis) assembler.add_axis(s);
-    for (const auto& p : profiles) assembler.add_profile(p);
+  sensor.start();
+  motion.start();
+  std::vector<Frame> frames;
+  std::vector<Pose> poses;
+  while (running()) {
+    frames.clear();
+    poses.clear();
+    motion.read(poses, milliseconds(100));
+    sensor.read(frames, milliseconds(0));
+    for (const auto& p : poses) add_pose(assembler, p);
+    for (const auto& f : frames) add_frame(assembler, f);
   }
-  health = {health_json(cell.ranger()), health_json(cell.axis())};
+  health = {health_json(sensor), health_json(motion)};
   return assembler.finish();
 }
 
-fusion::FusedScan run_pantilt(const sim::Scene& scene, const sim::RayCaster& caster,
-                              const SimulateArgs& a, nlohmann::json& health) {
+// Scans the scene with the chosen sensor; returns the scan in the sensor's world frame, the
+// pose of that frame in the scene and the devices' health.
+fusion::FusedScan scan_scene(const sim::Scene& scene, const sim::RayCaster& caster,
+                             const SimulateArgs& a, Eigen::Isometry3d& T_scene_world,
+                             nlohmann::json& health) {
   sim::SimClock clock;
+  const auto add_profile = [](auto& assembler, const hal::RangerProfile& p) {
+    assembler.add_profile(p);
+  };
+  if (a.sensor == "css") {
+    sim::CssScanOptions o;
+    o.seed = a.seed;
+    if (!a.exact) o.css_faults.range_noise_sigma_mm = 0.06;  // thesis 4.2.1: 60 um in depth
+    sim::CssRig rig(scene, caster, o, clock);
+    fusion::CssFusionConfig config;
+    config.geometry = o.geometry;
+    config.deflection_rad = o.deflection_rad;
+    fusion::CssAssembler assembler(config);
+    T_scene_world = scene.mounts.T_scene_css;
+    return stream(
+        rig.css(), rig.joint(), assembler,
+        [](fusion::CssAssembler& f, const hal::CssRevolution& r) { f.add_revolution(r); },
+        [](fusion::CssAssembler& f, const hal::JointSample& j) { f.add_joint(j); },
+        [&] { return clock.now() < rig.scan_end() + milliseconds(300); }, health);
+  }
+  if (a.sensor == "stripe") {
+    sim::StripeCellOptions o;
+    o.seed = a.seed;
+    o.quantise = !a.exact;
+    sim::StripeCell cell(scene, caster, o, clock);
+    fusion::StripeCellFusionConfig config;
+    config.geometry = o.geometry;
+    fusion::StripeCellAssembler assembler(config);
+    cell.axis().enable();
+    cell.axis().move_to(o.geometry.axis_travel_mm, o.geometry.max_speed_mm_s);
+    T_scene_world = scene.mounts.T_scene_stripe;
+    return stream(
+        cell.ranger(), cell.axis(), assembler, add_profile,
+        [](fusion::StripeCellAssembler& f, const hal::AxisSample& s) { f.add_axis(s); },
+        [&] { return !cell.axis().motion_complete(); }, health);
+  }
   sim::PanTiltOptions o;
   o.seed = a.seed;
   o.quantise = !a.exact;
@@ -130,39 +139,19 @@ fusion::FusedScan run_pantilt(const sim::Scene& scene, const sim::RayCaster& cas
   fusion::PanTiltFusionConfig config;
   config.geometry = o.geometry;
   fusion::PanTiltAssembler assembler(config);
-  assembler.begin_scan();
-  head.angles().start();
-  head.ranger().start();
-  std::vector<hal::RangerProfile> profiles;
-  std::vector<hal::PanTiltSample> angles;
-  while (clock.now() < head.sweep_end()) {
-    profiles.clear();
-    angles.clear();
-    head.angles().read(angles, milliseconds(100));
-    head.ranger().read(profiles, milliseconds(0));
-    for (const auto& s : angles) assembler.add_pan_tilt(s);
-    for (const auto& p : profiles) assembler.add_profile(p);
-  }
-  health = {health_json(head.ranger()), health_json(head.angles())};
-  return assembler.finish();
+  T_scene_world = scene.mounts.T_scene_pantilt;
+  return stream(
+      head.ranger(), head.angles(), assembler, add_profile,
+      [](fusion::PanTiltAssembler& f, const hal::PanTiltSample& s) { f.add_pan_tilt(s); },
+      [&] { return clock.now() < head.sweep_end(); }, health);
 }
 
 int run(const SimulateArgs& a) {
   const sim::Scene scene = sim::load_scene(a.scene);
   const sim::RayCaster caster(scene);
   nlohmann::json health;
-  fusion::FusedScan scan;
   Eigen::Isometry3d T_scene_world = Eigen::Isometry3d::Identity();
-  if (a.sensor == "css") {
-    scan = run_css(scene, caster, a, health);
-    T_scene_world = scene.mounts.T_scene_css;
-  } else if (a.sensor == "stripe") {
-    scan = run_stripe(scene, caster, a, health);
-    T_scene_world = scene.mounts.T_scene_stripe;
-  } else {
-    scan = run_pantilt(scene, caster, a, health);
-    T_scene_world = scene.mounts.T_scene_pantilt;
-  }
+  fusion::FusedScan scan = scan_scene(scene, caster, a, T_scene_world, health);
   // Fusion works in the sensor's own world frame; the cloud is written in the scene's.
   for (auto& p : scan.cloud.points) p = T_scene_world * p;
   for (auto& n : scan.cloud.normals) n = T_scene_world.linear() * n;
