@@ -43,10 +43,15 @@ struct BoreOptions {
   double notch_ratio = 1.03;
   // Beyond the thesis: robust plane fit (drop points beyond this many rms, refit once).
   double plane_inlier_sigmas = 3.0;
-  // Beyond the thesis: final geometric Levenberg-Marquardt fit on the wall points within
-  // refine_band of the RSF cylinder.
+  // Beyond the thesis: final geometric Levenberg-Marquardt fit (Huber) on the points within
+  // refine_band of the RSF cylinder, then again without those beyond 3 robust sigmas.
   bool refine = true;
   double refine_band = 0.5;  // mm
+  // Beyond: the refinement takes every region point in the band that lies deeper than
+  // refine_plane_margin below the entrance plane; false: only the segmented wall points.
+  bool refine_all_region_points = true;
+  double refine_plane_margin = 0.5;  // mm
+  double refine_above_wall = 0.5;    // share of R above the wall (98th pct height) still taken
   CylinderLsfOptions lsf;
   std::uint64_t seed = 1;
 };
