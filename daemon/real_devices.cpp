@@ -7,6 +7,7 @@
 
 #include "daemon/sim_cell.hpp"
 #include "drivers/can/cia402_joint_source.hpp"
+#include "drivers/can/cia402_pan_tilt_source.hpp"
 #include "drivers/can/ranger_source.hpp"
 #include "drivers/can/socketcan_transport.hpp"
 #include "drivers/modbus/fhpp_axis.hpp"
@@ -37,6 +38,8 @@ std::unique_ptr<drivers::can::CanTransport> socketcan(const std::string& interfa
   return std::make_unique<drivers::can::SocketCanTransport>(c);
 }
 
+std::string angles_name(const std::string& head) { return head + "/angles"; }
+
 std::unique_ptr<hal::Device> make_driver(const DeviceConfig& d, const DaemonConfig& config,
                                          hal::Clock& clock) {
   if (d.kind == "axis") {
@@ -60,7 +63,7 @@ std::unique_ptr<hal::Device> make_driver(const DeviceConfig& d, const DaemonConf
     return std::make_unique<drivers::can::Cia402JointSource>(
         c, socketcan(d.transport, drivers::can::cia402_filter(c)));
   }
-  if (d.kind == "stripe") {
+  if (d.kind == "stripe" || d.kind == "pan_tilt") {  // the head's ranger; its angles: below
     drivers::can::RangerConfig c;
     c.name = d.name;
     return std::make_unique<drivers::can::RangerCanSource>(
@@ -82,7 +85,15 @@ std::unique_ptr<hal::Device> make_driver(const DeviceConfig& d, const DaemonConf
     return std::make_unique<drivers::css_usb::CssUsbDriver>(
         std::make_unique<drivers::css_usb::LibusbTransport>(usb), o, clock);
   }
-  return nullptr;  // pan_tilt: no real driver wired (scan() says so)
+  return nullptr;
+}
+
+// The pan-tilt head's second driver: its pan and tilt axes (two CiA 402 nodes on the ranger's bus).
+std::unique_ptr<hal::Device> make_pan_tilt_angles(const DeviceConfig& d) {
+  drivers::can::PanTiltConfig c;
+  c.bus.name = angles_name(d.name);
+  return std::make_unique<drivers::can::Cia402PanTiltSource>(
+      c, socketcan(d.transport, drivers::can::cia402_filter(drivers::can::pan_tilt_bus_config(c))));
 }
 
 // Fails when the sensor or the device moving it lost its link or faulted.
@@ -133,13 +144,17 @@ RealDevices::RealDevices(const DaemonConfig& config)
     : config_(config), clock_(std::make_unique<hal::MonotonicClock>()) {
   for (const auto& d : config_.devices) {
     if (d.driver != DriverKind::kReal) continue;
-    auto driver = make_driver(d, config_, *clock_);
-    if (!driver) continue;
-    if (const hal::Status s = driver->start(); !s) {
-      throw std::runtime_error("device " + d.name + ": " + s.message);
+    std::vector<std::pair<std::string, std::unique_ptr<hal::Device>>> drivers;
+    drivers.emplace_back(d.name, make_driver(d, config_, *clock_));
+    if (d.kind == "pan_tilt") drivers.emplace_back(angles_name(d.name), make_pan_tilt_angles(d));
+    for (auto& [name, driver] : drivers) {
+      if (!driver) continue;
+      if (const hal::Status s = driver->start(); !s) {
+        throw std::runtime_error("device " + name + ": " + s.message);
+      }
+      spdlog::info("device {}: {} driver on {} started", name, d.kind, d.transport);
+      devices_[name] = std::move(driver);
     }
-    spdlog::info("device {}: {} driver on {} started", d.name, d.kind, d.transport);
-    devices_[d.name] = std::move(driver);
   }
 }
 
@@ -158,6 +173,9 @@ std::vector<NamedHealth> RealDevices::health() const {
       hal::DeviceHealth h;
       h.message = "no real driver for kind " + d.kind + " in this build";
       out.push_back({d.name, h});
+    }
+    if (const auto a = devices_.find(angles_name(d.name)); a != devices_.end()) {
+      out.push_back({a->first, a->second->health()});
     }
   }
   return out;
@@ -189,6 +207,7 @@ ScanOutcome RealDevices::scan(const DeviceConfig& device, const ScanRequest& req
                               const std::function<void()>& progress) {
   if (device.kind == "stripe") return scan_stripe(device, request, cancel, progress);
   if (device.kind == "css") return scan_css(device, request, cancel, progress);
+  if (device.kind == "pan_tilt") return scan_pan_tilt(device, request, cancel, progress);
   return {hal::Status::Error("device " + device.name + " (kind " + device.kind +
                              ") cannot scan with driver = \"real\" in this build"),
           {}};
@@ -297,6 +316,56 @@ ScanOutcome RealDevices::scan_css(const DeviceConfig& device, const ScanRequest&
     for (const auto& r : revs) assembler.add_revolution(r);
     if (!revs.empty() || !samples.empty()) progress();
     ok = watch(device.name, *css, robot_name, *joints, &why);
+  }
+  if (!ok) return {hal::Status::Error(device.name + ": " + why), {}};
+  return finish(device, assembler.finish());
+}
+
+ScanOutcome RealDevices::scan_pan_tilt(const DeviceConfig& device, const ScanRequest& request,
+                                       const std::atomic<bool>& cancel,
+                                       const std::function<void()>& progress) {
+  const std::string head_name = angles_name(device.name);
+  auto* ranger = dynamic_cast<hal::RangerSource*>(devices_.at(device.name).get());
+  auto* head = dynamic_cast<hal::PanTiltSource*>(devices_.at(head_name).get());
+  for (const auto& [name, d] :
+       {std::pair<std::string, hal::Device*>{device.name, ranger}, {head_name, head}}) {
+    if (hal::Status s = usable(name, *d); !s) return {s, {}};
+  }
+  fusion::PanTiltFusionConfig fc = config_.fusion.pan_tilt;
+  if (request.sweep_start != request.sweep_end) {
+    fc.geometry.sweep_angle_rad = std::abs(request.sweep_end - request.sweep_start);
+  }
+  const double half = 0.5 * fc.geometry.sweep_angle_rad;
+  fusion::PanTiltAssembler assembler(fc);
+  assembler.begin_scan();
+  std::vector<hal::RangerProfile> profiles;
+  std::vector<hal::PanTiltSample> angles;
+  // Like the CSS: records while the cell program pans the head from -half to +half about
+  // pan_zero (eq. 5.7); what arrived before the request is dropped first.
+  ranger->read(profiles, hal::Duration::zero());
+  head->read(angles, hal::Duration::zero());
+  constexpr double kSlack = 1e-4;  // rad
+  bool at_start = false, at_end = false, ok = true;
+  std::string why;
+  while (ok && !at_end) {
+    if (cancel) {
+      why = "cancelled";
+      ok = false;
+      break;
+    }
+    profiles.clear();
+    angles.clear();
+    head->read(angles, kReadSlice);
+    ranger->read(profiles, hal::Duration::zero());
+    for (const auto& a : angles) {
+      const double pan = a.pan_rad - fc.geometry.pan_zero_rad;
+      at_start = at_start || pan <= -half + kSlack;
+      at_end = at_start && pan >= half - kSlack;
+      assembler.add_pan_tilt(a);
+    }
+    for (const auto& p : profiles) assembler.add_profile(p);
+    if (!angles.empty() || !profiles.empty()) progress();
+    ok = watch(device.name, *ranger, head_name, *head, &why);
   }
   if (!ok) return {hal::Status::Error(device.name + ": " + why), {}};
   return finish(device, assembler.finish());

@@ -5,7 +5,10 @@
 //              interface, e.g. "can0"; joint 6 on node 1 is the CSS's last joint
 //              (fusion.css.joint);
 //   stripe   - drivers::can::RangerCanSource (node 0x20) on a SocketCAN interface;
-//   css      - drivers::css_usb::CssUsbDriver over LibusbTransport: "usb" or "usb:VID:PID" (hex).
+//   css      - drivers::css_usb::CssUsbDriver over LibusbTransport: "usb" or "usb:VID:PID" (hex);
+//   pan_tilt - the head's ranger (drivers::can::RangerCanSource) and its pan/tilt axes
+//              (drivers::can::Cia402PanTiltSource, nodes 1 and 2, reported as "<name>/angles")
+//              on one SocketCAN interface.
 // Every driver starts at construction and reconnects by itself, so a device that is absent at
 // start is only reported (diagnostics ERROR via its health) and never fatal; a request that needs
 // it is answered with an error naming the device and its state.
@@ -13,7 +16,8 @@
 // Scans: a stripe device sweeps with its `motion` axis (or the only axis) exactly like the
 // simulated cell; a css device records while the robot program pivots the last joint through
 // -delta .. +delta (the daemon does not command the robot) and is bounded by
-// service.scan_timeout_s. The pan-tilt head has no real driver wired here yet.
+// service.scan_timeout_s; a pan_tilt device likewise records while the cell program pans the
+// head through the sweep (the daemon does not command the pan-tilt unit).
 
 #include <atomic>
 #include <functional>
@@ -55,6 +59,8 @@ class RealDevices {
                           const std::atomic<bool>& cancel, const std::function<void()>& progress);
   ScanOutcome scan_css(const DeviceConfig& device, const ScanRequest& request,
                        const std::atomic<bool>& cancel, const std::function<void()>& progress);
+  ScanOutcome scan_pan_tilt(const DeviceConfig& device, const ScanRequest& request,
+                            const std::atomic<bool>& cancel, const std::function<void()>& progress);
   // The device that moves `device`: its `motion` field, else the only device of `kind`.
   hal::Device* motion_of(const DeviceConfig& device, const std::string& kind,
                          std::string* why) const;

@@ -129,6 +129,23 @@ TEST(RealDevices, ScanWithAnAbsentDeviceIsAnErrorResultNamingItAndTheBackendGoes
   EXPECT_EQ(diag_level(backend, "stripe"), kDiagError);
 }
 
+TEST(RealDevices, PanTiltHeadReportsItsRangerAndAnglesAndAScanWithoutTheBusIsAnError) {
+  DaemonConfig config;
+  config.devices.push_back(real("head", "pan_tilt", "rfnocan1"));  // no such CAN interface
+  DeviceBackend backend(config);
+  EXPECT_EQ(diag_level(backend, "head"), kDiagError);
+  EXPECT_EQ(diag_level(backend, "head/angles"), kDiagError);
+  ScanRequest request;
+  request.id = "r";
+  request.kind = DetectKind::kObject;
+  request.sensor = "head";
+  std::atomic<bool> cancel{false};
+  const ScanOutcome out = backend.scan(request, cancel, [] {});
+  EXPECT_FALSE(out.status);
+  EXPECT_NE(out.status.message.find("not available"), std::string::npos) << out.status.message;
+  EXPECT_TRUE(out.cloud.empty());
+}
+
 TEST(RealDevices, NoRealDevicesMeansNoHealthEntries) {
   DaemonConfig config;
   RealDevices devices(config);
