@@ -70,11 +70,13 @@ void accuracy(benchmark::State& state, const Eigen::Vector3d& axis, double radiu
   state.counters["radius_mm"] = radius - t.radius;
 }
 
-void run_pipeline(benchmark::State& state, bool organised, double keep) {
+void run_pipeline(benchmark::State& state, bool organised, double keep,
+                  bool refine_all_region_points = true) {
   const Fixture& f = fixture(organised);
   BoreOptions opt;
   opt.view_dir = f.scan.truth.view_dir;
   opt.normal_keep = keep;
+  opt.refine_all_region_points = refine_all_region_points;
   BoreResult r;
   for (auto _ : state) {
     r = detect_bore(f.scan.cloud, f.prior, opt);
@@ -86,10 +88,14 @@ void run_pipeline(benchmark::State& state, bool organised, double keep) {
   state.counters["roi"] = static_cast<double>(r.counts.roi);
   state.counters["wall"] = static_cast<double>(r.counts.wall);
   state.counters["normals_ms"] = r.time_ms.normals;
+  state.counters["refine_ms"] = r.time_ms.refine;
+  state.counters["refine_pts"] = static_cast<double>(r.counts.refine_inliers);
 }
 
 void BM_Pipeline(benchmark::State& s) { run_pipeline(s, false, 1.0); }
 void BM_PipelineKeep20(benchmark::State& s) { run_pipeline(s, false, 0.2); }
+// In-run baseline of the refinement: session 1's final fit on the segmented wall points only.
+void BM_PipelineWallOnlyRefine(benchmark::State& s) { run_pipeline(s, false, 1.0, false); }
 void BM_PipelineOrganised(benchmark::State& s) { run_pipeline(s, true, 1.0); }
 void BM_PipelineOrganisedKeep20(benchmark::State& s) { run_pipeline(s, true, 0.2); }
 
@@ -196,6 +202,7 @@ void BM_LsfLevenbergMarquardtFromCad(benchmark::State& s) {
 
 BENCHMARK(BM_Pipeline)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PipelineKeep20)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PipelineWallOnlyRefine)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PipelineOrganised)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PipelineOrganisedKeep20)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_NormalsKdTree)->Unit(benchmark::kMillisecond);
