@@ -9,6 +9,7 @@
 set -euo pipefail
 build=$(realpath "${1:?usage: run_vm.sh BUILD_DIR}")
 here=$(cd "$(dirname "$0")" && pwd)
+src=$(cd "$here/../.." && pwd)
 bash "$here/deps.sh"
 cache=$build/hil-cache
 mkdir -p "$cache"
@@ -57,10 +58,13 @@ done
 mount -t 9p -o trans=virtio,version=9p2000.L,ro hostroot /host
 mount -t tmpfs tmpfs /ovl && mkdir -p /ovl/up /ovl/work
 mount -t overlay overlay -o lowerdir=/host,upperdir=/ovl/up,workdir=/ovl/work /newroot
-mount -t 9p -o trans=virtio,version=9p2000.L,msize=262144 build /newroot$build
 for d in proc sys dev tmp run; do mkdir -p /newroot/\$d; done
 mount -t proc proc /newroot/proc; mount -t sysfs sys /newroot/sys; mount --bind /dev /newroot/dev
 mount -t tmpfs tmpfs /newroot/tmp; mount -t tmpfs tmpfs /newroot/run
+# The checkout and the build folder go on top of the fresh /tmp and /run: either may live there.
+mkdir -p /newroot$src && mount --bind /host$src /newroot$src
+mkdir -p /newroot$build
+mount -t 9p -o trans=virtio,version=9p2000.L,msize=262144 build /newroot$build
 mkdir -p /newroot/lib/modules/$ver && mount --bind /newroot$tree/modules /newroot/lib/modules/$ver
 chroot /newroot /bin/bash $work/cmd.sh
 echo EXIT_CODE=\$?
