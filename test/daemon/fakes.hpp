@@ -4,11 +4,20 @@
 #include <atomic>
 #include <condition_variable>
 #include <mutex>
+#include <string>
 #include <vector>
 
 #include "daemon/pipeline.hpp"
 
 namespace rangefit::test {
+
+// A request for the CSS with the given id, as the pipeline tests submit them.
+inline daemon::ScanRequest request(const std::string& id) {
+  daemon::ScanRequest r;
+  r.id = id;
+  r.sensor = "css";
+  return r;
+}
 
 inline PointCloud grid_cloud(int n) {
   PointCloud c;

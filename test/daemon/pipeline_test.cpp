@@ -13,13 +13,7 @@ using test::CentroidDetector;
 using test::FakeBackend;
 using test::ManualClock;
 using test::RecordingSink;
-
-ScanRequest request(const std::string& id) {
-  ScanRequest r;
-  r.id = id;
-  r.sensor = "css";
-  return r;
-}
+using test::request;
 
 TEST(Pipeline, AnswersEachRequestWithTheDetectorsResultAndTheWholeCloud) {
   FakeBackend backend;
