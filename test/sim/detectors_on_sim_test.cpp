@@ -12,6 +12,7 @@
 #include "sim/scene_loader.hpp"
 #include "sim/sim_clock.hpp"
 #include "sim/stripe_cell.hpp"
+#include "sim_test_scans.hpp"
 #include "sim_test_scenes.hpp"
 
 namespace rangefit::sim {
@@ -55,34 +56,9 @@ TEST(DetectorsOnSimulatedScans, ObjectDetectorFindsTheSphereInAStripeCellScan) {
   const Scene scene =
       load_scene(std::string(RANGEFIT_SOURCE_DIR) + "/data/scenes/table_top_fig5_18.toml");
   const RayCaster caster(scene);
-  SimClock clock;
-  StripeCellOptions o;
-  o.seed = 5;
-  StripeCell cell(scene, caster, o, clock);
-  fusion::StripeCellFusionConfig config;
-  config.geometry = o.geometry;
-  fusion::StripeCellAssembler assembler(config);
-  assembler.begin_scan();
-  ASSERT_TRUE(cell.axis().enable());
-  ASSERT_TRUE(cell.axis().start());
-  ASSERT_TRUE(cell.ranger().start());
-  ASSERT_TRUE(cell.axis().move_to(o.geometry.axis_travel_mm, o.geometry.max_speed_mm_s));
-  std::vector<hal::RangerProfile> profiles;
-  std::vector<hal::AxisSample> axis;
-  while (!cell.axis().motion_complete()) {
-    profiles.clear();
-    axis.clear();
-    cell.axis().read(axis, std::chrono::milliseconds(100));
-    cell.ranger().read(profiles, std::chrono::milliseconds(0));
-    for (const auto& s : axis) assembler.add_axis(s);
-    for (const auto& p : profiles) assembler.add_profile(p);
-  }
-  const fusion::FusedScan scan = assembler.finish();
+  const fusion::FusedScan scan = testing::stripe_cell_scan(scene, caster, 5);
   ASSERT_FALSE(scan.bad) << scan.reason;
-  std::vector<Eigen::Vector3d> points;  // every 3rd point, in the scene frame
-  for (std::size_t i = 0; i < scan.cloud.size(); i += 3) {
-    points.push_back(scene.mounts.T_scene_stripe * scan.cloud.points[i]);
-  }
+  const auto points = testing::thinned(scan, scene.mounts.T_scene_stripe);
   ASSERT_GT(points.size(), 50000u);
   ObjectModel sphere{"sphere", {{"sphere", Superquadric{50, 50, 50, 1.0, 1.0, 0.0, 0.0}}}, {}};
   ObjectDetectOptions opt;

@@ -17,6 +17,7 @@
 #include "sim/scene_loader.hpp"
 #include "sim/sim_clock.hpp"
 #include "sim/stripe_cell.hpp"
+#include "sim_test_scans.hpp"
 
 namespace rangefit::sim {
 namespace {
@@ -25,13 +26,6 @@ using std::chrono::milliseconds;
 
 std::string scene_path(const std::string& name) {
   return std::string(RANGEFIT_SOURCE_DIR) + "/data/scenes/" + name;
-}
-
-// Every third point of a fused scan, moved into the scene frame.
-std::vector<Eigen::Vector3d> thinned(const fusion::FusedScan& scan, const Eigen::Isometry3d& T) {
-  std::vector<Eigen::Vector3d> points;
-  for (std::size_t i = 0; i < scan.cloud.size(); i += 3) points.push_back(T * scan.cloud.points[i]);
-  return points;
 }
 
 Eigen::Vector3d found_sphere(const std::vector<Eigen::Vector3d>& points, double radius) {
@@ -153,31 +147,9 @@ TEST(StlScenes, CssScanOfTheStlBorePlateGivesTheBoreDetectorItsBore) {
 TEST(StlScenes, StripeScanOfTheStlTableTopGivesTheObjectDetectorItsSphere) {
   const Scene scene = load_scene(scene_path("table_top_fig5_18_stl.toml"));
   const RayCaster caster(scene);
-  SimClock clock;
-  StripeCellOptions o;
-  o.seed = 5;
-  StripeCell cell(scene, caster, o, clock);
-  fusion::StripeCellFusionConfig config;
-  config.geometry = o.geometry;
-  fusion::StripeCellAssembler assembler(config);
-  assembler.begin_scan();
-  ASSERT_TRUE(cell.axis().enable());
-  ASSERT_TRUE(cell.axis().start());
-  ASSERT_TRUE(cell.ranger().start());
-  ASSERT_TRUE(cell.axis().move_to(o.geometry.axis_travel_mm, o.geometry.max_speed_mm_s));
-  std::vector<hal::RangerProfile> profiles;
-  std::vector<hal::AxisSample> axis;
-  while (!cell.axis().motion_complete()) {
-    profiles.clear();
-    axis.clear();
-    cell.axis().read(axis, milliseconds(100));
-    cell.ranger().read(profiles, milliseconds(0));
-    for (const auto& s : axis) assembler.add_axis(s);
-    for (const auto& p : profiles) assembler.add_profile(p);
-  }
-  const fusion::FusedScan scan = assembler.finish();
+  const fusion::FusedScan scan = testing::stripe_cell_scan(scene, caster, 5);
   ASSERT_FALSE(scan.bad) << scan.reason;
-  const auto points = thinned(scan, scene.mounts.T_scene_stripe);
+  const auto points = testing::thinned(scan, scene.mounts.T_scene_stripe);
   ASSERT_GT(points.size(), 50000u);
   // Thesis 5.2.2: a true positive lies within 3 mm of the ground truth (table 5.3).
   EXPECT_LT((found_sphere(points, 50.0) - Eigen::Vector3d(160.0, 65.0, 50.0)).norm(), 3.0);
@@ -208,7 +180,7 @@ TEST(StlScenes, PanTiltScanOfTheStlClutteredTableGivesTheObjectDetectorItsBall) 
   }
   const fusion::FusedScan scan = assembler.finish();
   ASSERT_FALSE(scan.bad) << scan.reason;
-  const auto points = thinned(scan, scene.mounts.T_scene_pantilt);
+  const auto points = testing::thinned(scan, scene.mounts.T_scene_pantilt);
   ASSERT_GT(points.size(), 20000u);
   EXPECT_LT((found_sphere(points, 35.0) - Eigen::Vector3d(40.0, 60.0, 35.0)).norm(), 3.0);
 }
