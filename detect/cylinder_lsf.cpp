@@ -35,27 +35,39 @@ Cylinder apply(const Cylinder& c, const Vector5d& d) {
   return n;
 }
 
-// Gauss-Newton system J^T W J and gradient J^T W r (analytic Jacobian of r = |w| - radius).
+// One point's residual r = |w| - radius, its analytic Jacobian row j and the IRLS weight of the
+// Huber loss; false for a point on the axis (no direction, no gradient).
+struct PointTerm {
+  Vector5d j;
+  double r = 0.0;
+  double weight = 1.0;
+};
+
+bool point_term(const Eigen::Vector3d& q, const Cylinder& c, const Eigen::Vector3d& b1,
+                const Eigen::Vector3d& b2, double delta, PointTerm& t) {
+  const Eigen::Vector3d d = q - c.point;
+  const double h = d.dot(c.axis);
+  const Eigen::Vector3d w = d - h * c.axis;
+  const double dist = w.norm();
+  if (dist < 1e-12) return false;
+  const double mb1 = w.dot(b1) / dist, mb2 = w.dot(b2) / dist;
+  t.r = dist - c.radius;
+  t.j << -mb1, -mb2, -h * mb1, -h * mb2, -1.0;
+  t.weight = delta <= 0.0 || std::abs(t.r) <= delta ? 1.0 : delta / std::abs(t.r);
+  return true;
+}
+
+// Gauss-Newton system J^T W J and gradient J^T W r.
 void normal_equations(std::span<const Eigen::Vector3d> pts, const Cylinder& c, double delta,
                       Matrix5d& jtj, Vector5d& jtr) {
   const Eigen::Vector3d b1 = c.axis.unitOrthogonal(), b2 = c.axis.cross(b1);
   jtj.setZero();
   jtr.setZero();
+  PointTerm t;
   for (const auto& q : pts) {
-    const Eigen::Vector3d d = q - c.point;
-    const double h = d.dot(c.axis);
-    const Eigen::Vector3d w = d - h * c.axis;
-    const double dist = w.norm();
-    if (dist < 1e-12) continue;
-    const Eigen::Vector3d m = w / dist;
-    const double r = dist - c.radius;
-    const double mb1 = m.dot(b1), mb2 = m.dot(b2);
-    Vector5d j;
-    j << -mb1, -mb2, -h * mb1, -h * mb2, -1.0;
-    // IRLS weight of the Huber loss.
-    const double wgt = delta <= 0.0 || std::abs(r) <= delta ? 1.0 : delta / std::abs(r);
-    jtj.noalias() += wgt * j * j.transpose();
-    jtr.noalias() += wgt * r * j;
+    if (!point_term(q, c, b1, b2, delta, t)) continue;
+    jtj.noalias() += t.weight * t.j * t.j.transpose();
+    jtr.noalias() += t.weight * t.r * t.j;
   }
 }
 
@@ -63,20 +75,9 @@ void normal_equations(std::span<const Eigen::Vector3d> pts, const Cylinder& c, d
 Vector5d gradient(std::span<const Eigen::Vector3d> pts, const Cylinder& c, double delta) {
   const Eigen::Vector3d b1 = c.axis.unitOrthogonal(), b2 = c.axis.cross(b1);
   Vector5d g = Vector5d::Zero();
+  PointTerm t;
   for (const auto& q : pts) {
-    const Eigen::Vector3d d = q - c.point;
-    const double h = d.dot(c.axis);
-    const Eigen::Vector3d w = d - h * c.axis;
-    const double dist = w.norm();
-    if (dist < 1e-12) continue;
-    const double r = dist - c.radius;
-    const double wr = (delta <= 0.0 || std::abs(r) <= delta ? 1.0 : delta / std::abs(r)) * r;
-    const double mb1 = w.dot(b1) / dist, mb2 = w.dot(b2) / dist;
-    g(0) -= wr * mb1;
-    g(1) -= wr * mb2;
-    g(2) -= wr * h * mb1;
-    g(3) -= wr * h * mb2;
-    g(4) -= wr;
+    if (point_term(q, c, b1, b2, delta, t)) g.noalias() += t.weight * t.r * t.j;
   }
   return g;
 }
