@@ -101,6 +101,36 @@ void BM_PublishCloud140k(benchmark::State& state) {
 }
 BENCHMARK(BM_PublishCloud140k)->Unit(benchmark::kMillisecond)->Iterations(30);
 
+// Runs rangefitd's service loop on `config` and times bore requests for `bore` from a separate
+// DDS client, request to result, until the benchmark stops; p50/p99 go into the counters.
+void time_bore_requests(benchmark::State& state, const daemon::DaemonConfig& config, char prefix,
+                        const daemon::BorePrior& bore) {
+  hal::MonotonicClock clock;
+  daemon::Service service(config, clock);
+  std::atomic<bool> running{true};
+  std::thread loop([&] {
+    while (running) service.step(std::chrono::milliseconds(5));
+  });
+  daemon::DdsClient client(domain());
+  client.wait_for_daemon(std::chrono::seconds(20));
+  std::vector<double> ms;
+  int n = 0;
+  for (auto _ : state) {
+    daemon::ScanRequest req;
+    req.id = std::to_string(++n);
+    req.id.insert(0, 1, prefix);  // not prefix + ...: GCC 12's false -Wrestrict (bug 105329)
+    req.bore = bore;
+    const auto t0 = Clock::now();
+    client.send(req, false);
+    auto r = client.wait_result(req.id, std::chrono::seconds(60));
+    ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    if (!r || !r->found) state.SkipWithError("bore not found");
+  }
+  running = false;
+  loop.join();
+  percentiles(state, ms);
+}
+
 void BM_BoreRequestToResult(benchmark::State& state) {
   const auto dir = std::filesystem::temp_directory_path() / "rangefit_daemon_benchmark";
   std::filesystem::create_directories(dir);
@@ -116,32 +146,11 @@ void BM_BoreRequestToResult(benchmark::State& state) {
   css.driver = daemon::DriverKind::kReplay;
   css.replay_file = dir / "plate.ply";
   config.devices.push_back(css);
-  hal::MonotonicClock clock;
-  daemon::Service service(config, clock);
-  std::atomic<bool> running{true};
-  std::thread loop([&] {
-    while (running) service.step(std::chrono::milliseconds(5));
-  });
-  daemon::DdsClient client(domain());
-  client.wait_for_daemon(std::chrono::seconds(20));
-  std::vector<double> ms;
-  int n = 0;
-  for (auto _ : state) {
-    daemon::ScanRequest req;
-    req.id = std::to_string(++n);
-    req.id.insert(0, 1, 'b');
-    req.bore.position_mm = scan.truth.entrance;
-    req.bore.axis = scan.truth.axis;
-    req.bore.radius_mm = opt.radius;
-    const auto t0 = Clock::now();
-    client.send(req, false);
-    auto r = client.wait_result(req.id, std::chrono::seconds(60));
-    ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
-    if (!r || !r->found) state.SkipWithError("bore not found");
-  }
-  running = false;
-  loop.join();
-  percentiles(state, ms);
+  daemon::BorePrior bore;
+  bore.position_mm = scan.truth.entrance;
+  bore.axis = scan.truth.axis;
+  bore.radius_mm = opt.radius;
+  time_bore_requests(state, config, 'b', bore);
   std::filesystem::remove_all(dir);
 }
 BENCHMARK(BM_BoreRequestToResult)->Unit(benchmark::kMillisecond)->Iterations(10);
@@ -183,33 +192,11 @@ BENCHMARK(BM_SimCssScanOnly)->Unit(benchmark::kMillisecond)->Iterations(10);
 void BM_SimCssBoreRequestToResult(benchmark::State& state) {
   const auto dir = std::filesystem::temp_directory_path() / "rangefit_daemon_benchmark_sim";
   std::filesystem::create_directories(dir);
-  const auto config = sim_css_config(dir);
-  hal::MonotonicClock clock;
-  daemon::Service service(config, clock);
-  std::atomic<bool> running{true};
-  std::thread loop([&] {
-    while (running) service.step(std::chrono::milliseconds(5));
-  });
-  daemon::DdsClient client(domain());
-  client.wait_for_daemon(std::chrono::seconds(20));
-  std::vector<double> ms;
-  int n = 0;
-  for (auto _ : state) {
-    daemon::ScanRequest req;
-    req.id = std::to_string(++n);
-    req.id.insert(0, 1, 's');  // not "s" + ...: GCC 12's false -Wrestrict (bug 105329)
-    req.bore.position_mm = Eigen::Vector3d(0.8, -0.5, 285.8);  // 12 mm bore at (0, 0, 285.8)
-    req.bore.axis = Eigen::Vector3d::UnitZ();
-    req.bore.radius_mm = 6.0;
-    const auto t0 = Clock::now();
-    client.send(req, false);
-    auto r = client.wait_result(req.id, std::chrono::seconds(60));
-    ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
-    if (!r || !r->found) state.SkipWithError("bore not found");
-  }
-  running = false;
-  loop.join();
-  percentiles(state, ms);
+  daemon::BorePrior bore;
+  bore.position_mm = Eigen::Vector3d(0.8, -0.5, 285.8);  // 12 mm bore at (0, 0, 285.8)
+  bore.axis = Eigen::Vector3d::UnitZ();
+  bore.radius_mm = 6.0;
+  time_bore_requests(state, sim_css_config(dir), 's', bore);
   std::filesystem::remove_all(dir);
 }
 BENCHMARK(BM_SimCssBoreRequestToResult)->Unit(benchmark::kMillisecond)->Iterations(10);
