@@ -17,6 +17,7 @@
 #include "detect/kdtree.hpp"
 #include "detect/normals.hpp"
 #include "sim/synthetic_bore.hpp"
+#include "test/bench/bore_bench_scan.hpp"
 
 namespace rangefit {
 namespace {
@@ -31,18 +32,10 @@ const Fixture& fixture(bool organised) {
   static Fixture f[2];
   Fixture& x = f[organised ? 1 : 0];
   if (!x.scan.cloud.empty()) return x;
-  sim::SyntheticBoreOptions o;
-  o.radius = 5.0;
-  o.extent = 27.4;
-  o.spacing = 0.2;
-  o.organised = organised;
-  o.seed = 7;
-  x.scan = sim::make_synthetic_bore(o);
+  bench::BoreBenchScan b = bench::make_bore_bench_scan(organised);
+  x.scan = std::move(b.scan);
+  x.prior = b.prior;
   const auto& t = x.scan.truth;
-  x.prior.entrance = t.entrance + Eigen::Vector3d(0.3, -0.2, 0.1);
-  x.prior.axis = (t.axis + Eigen::Vector3d(0.03, 0.0, 0.0)).normalized();
-  x.prior.radius = 5.0;
-  x.prior.plane_normal = t.plane_normal;
   // The wall as the pipeline segments it (eq. 4.4-4.6), for the RSF and LSF benchmarks.
   std::vector<std::uint32_t> roi;
   for (std::uint32_t i = 0; i < x.scan.cloud.size(); ++i) {
@@ -105,12 +98,7 @@ void run_normals(benchmark::State& state, bool binned) {
   const Fixture& f = fixture(false);
   std::vector<Eigen::Vector3d> pool;
   std::vector<std::uint32_t> queries;
-  for (const auto& p : f.scan.cloud.points) {
-    const double d = (p - f.prior.entrance).norm();
-    if (d > 12.0) continue;
-    if (d <= 10.0) queries.push_back(static_cast<std::uint32_t>(pool.size()));
-    pool.push_back(p);
-  }
+  bench::region_normal_inputs(f.scan.cloud.points, f.prior.entrance, pool, queries);
   NormalOptions no;
   no.view_dir = f.scan.truth.view_dir;
   NormalEstimate e;

@@ -19,6 +19,7 @@
 #include "detect/bore_detector.hpp"
 #include "detect/normals.hpp"
 #include "sim/synthetic_bore.hpp"
+#include "test/bench/bore_bench_scan.hpp"
 
 namespace rangefit {
 namespace {
@@ -44,17 +45,9 @@ Cloud::Ptr to_pcl(const std::vector<Eigen::Vector3d>& pts) {
 const Fixture& fixture() {
   static Fixture x;
   if (!x.scan.cloud.empty()) return x;
-  sim::SyntheticBoreOptions o;
-  o.radius = 5.0;
-  o.extent = 27.4;
-  o.spacing = 0.2;
-  o.seed = 7;
-  x.scan = sim::make_synthetic_bore(o);
-  const auto& t = x.scan.truth;
-  x.prior.entrance = t.entrance + Eigen::Vector3d(0.3, -0.2, 0.1);
-  x.prior.axis = (t.axis + Eigen::Vector3d(0.03, 0.0, 0.0)).normalized();
-  x.prior.radius = 5.0;
-  x.prior.plane_normal = t.plane_normal;
+  bench::BoreBenchScan b = bench::make_bore_bench_scan(false);
+  x.scan = std::move(b.scan);
+  x.prior = b.prior;
   std::vector<Eigen::Vector3d> region, pool;
   for (const auto& p : x.scan.cloud.points) {
     const double d = (p - x.prior.entrance).norm();
@@ -154,12 +147,7 @@ void BM_OursNormalsRegion(benchmark::State& state) {
   const Fixture& f = fixture();
   std::vector<Eigen::Vector3d> pool;
   std::vector<std::uint32_t> queries;
-  for (const auto& p : f.scan.cloud.points) {
-    const double d = (p - f.prior.entrance).norm();
-    if (d > 12.0) continue;
-    if (d <= 10.0) queries.push_back(static_cast<std::uint32_t>(pool.size()));
-    pool.push_back(p);
-  }
+  bench::region_normal_inputs(f.scan.cloud.points, f.prior.entrance, pool, queries);
   NormalOptions no;
   no.view_dir = f.scan.truth.view_dir;
   for (auto _ : state) benchmark::DoNotOptimize(estimate_normals_binned(pool, queries, no));
