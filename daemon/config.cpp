@@ -11,11 +11,16 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "daemon/driver_configs.hpp"
+
 namespace rangefit::daemon {
 namespace {
 
+// line: where in the file the field (or, when it is missing, its table) stands; 0 = unknown.
 struct FieldError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+  explicit FieldError(const std::string& what, std::uint32_t at_line = 0)
+      : std::runtime_error(what), line(at_line) {}
+  std::uint32_t line;
 };
 
 class FieldReader {
@@ -26,7 +31,8 @@ class FieldReader {
     return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
   }
   [[noreturn]] void fail(std::string_view key, const std::string& why) const {
-    throw FieldError(field(key) + ": " + why);
+    const toml::node* n = table_.get(key);
+    throw FieldError(field(key) + ": " + why, (n ? n->source() : table_.source()).begin.line);
   }
 
   const toml::node* find(std::string_view key) {
@@ -188,6 +194,62 @@ void read_sim_fault(FieldReader& r, SimFaultConfig& f) {
   r.reject_unknown();
 }
 
+std::string describe(const CanNodeUse& u) {
+  return std::to_string(u.node) + (u.is_default ? " (the default)" : "");
+}
+
+// CANopen node ids are 1..127; Modbus unit ids 1..247 (0 is broadcast, 248.. reserved).
+void read_bus_addresses(FieldReader& r, DeviceConfig& d) {
+  struct Address {
+    const char* key;
+    int* out;
+    std::int64_t max;
+    bool applies;
+    const char* kinds;
+  };
+  const bool ranger = d.kind == "stripe" || d.kind == "pan_tilt";
+  for (const Address& a :
+       {Address{"can_node", &d.can_node, 127, d.kind == "robot" || ranger,
+                "robot, stripe or pan_tilt"},
+        Address{"pan_node", &d.pan_node, 127, d.kind == "pan_tilt", "pan_tilt"},
+        Address{"tilt_node", &d.tilt_node, 127, d.kind == "pan_tilt", "pan_tilt"},
+        Address{"modbus_unit", &d.modbus_unit, 247, d.kind == "axis", "axis"}}) {
+    std::int64_t v = 0;
+    r.read(a.key, v, 1, a.max);
+    if (v != 0 && !a.applies) r.fail(a.key, std::string("only for kind ") + a.kinds);
+    *a.out = static_cast<int>(v);
+  }
+  // The head's three nodes share its interface.
+  const auto nodes = can_nodes(d);
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (nodes[i].node == nodes[j].node) {
+        r.fail(nodes[i].field,
+               "CAN node " + describe(nodes[i]) + " is also this device's " + nodes[j].field);
+      }
+    }
+  }
+}
+
+// Real devices on one CAN interface must not share a node id (their frames would mix); the
+// error names both devices and the fields that set the ids (defaults count too).
+void check_can_nodes(const std::vector<DeviceConfig>& devices, std::size_t i, FieldReader& r) {
+  const DeviceConfig& d = devices[i];
+  if (d.driver != DriverKind::kReal) return;
+  for (const CanNodeUse& mine : can_nodes(d)) {
+    for (std::size_t k = 0; k < i; ++k) {
+      const DeviceConfig& other = devices[k];
+      if (other.driver != DriverKind::kReal || other.transport != d.transport) continue;
+      for (const CanNodeUse& theirs : can_nodes(other)) {
+        if (theirs.node != mine.node) continue;
+        r.fail(mine.field, "CAN node " + describe(mine) + " on " + d.transport +
+                               " is also used by device \"" + other.name + "\" (devices[" +
+                               std::to_string(k) + "]." + theirs.field + ")");
+      }
+    }
+  }
+}
+
 void read_device(FieldReader& r, DeviceConfig& d) {
   r.read("name", d.name);
   if (d.name.empty()) r.fail("name", "is required");
@@ -221,6 +283,7 @@ void read_device(FieldReader& r, DeviceConfig& d) {
   r.read("sweep_end", d.sweep_end, -kMaxDouble, kMaxDouble);
   r.read("sweep_speed", d.sweep_speed, 0.0, kMaxDouble);
   r.read("motion", d.motion);
+  read_bus_addresses(r, d);
   std::string scene;
   r.read("scene", scene);
   d.scene = scene;
@@ -291,6 +354,7 @@ DaemonConfig read_root(const toml::table& root, std::string_view source_name,
       DeviceConfig& d = c.devices.emplace_back();
       read_device(sub, d);
       if (!names.insert(d.name).second) sub.fail("name", "duplicate device name");
+      check_can_nodes(c.devices, i, sub);
       d.scene = resolve(d.scene, base_dir);
       if (d.driver == DriverKind::kSim && d.scene.empty()) d.scene = c.sim.scene;
       const bool scans = d.kind == "css" || d.kind == "stripe" || d.kind == "pan_tilt";
@@ -364,7 +428,8 @@ ConfigResult parse_config(std::string_view toml_text, std::string_view source_na
     s << source_name << ":" << e.source().begin.line << ": " << e.description();
     result.error = s.str();
   } catch (const FieldError& e) {
-    result.error = std::string(source_name) + ": " + e.what();
+    result.error = std::string(source_name) +
+                   (e.line > 0 ? ":" + std::to_string(e.line) : std::string()) + ": " + e.what();
   } catch (const FusionTableError& e) {
     result.error = e.what();  // already "<source>: fusion.<table>.<field>: <problem>"
   }

@@ -1,7 +1,8 @@
 #pragma once
 // rangefitd's configuration: one TOML file (systemd/rangefitd.toml is the documented sample).
 // Every field has a default listed here; parse_config() validates every field and names the
-// offending one (e.g. "devices[1].driver: must be one of sim, real, replay") on error.
+// offending one and its line (e.g. "rangefitd.toml:12: devices[1].driver: must be one of sim,
+// real, replay") on error.
 
 #include <array>
 #include <cstdint>
@@ -38,6 +39,11 @@ struct DeviceConfig {
   double sweep_end = 0.0;
   double sweep_speed = 0.0;  // per second; 0 = device default
   std::string motion;        // real: device moving this sensor (robot, axis); empty = the only one
+  // Bus addresses of a real device (daemon/driver_configs.hpp); 0 = the driver's default.
+  int can_node = 0;     // robot: its joint's CiA 402 node (1); stripe, pan_tilt: the ranger (32)
+  int pan_node = 0;     // pan_tilt: the pan axis' CiA 402 node (1)
+  int tilt_node = 0;    // pan_tilt: the tilt axis' CiA 402 node (2)
+  int modbus_unit = 0;  // axis: the drive's Modbus unit id (1)
   std::filesystem::path scene;  // sim driver: scene TOML; empty = sim.scene
   SimFaultConfig sim_fault;     // sim driver: [devices.sim_fault]
 };
@@ -102,7 +108,7 @@ struct DaemonConfig {
 
 struct ConfigResult {
   std::optional<DaemonConfig> config;  // set when valid
-  std::string error;                   // "<source>: <field>: <problem>" when not
+  std::string error;                   // "<source>[:<line>]: <field>: <problem>" when not
 };
 
 // Relative scene paths are resolved against base_dir (load_config: the config file's folder).

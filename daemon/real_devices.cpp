@@ -6,11 +6,7 @@
 #include <stdexcept>
 
 #include "daemon/sim_cell.hpp"
-#include "drivers/can/cia402_joint_source.hpp"
-#include "drivers/can/cia402_pan_tilt_source.hpp"
-#include "drivers/can/ranger_source.hpp"
 #include "drivers/can/socketcan_transport.hpp"
-#include "drivers/modbus/fhpp_axis.hpp"
 #include "drivers/usb/css_usb_driver.hpp"
 #include "drivers/usb/libusb_transport.hpp"
 #include "fusion/css_assembler.hpp"
@@ -38,34 +34,19 @@ std::unique_ptr<drivers::can::CanTransport> socketcan(const std::string& interfa
   return std::make_unique<drivers::can::SocketCanTransport>(c);
 }
 
-std::string angles_name(const std::string& head) { return head + "/angles"; }
-
 std::unique_ptr<hal::Device> make_driver(const DeviceConfig& d, const DaemonConfig& config,
                                          hal::Clock& clock) {
   if (d.kind == "axis") {
-    ModbusAddress a;
-    std::string why;
-    if (!parse_modbus_address(d.transport, &a, &why)) {
-      throw std::runtime_error("device " + d.name + ": transport: " + why);
-    }
-    drivers::FhppAxisConfig c;
-    c.name = d.name;
-    c.link.host = a.host;
-    c.link.port = a.port;
-    c.link.serial_device = a.serial_device;
-    c.travel.max_mm = config.fusion.stripe_cell.geometry.axis_travel_mm;
-    return std::make_unique<drivers::FhppAxis>(c);
+    return std::make_unique<drivers::FhppAxis>(
+        fhpp_axis_config(d, config.fusion.stripe_cell.geometry.axis_travel_mm));
   }
   if (d.kind == "robot") {
-    drivers::can::Cia402Config c;
-    c.name = d.name;
-    c.joints.push_back({1, config.fusion.css.joint, 1e-6, 0.0});
+    const auto c = robot_joint_config(d, config.fusion.css.joint);
     return std::make_unique<drivers::can::Cia402JointSource>(
         c, socketcan(d.transport, drivers::can::cia402_filter(c)));
   }
   if (d.kind == "stripe" || d.kind == "pan_tilt") {  // the head's ranger; its angles: below
-    drivers::can::RangerConfig c;
-    c.name = d.name;
+    const auto c = ranger_config(d);
     return std::make_unique<drivers::can::RangerCanSource>(
         c, socketcan(d.transport, drivers::can::ranger_filter(c)));
   }
@@ -90,8 +71,7 @@ std::unique_ptr<hal::Device> make_driver(const DeviceConfig& d, const DaemonConf
 
 // The pan-tilt head's second driver: its pan and tilt axes (two CiA 402 nodes on the ranger's bus).
 std::unique_ptr<hal::Device> make_pan_tilt_angles(const DeviceConfig& d) {
-  drivers::can::PanTiltConfig c;
-  c.bus.name = angles_name(d.name);
+  const auto c = pan_tilt_config(d);
   return std::make_unique<drivers::can::Cia402PanTiltSource>(
       c, socketcan(d.transport, drivers::can::cia402_filter(drivers::can::pan_tilt_bus_config(c))));
 }
@@ -119,34 +99,14 @@ ScanOutcome finish(const DeviceConfig& device, fusion::FusedScan scan) {
 
 }  // namespace
 
-bool parse_modbus_address(const std::string& transport, ModbusAddress* out, std::string* why) {
-  if (transport.rfind("/dev/", 0) == 0) {
-    out->serial_device = transport;
-    return true;
-  }
-  const auto colon = transport.rfind(':');
-  if (colon == std::string::npos || colon == 0) {
-    *why = "must be \"host:port\" (Modbus TCP) or \"/dev/...\" (RTU), got \"" + transport + "\"";
-    return false;
-  }
-  char* end = nullptr;
-  const long port = std::strtol(transport.c_str() + colon + 1, &end, 10);
-  if (end == transport.c_str() + colon + 1 || *end != '\0' || port < 1 || port > 65535) {
-    *why = "port of \"" + transport + "\" must be 1..65535";
-    return false;
-  }
-  out->host = transport.substr(0, colon);
-  out->port = static_cast<int>(port);
-  return true;
-}
-
 RealDevices::RealDevices(const DaemonConfig& config)
     : config_(config), clock_(std::make_unique<hal::MonotonicClock>()) {
   for (const auto& d : config_.devices) {
     if (d.driver != DriverKind::kReal) continue;
     std::vector<std::pair<std::string, std::unique_ptr<hal::Device>>> drivers;
     drivers.emplace_back(d.name, make_driver(d, config_, *clock_));
-    if (d.kind == "pan_tilt") drivers.emplace_back(angles_name(d.name), make_pan_tilt_angles(d));
+    if (d.kind == "pan_tilt")
+      drivers.emplace_back(pan_tilt_angles_name(d.name), make_pan_tilt_angles(d));
     for (auto& [name, driver] : drivers) {
       if (!driver) continue;
       if (const hal::Status s = driver->start(); !s) {
@@ -174,7 +134,7 @@ std::vector<NamedHealth> RealDevices::health() const {
       h.message = "no real driver for kind " + d.kind + " in this build";
       out.push_back({d.name, h});
     }
-    if (const auto a = devices_.find(angles_name(d.name)); a != devices_.end()) {
+    if (const auto a = devices_.find(pan_tilt_angles_name(d.name)); a != devices_.end()) {
       out.push_back({a->first, a->second->health()});
     }
   }
@@ -324,7 +284,7 @@ ScanOutcome RealDevices::scan_css(const DeviceConfig& device, const ScanRequest&
 ScanOutcome RealDevices::scan_pan_tilt(const DeviceConfig& device, const ScanRequest& request,
                                        const std::atomic<bool>& cancel,
                                        const std::function<void()>& progress) {
-  const std::string head_name = angles_name(device.name);
+  const std::string head_name = pan_tilt_angles_name(device.name);
   auto* ranger = dynamic_cast<hal::RangerSource*>(devices_.at(device.name).get());
   auto* head = dynamic_cast<hal::PanTiltSource*>(devices_.at(head_name).get());
   for (const auto& [name, d] :

@@ -1,14 +1,17 @@
 #pragma once
 // driver = "real": the cell's drivers, built from each device's kind and transport:
 //   axis     - drivers::FhppAxis (Festo FHPP over Modbus): "host:port" (TCP) or "/dev/tty..."
-//   (RTU); robot    - drivers::can::Cia402JointSource (CiA 402 joints, SYNC master) on a SocketCAN
-//              interface, e.g. "can0"; joint 6 on node 1 is the CSS's last joint
-//              (fusion.css.joint);
-//   stripe   - drivers::can::RangerCanSource (node 0x20) on a SocketCAN interface;
+//              (RTU), unit modbus_unit (default 1);
+//   robot    - drivers::can::Cia402JointSource (CiA 402 joints, SYNC master) on a SocketCAN
+//              interface, e.g. "can0"; the CSS's last joint (fusion.css.joint) on node can_node
+//              (default 1);
+//   stripe   - drivers::can::RangerCanSource (node can_node, default 0x20) on a SocketCAN
+//              interface;
 //   css      - drivers::css_usb::CssUsbDriver over LibusbTransport: "usb" or "usb:VID:PID" (hex);
-//   pan_tilt - the head's ranger (drivers::can::RangerCanSource) and its pan/tilt axes
-//              (drivers::can::Cia402PanTiltSource, nodes 1 and 2, reported as "<name>/angles")
-//              on one SocketCAN interface.
+//   pan_tilt - the head's ranger (drivers::can::RangerCanSource, node can_node) and its pan/tilt
+//              axes (drivers::can::Cia402PanTiltSource, nodes pan_node and tilt_node, default 1
+//              and 2, reported as "<name>/angles") on one SocketCAN interface.
+// daemon/driver_configs.hpp builds each driver's settings from the device's table.
 // Every driver starts at construction and reconnects by itself, so a device that is absent at
 // start is only reported (diagnostics ERROR via its health) and never fatal; a request that needs
 // it is answered with an error naming the device and its state.
@@ -27,19 +30,11 @@
 #include <vector>
 
 #include "daemon/config.hpp"
+#include "daemon/driver_configs.hpp"
 #include "daemon/pipeline.hpp"
 #include "hal/source.hpp"
 
 namespace rangefit::daemon {
-
-// Parses "host:port" (TCP) or "/dev/..." (RTU) into the host/port/serial fields; false when
-// neither fits (*why says so).
-struct ModbusAddress {
-  std::string host;
-  int port = 502;
-  std::string serial_device;
-};
-bool parse_modbus_address(const std::string& transport, ModbusAddress* out, std::string* why);
 
 class RealDevices {
  public:

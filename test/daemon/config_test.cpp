@@ -76,6 +76,22 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"[[objects]]\nname = \"b\"\nscale_mm = [1, 1, 1]\nshape = [0.01, 1]\n",
                 "objects[0].shape"},
         BadCase{"[[objects]]\nname = \"b\"\n", "objects[0].scale_mm"},
+        BadCase{"[[devices]]\nname = \"r\"\nkind = \"robot\"\ncan_node = 128\n",
+                "devices[0].can_node: must be in [1, 127]"},
+        BadCase{"[[devices]]\nname = \"r\"\nkind = \"robot\"\ncan_node = 0\n",
+                "devices[0].can_node: must be in [1, 127]"},
+        BadCase{"[[devices]]\nname = \"a\"\nkind = \"axis\"\nmodbus_unit = 248\n",
+                "devices[0].modbus_unit: must be in [1, 247]"},
+        BadCase{"[[devices]]\nname = \"a\"\nkind = \"axis\"\nmodbus_unit = \"7\"\n",
+                "devices[0].modbus_unit: must be an integer"},
+        BadCase{"[[devices]]\nname = \"a\"\nkind = \"axis\"\ncan_node = 3\n",
+                "devices[0].can_node: only for kind robot, stripe or pan_tilt"},
+        BadCase{"[[devices]]\nname = \"r\"\nkind = \"robot\"\nmodbus_unit = 3\n",
+                "devices[0].modbus_unit: only for kind axis"},
+        BadCase{"[[devices]]\nname = \"s\"\nkind = \"stripe\"\npan_node = 3\n",
+                "devices[0].pan_node: only for kind pan_tilt"},
+        BadCase{"[[devices]]\nname = \"h\"\nkind = \"pan_tilt\"\npan_node = 5\ntilt_node = 5\n",
+                "devices[0].tilt_node: CAN node 5 is also this device's pan_node"},
         BadCase{"[service]\nbore_sensor = \"nope\"\n", "service.bore_sensor"},
         BadCase{"[service\n", "t.toml:1"}));
 
@@ -105,6 +121,76 @@ TEST(DaemonConfig, SimDeviceScenesResolveAgainstTheConfigFolder) {
   EXPECT_EQ(r.config->device("stripe")->sim_fault.on_scan, 1);
   EXPECT_LT(r.config->device("css")->sim_fault.disconnect_after_s, 0.0) << "no fault by default";
   EXPECT_DOUBLE_EQ(r.config->sim.time_scale, 0.0);
+}
+
+TEST(DaemonConfig, FieldErrorsNameTheLineOfTheField) {
+  const auto r = parse_config(
+      "[service]\nqueue_capacity = 2\n\n[[devices]]\nname = \"arm\"\nkind = \"robot\"\n"
+      "can_node = 300\n",
+      "t.toml");
+  EXPECT_EQ(r.error.rfind("t.toml:7: devices[0].can_node: must be in [1, 127], got 300", 0), 0u)
+      << r.error;
+  // A missing field is placed at its table.
+  const auto missing = parse_config("[dds]\n[[objects]]\nname = \"b\"\n", "t.toml");
+  EXPECT_EQ(missing.error.rfind("t.toml:2: objects[0].scale_mm", 0), 0u) << missing.error;
+}
+
+TEST(DaemonConfig, BusAddressesAreReadAndUnsetOnesStayAtTheDriverDefault) {
+  const auto r = parse_config(
+      "[[devices]]\nname = \"arm\"\nkind = \"robot\"\ndriver = \"real\"\n"
+      "transport = \"can0\"\ncan_node = 11\n"
+      "[[devices]]\nname = \"head\"\nkind = \"pan_tilt\"\ndriver = \"real\"\n"
+      "transport = \"can0\"\ncan_node = 40\npan_node = 12\ntilt_node = 13\n"
+      "[[devices]]\nname = \"axis\"\nkind = \"axis\"\ndriver = \"real\"\n"
+      "transport = \"10.0.0.5:502\"\nmodbus_unit = 247\n"
+      "[[devices]]\nname = \"stripe\"\nkind = \"stripe\"\ndriver = \"real\"\n"
+      "transport = \"can1\"\n");
+  ASSERT_TRUE(r.config) << r.error;
+  EXPECT_EQ(r.config->device("arm")->can_node, 11);
+  EXPECT_EQ(r.config->device("head")->can_node, 40);
+  EXPECT_EQ(r.config->device("head")->pan_node, 12);
+  EXPECT_EQ(r.config->device("head")->tilt_node, 13);
+  EXPECT_EQ(r.config->device("axis")->modbus_unit, 247);
+  EXPECT_EQ(r.config->device("stripe")->can_node, 0) << "0: the driver's default";
+}
+
+TEST(DaemonConfig, RealDevicesSharingANodeOnOneInterfaceIsAnErrorNamingBoth) {
+  const std::string arm =
+      "[[devices]]\nname = \"arm\"\nkind = \"robot\"\ndriver = \"real\"\n"
+      "transport = \"can0\"\n";
+  // The robot's joint and the head's pan axis both default to node 1.
+  const auto r = parse_config(arm +
+                                  "[[devices]]\nname = \"head\"\nkind = \"pan_tilt\"\n"
+                                  "driver = \"real\"\ntransport = \"can0\"\n",
+                              "t.toml");
+  EXPECT_FALSE(r.config);
+  EXPECT_NE(r.error.find("devices[1].pan_node: CAN node 1 (the default) on can0 is also used by "
+                         "device \"arm\" (devices[0].can_node)"),
+            std::string::npos)
+      << r.error;
+  // Set explicitly: the error names the field as configured.
+  const auto set = parse_config(arm +
+                                    "[[devices]]\nname = \"s\"\nkind = \"stripe\"\n"
+                                    "driver = \"real\"\ntransport = \"can0\"\ncan_node = 1\n",
+                                "t.toml");
+  EXPECT_NE(set.error.find("t.toml:11: devices[1].can_node: CAN node 1 on can0 is also used by "
+                           "device \"arm\""),
+            std::string::npos)
+      << set.error;
+}
+
+TEST(DaemonConfig, SameNodeOnAnotherInterfaceOrOnASimulatedDeviceIsFine) {
+  const std::string arm =
+      "[[devices]]\nname = \"arm\"\nkind = \"robot\"\ndriver = \"real\"\n"
+      "transport = \"can0\"\n";
+  const auto other_bus = parse_config(arm +
+                                      "[[devices]]\nname = \"head\"\nkind = \"pan_tilt\"\n"
+                                      "driver = \"real\"\ntransport = \"can1\"\n");
+  EXPECT_TRUE(other_bus.config) << other_bus.error;
+  const auto simulated = parse_config(arm +
+                                      "[[devices]]\nname = \"head\"\nkind = \"pan_tilt\"\n"
+                                      "scene = \"s.toml\"\ntransport = \"can0\"\n");
+  EXPECT_TRUE(simulated.config) << simulated.error;
 }
 
 TEST(DaemonConfig, MissingFileIsReportedWithItsPath) {

@@ -109,6 +109,21 @@ TEST(RealDevices, AxisAbsentAtStartIsReportedAsErrorThenStreamsWhenTheDriveAppea
   EXPECT_GT(server.requests(), 0u);
 }
 
+TEST(RealDevices, ConfiguredModbusUnitIsTheOneTheDriveAnswers) {
+  sim::SimFhppDrive drive(sim::SimAxisConfig{});
+  sim::SimAxisServerConfig sc;
+  sc.unit_id = 17;  // other units are answered with exception 0Bh (gateway target)
+  sim::SimAxisServer server(drive, sc);
+  ASSERT_TRUE(server.start().ok);
+  DaemonConfig config;
+  config.devices.push_back(real("axis", "axis", "127.0.0.1:" + std::to_string(server.port())));
+  config.devices.back().modbus_unit = 17;
+  DeviceBackend backend(config);
+  EXPECT_TRUE(eventually([&] {
+    return health_of(backend, "axis").state == hal::DeviceState::kStreaming;
+  })) << health_of(backend, "axis").message;
+}
+
 TEST(RealDevices, ScanWithAnAbsentDeviceIsAnErrorResultNamingItAndTheBackendGoesOn) {
   const int port = free_port();
   DaemonConfig config;

@@ -1,0 +1,95 @@
+#include "daemon/driver_configs.hpp"
+
+#include <cstdlib>
+#include <stdexcept>
+
+namespace rangefit::daemon {
+namespace {
+
+template <class T>
+void set_if(int configured, T& field) {
+  if (configured != 0) field = static_cast<T>(configured);
+}
+
+}  // namespace
+
+bool parse_modbus_address(const std::string& transport, ModbusAddress* out, std::string* why) {
+  if (transport.rfind("/dev/", 0) == 0) {
+    out->serial_device = transport;
+    return true;
+  }
+  const auto colon = transport.rfind(':');
+  if (colon == std::string::npos || colon == 0) {
+    *why = "must be \"host:port\" (Modbus TCP) or \"/dev/...\" (RTU), got \"" + transport + "\"";
+    return false;
+  }
+  char* end = nullptr;
+  const long port = std::strtol(transport.c_str() + colon + 1, &end, 10);
+  if (end == transport.c_str() + colon + 1 || *end != '\0' || port < 1 || port > 65535) {
+    *why = "port of \"" + transport + "\" must be 1..65535";
+    return false;
+  }
+  out->host = transport.substr(0, colon);
+  out->port = static_cast<int>(port);
+  return true;
+}
+
+drivers::FhppAxisConfig fhpp_axis_config(const DeviceConfig& d, double axis_travel_mm) {
+  ModbusAddress a;
+  std::string why;
+  if (!parse_modbus_address(d.transport, &a, &why)) {
+    throw std::runtime_error("device " + d.name + ": transport: " + why);
+  }
+  drivers::FhppAxisConfig c;
+  c.name = d.name;
+  c.link.host = a.host;
+  c.link.port = a.port;
+  c.link.serial_device = a.serial_device;
+  set_if(d.modbus_unit, c.link.unit_id);
+  c.travel.max_mm = axis_travel_mm;
+  return c;
+}
+
+drivers::can::Cia402Config robot_joint_config(const DeviceConfig& d, int joint) {
+  drivers::can::Cia402Config c;
+  c.name = d.name;
+  drivers::can::Cia402JointConfig j;
+  j.joint = static_cast<std::uint8_t>(joint);
+  set_if(d.can_node, j.node);
+  c.joints.push_back(j);
+  return c;
+}
+
+drivers::can::RangerConfig ranger_config(const DeviceConfig& d) {
+  drivers::can::RangerConfig c;
+  c.name = d.name;
+  set_if(d.can_node, c.node);
+  return c;
+}
+
+drivers::can::PanTiltConfig pan_tilt_config(const DeviceConfig& d) {
+  drivers::can::PanTiltConfig c;
+  c.bus.name = pan_tilt_angles_name(d.name);
+  set_if(d.pan_node, c.pan.node);
+  set_if(d.tilt_node, c.tilt.node);
+  return c;
+}
+
+std::string pan_tilt_angles_name(const std::string& head) { return head + "/angles"; }
+
+std::vector<CanNodeUse> can_nodes(const DeviceConfig& d) {
+  const CanNodeUse ranger{"can_node", ranger_config(d).node, d.can_node == 0};
+  if (d.kind == "robot") {
+    return {{"can_node", robot_joint_config(d, 1).joints.at(0).node, d.can_node == 0}};
+  }
+  if (d.kind == "stripe") return {ranger};
+  if (d.kind == "pan_tilt") {
+    const auto head = pan_tilt_config(d);
+    return {ranger,
+            {"pan_node", head.pan.node, d.pan_node == 0},
+            {"tilt_node", head.tilt.node, d.tilt_node == 0}};
+  }
+  return {};
+}
+
+}  // namespace rangefit::daemon
