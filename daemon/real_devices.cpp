@@ -5,7 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "daemon/sim_cell.hpp"
+#include "daemon/scan_loop.hpp"
 #include "drivers/can/socketcan_transport.hpp"
 #include "drivers/usb/css_usb_driver.hpp"
 #include "drivers/usb/libusb_transport.hpp"
@@ -15,15 +15,26 @@
 namespace rangefit::daemon {
 namespace {
 
-using std::chrono::milliseconds;
-constexpr hal::Duration kReadSlice = milliseconds(100);
+// Ok when both the sensor and the device moving it can deliver data now; otherwise why not,
+// naming the first that cannot.
+hal::Status usable(const std::string& a, const hal::Device& da, const std::string& b,
+                   const hal::Device& db) {
+  for (const auto& [name, dev] : {std::pair{&a, &da}, {&b, &db}}) {
+    const hal::DeviceHealth h = dev->health();
+    if (h.state == hal::DeviceState::kReady || h.state == hal::DeviceState::kStreaming) continue;
+    return hal::Status::Error(*name + " not available (" + hal::to_string(h.state) +
+                              (h.message.empty() ? "" : ": " + h.message) + ")");
+  }
+  return {};
+}
 
-// Ok when the device can deliver data now; otherwise why not, naming it.
-hal::Status usable(const std::string& name, const hal::Device& d) {
-  const hal::DeviceHealth h = d.health();
-  if (h.state == hal::DeviceState::kReady || h.state == hal::DeviceState::kStreaming) return {};
-  return hal::Status::Error(name + " not available (" + hal::to_string(h.state) +
-                            (h.message.empty() ? "" : ": " + h.message) + ")");
+// A sweep the daemon only watches starts now: what both streams queued before is dropped.
+template <class A, class B>
+void drop_stale(hal::SampleSource<A>& a, hal::SampleSource<B>& b) {
+  std::vector<A> stale_a;
+  std::vector<B> stale_b;
+  a.read(stale_a, hal::Duration::zero());
+  b.read(stale_b, hal::Duration::zero());
 }
 
 std::unique_ptr<drivers::can::CanTransport> socketcan(const std::string& interface,
@@ -76,25 +87,24 @@ std::unique_ptr<hal::Device> make_pan_tilt_angles(const DeviceConfig& d) {
       c, socketcan(d.transport, drivers::can::cia402_filter(drivers::can::pan_tilt_bus_config(c))));
 }
 
-// Fails when the sensor or the device moving it lost its link or faulted.
-bool watch(const std::string& a, const hal::Device& da, const std::string& b, const hal::Device& db,
-           std::string* why) {
-  for (const auto& [name, dev] : {std::pair{&a, &da}, {&b, &db}}) {
-    const hal::DeviceHealth h = dev->health();
-    if (h.state == hal::DeviceState::kDisconnected || h.state == hal::DeviceState::kFault) {
-      *why = *name + ": " + (h.message.empty() ? hal::to_string(h.state) : h.message);
-      return false;
+// healthy(&why) for a scan loop: false when the sensor or the device moving it lost its link or
+// faulted, *why naming which.
+auto health_watch(const std::string& a, const hal::Device& da, const std::string& b,
+                  const hal::Device& db) {
+  return [&a, &da, &b, &db](std::string* why) {
+    for (const auto& [name, dev] : {std::pair{&a, &da}, {&b, &db}}) {
+      const hal::DeviceHealth h = dev->health();
+      if (h.state == hal::DeviceState::kDisconnected || h.state == hal::DeviceState::kFault) {
+        *why = *name + ": " + (h.message.empty() ? hal::to_string(h.state) : h.message);
+        return false;
+      }
     }
-  }
-  return true;
+    return true;
+  };
 }
 
-ScanOutcome finish(const DeviceConfig& device, fusion::FusedScan scan) {
-  if (scan.bad) return {hal::Status::Error(device.name + ": fusion: " + scan.reason), {}};
-  const Eigen::Isometry3d T = device_extrinsics(device);
-  for (auto& p : scan.cloud.points) p = T * p;
-  for (auto& n : scan.cloud.normals) n = T.linear() * n;
-  return {hal::Status::Ok(), std::move(scan.cloud)};
+ScanOutcome failed(const DeviceConfig& device, const std::string& why) {
+  return {hal::Status::Error(device.name + ": " + why), {}};
 }
 
 }  // namespace
@@ -181,10 +191,7 @@ ScanOutcome RealDevices::scan_stripe(const DeviceConfig& device, const ScanReque
   auto* ranger = dynamic_cast<hal::RangerSource*>(devices_.at(device.name).get());
   if (axis == nullptr || ranger == nullptr) return {hal::Status::Error(why), {}};
   const std::string axis_name = axis->name();
-  for (const auto& [name, d] :
-       {std::pair<std::string, hal::Device*>{device.name, ranger}, {axis_name, axis}}) {
-    if (hal::Status s = usable(name, *d); !s) return {s, {}};
-  }
+  if (hal::Status s = usable(device.name, *ranger, axis_name, *axis); !s) return {s, {}};
   const fusion::StripeCellFusionConfig& fc = config_.fusion.stripe_cell;
   double from = 0.0, to = fc.geometry.axis_travel_mm;
   if (request.sweep_start != request.sweep_end) {
@@ -193,41 +200,20 @@ ScanOutcome RealDevices::scan_stripe(const DeviceConfig& device, const ScanReque
   }
   const double speed = request.sweep_speed > 0.0 ? request.sweep_speed : fc.geometry.max_speed_mm_s;
   fusion::StripeCellAssembler assembler(fc);
-  std::vector<hal::RangerProfile> profiles;
-  std::vector<hal::AxisSample> samples;
   hal::Status st = axis->enable();
   if (st) st = axis->move_to(from, fc.geometry.max_speed_mm_s);
-  bool ok = static_cast<bool>(st);
-  if (!st) why = axis_name + ": " + st.message;
-  for (int leg = 0; ok && leg < 2; ++leg) {
-    if (leg == 1) {
-      assembler.begin_scan();
-      if (st = axis->move_to(to, speed); !st) {
-        why = axis_name + ": " + st.message;
-        ok = false;
-      }
-    }
-    while (ok && !axis->motion_complete()) {
-      if (cancel) {
-        why = "cancelled";
-        axis->halt();
-        ok = false;
-        break;
-      }
-      profiles.clear();
-      samples.clear();
-      axis->read(samples, kReadSlice);
-      ranger->read(profiles, hal::Duration::zero());
-      if (leg == 1) {
-        for (const auto& s : samples) assembler.add_axis(s);
-        for (const auto& p : profiles) assembler.add_profile(p);
-      }
-      if (!samples.empty() || !profiles.empty()) progress();
-      ok = watch(device.name, *ranger, axis_name, *axis, &why);
-    }
-  }
-  if (!ok) return {hal::Status::Error(device.name + ": " + why), {}};
-  return finish(device, assembler.finish());
+  if (!st) return failed(device, axis_name + ": " + st.message);
+  const auto start_sweep = [&](std::string* w) {
+    assembler.begin_scan();
+    const hal::Status s = axis->move_to(to, speed);
+    if (!s) *w = axis_name + ": " + s.message;
+    return static_cast<bool>(s);
+  };
+  const ScanLoopEnd end = sweep_stripe(*axis, *ranger, assembler, {cancel, progress}, start_sweep,
+                                       health_watch(device.name, *ranger, axis_name, *axis), &why);
+  if (end == ScanLoopEnd::kCancelled) axis->halt();
+  if (end != ScanLoopEnd::kDone) return failed(device, why);
+  return finish_scan(device, assembler.finish());
 }
 
 ScanOutcome RealDevices::scan_css(const DeviceConfig& device, const ScanRequest& request,
@@ -238,47 +224,31 @@ ScanOutcome RealDevices::scan_css(const DeviceConfig& device, const ScanRequest&
   auto* css = dynamic_cast<hal::CssSource*>(devices_.at(device.name).get());
   if (joints == nullptr || css == nullptr) return {hal::Status::Error(why), {}};
   const std::string robot_name = joints->name();
-  for (const auto& [name, d] :
-       {std::pair<std::string, hal::Device*>{device.name, css}, {robot_name, joints}}) {
-    if (hal::Status s = usable(name, *d); !s) return {s, {}};
-  }
+  if (hal::Status s = usable(device.name, *css, robot_name, *joints); !s) return {s, {}};
   fusion::CssFusionConfig fc = config_.fusion.css;
   if (request.sweep_start != request.sweep_end) {
     fc.deflection_rad = 0.5 * std::abs(request.sweep_end - request.sweep_start);
   }
   fusion::CssAssembler assembler(fc);
   assembler.begin_scan();
-  std::vector<hal::CssRevolution> revs;
-  std::vector<hal::JointSample> samples;
   // Records while the robot program pivots the joint from -delta to +delta (eq. 4.21); stale
   // data from before the request is dropped first.
-  css->read(revs, hal::Duration::zero());
-  joints->read(samples, hal::Duration::zero());
-  constexpr double kSlack = 1e-4;  // rad
-  bool at_start = false, at_end = false, ok = true;
-  while (ok && !at_end) {
-    if (cancel) {
-      why = "cancelled";
-      ok = false;
-      break;
-    }
-    revs.clear();
-    samples.clear();
-    css->read(revs, kReadSlice);
-    joints->read(samples, hal::Duration::zero());
+  drop_stale(*css, *joints);
+  SweepEdges sweep{fc.deflection_rad};
+  const auto fuse = [&](const std::vector<hal::CssRevolution>& revs,
+                        const std::vector<hal::JointSample>& samples) {
     for (const auto& j : samples) {
       if (j.joint != fc.joint) continue;
-      const double omega = j.angle_rad - fc.omega_zero_rad;
-      at_start = at_start || omega <= -fc.deflection_rad + kSlack;
-      at_end = at_start && omega >= fc.deflection_rad - kSlack;
+      sweep.see(j.angle_rad - fc.omega_zero_rad);
       assembler.add_joint(j);
     }
     for (const auto& r : revs) assembler.add_revolution(r);
-    if (!revs.empty() || !samples.empty()) progress();
-    ok = watch(device.name, *css, robot_name, *joints, &why);
-  }
-  if (!ok) return {hal::Status::Error(device.name + ": " + why), {}};
-  return finish(device, assembler.finish());
+  };
+  const ScanLoopEnd end = run_scan_loop(
+      *css, *joints, {cancel, progress}, [&] { return sweep.at_end; }, fuse,
+      health_watch(device.name, *css, robot_name, *joints), &why);
+  if (end != ScanLoopEnd::kDone) return failed(device, why);
+  return finish_scan(device, assembler.finish());
 }
 
 ScanOutcome RealDevices::scan_pan_tilt(const DeviceConfig& device, const ScanRequest& request,
@@ -287,48 +257,31 @@ ScanOutcome RealDevices::scan_pan_tilt(const DeviceConfig& device, const ScanReq
   const std::string head_name = pan_tilt_angles_name(device.name);
   auto* ranger = dynamic_cast<hal::RangerSource*>(devices_.at(device.name).get());
   auto* head = dynamic_cast<hal::PanTiltSource*>(devices_.at(head_name).get());
-  for (const auto& [name, d] :
-       {std::pair<std::string, hal::Device*>{device.name, ranger}, {head_name, head}}) {
-    if (hal::Status s = usable(name, *d); !s) return {s, {}};
-  }
+  if (hal::Status s = usable(device.name, *ranger, head_name, *head); !s) return {s, {}};
   fusion::PanTiltFusionConfig fc = config_.fusion.pan_tilt;
   if (request.sweep_start != request.sweep_end) {
     fc.geometry.sweep_angle_rad = std::abs(request.sweep_end - request.sweep_start);
   }
-  const double half = 0.5 * fc.geometry.sweep_angle_rad;
   fusion::PanTiltAssembler assembler(fc);
   assembler.begin_scan();
-  std::vector<hal::RangerProfile> profiles;
-  std::vector<hal::PanTiltSample> angles;
   // Like the CSS: records while the cell program pans the head from -half to +half about
   // pan_zero (eq. 5.7); what arrived before the request is dropped first.
-  ranger->read(profiles, hal::Duration::zero());
-  head->read(angles, hal::Duration::zero());
-  constexpr double kSlack = 1e-4;  // rad
-  bool at_start = false, at_end = false, ok = true;
-  std::string why;
-  while (ok && !at_end) {
-    if (cancel) {
-      why = "cancelled";
-      ok = false;
-      break;
-    }
-    profiles.clear();
-    angles.clear();
-    head->read(angles, kReadSlice);
-    ranger->read(profiles, hal::Duration::zero());
+  drop_stale(*ranger, *head);
+  SweepEdges sweep{0.5 * fc.geometry.sweep_angle_rad};
+  const auto fuse = [&](const std::vector<hal::PanTiltSample>& angles,
+                        const std::vector<hal::RangerProfile>& profiles) {
     for (const auto& a : angles) {
-      const double pan = a.pan_rad - fc.geometry.pan_zero_rad;
-      at_start = at_start || pan <= -half + kSlack;
-      at_end = at_start && pan >= half - kSlack;
+      sweep.see(a.pan_rad - fc.geometry.pan_zero_rad);
       assembler.add_pan_tilt(a);
     }
     for (const auto& p : profiles) assembler.add_profile(p);
-    if (!angles.empty() || !profiles.empty()) progress();
-    ok = watch(device.name, *ranger, head_name, *head, &why);
-  }
-  if (!ok) return {hal::Status::Error(device.name + ": " + why), {}};
-  return finish(device, assembler.finish());
+  };
+  std::string why;
+  const ScanLoopEnd end = run_scan_loop(
+      *head, *ranger, {cancel, progress}, [&] { return sweep.at_end; }, fuse,
+      health_watch(device.name, *ranger, head_name, *head), &why);
+  if (end != ScanLoopEnd::kDone) return failed(device, why);
+  return finish_scan(device, assembler.finish());
 }
 
 }  // namespace rangefit::daemon

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "daemon/scan_loop.hpp"
 #include "fusion/css_assembler.hpp"
 #include "fusion/profile_assembler.hpp"
 #include "sim/css_simulator.hpp"
@@ -17,9 +18,6 @@ namespace rangefit::daemon {
 namespace {
 
 using std::chrono::milliseconds;
-
-// Each read waits at most this long, so cancellation and health checks stay prompt.
-constexpr hal::Duration kReadSlice = milliseconds(100);
 
 hal::Duration seconds(double s) {
   return std::chrono::duration_cast<hal::Duration>(std::chrono::duration<double>(s));
@@ -57,16 +55,6 @@ bool half_sweep(const ScanRequest& r, double fallback, double* half, std::string
 }
 
 }  // namespace
-
-Eigen::Isometry3d device_extrinsics(const DeviceConfig& d) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.translation() = Eigen::Vector3d(d.xyz_mm[0], d.xyz_mm[1], d.xyz_mm[2]);
-  T.linear() = (Eigen::AngleAxisd(d.rpy_rad[2], Eigen::Vector3d::UnitZ()) *
-                Eigen::AngleAxisd(d.rpy_rad[1], Eigen::Vector3d::UnitY()) *
-                Eigen::AngleAxisd(d.rpy_rad[0], Eigen::Vector3d::UnitX()))
-                   .toRotationMatrix();
-  return T;
-}
 
 struct SimCell::LoadedScene {
   explicit LoadedScene(const std::string& path) : scene(sim::load_scene(path)), caster(scene) {}
@@ -126,12 +114,10 @@ struct SimCell::Run {
     }
   }
 
-  ScanOutcome finish(fusion::FusedScan scan, const Eigen::Isometry3d& T_scene_sensor) {
-    if (scan.bad) return {hal::Status::Error(device.name + ": fusion: " + scan.reason), {}};
-    const Eigen::Isometry3d T = device_extrinsics(device) * T_scene_sensor;
-    for (auto& p : scan.cloud.points) p = T * p;
-    for (auto& n : scan.cloud.normals) n = T.linear() * n;
-    return {hal::Status::Ok(), std::move(scan.cloud)};
+  ScanControl control() const { return {cancel, progress}; }
+  // watch() as a scan loop's health check.
+  auto healthy(const hal::Device& sensor, const hal::Device& motion) {
+    return [this, &sensor, &motion](std::string* why) { return watch(sensor, motion, why); };
   }
 };
 
@@ -210,28 +196,19 @@ ScanOutcome SimCell::scan_css(Run& run) {
   fc.expected_revolutions = static_cast<std::size_t>(rig.revolutions_in_scan()) + 8;
   fusion::CssAssembler assembler(fc);
   assembler.begin_scan();
-  std::vector<hal::CssRevolution> revs;
-  std::vector<hal::JointSample> joints;
-  bool ok = static_cast<bool>(rig.css().start()) && static_cast<bool>(rig.joint().start());
-  const hal::Timestamp end = rig.scan_end() + milliseconds(300);
-  while (ok && clock_->now() < end) {
-    if (run.cancel) {
-      why = "cancelled";
-      ok = false;
-      break;
-    }
-    revs.clear();
-    joints.clear();
-    rig.css().read(revs, kReadSlice);
-    rig.joint().read(joints, hal::Duration::zero());
+  const auto fuse = [&assembler](const std::vector<hal::CssRevolution>& revs,
+                                 const std::vector<hal::JointSample>& joints) {
     for (const auto& j : joints) assembler.add_joint(j);
     for (const auto& r : revs) assembler.add_revolution(r);
-    if (!revs.empty() || !joints.empty()) run.progress();
-    ok = run.watch(rig.css(), rig.joint(), &why);
-  }
+  };
+  bool ok = static_cast<bool>(rig.css().start()) && static_cast<bool>(rig.joint().start());
+  const hal::Timestamp end = rig.scan_end() + milliseconds(300);
+  ok = ok && run_scan_loop(
+                 rig.css(), rig.joint(), run.control(), [&] { return clock_->now() >= end; }, fuse,
+                 run.healthy(rig.css(), rig.joint()), &why) == ScanLoopEnd::kDone;
   run.end(rig.css(), rig.joint(), ok);
   if (!ok) return {hal::Status::Error(run.device.name + ": " + why), {}};
-  return run.finish(assembler.finish(), run.scene.scene.mounts.T_scene_css);
+  return finish_scan(run.device, assembler.finish(), run.scene.scene.mounts.T_scene_css);
 }
 
 ScanOutcome SimCell::scan_stripe(Run& run) {
@@ -253,44 +230,28 @@ ScanOutcome SimCell::scan_stripe(Run& run) {
   fusion::StripeCellAssembler assembler(fc);
   hal::LinearAxis& axis = cell.axis();
   hal::RangerSource& ranger = cell.ranger();
-  std::vector<hal::RangerProfile> profiles;
-  std::vector<hal::AxisSample> samples;
   std::string why;
   hal::Status st = axis.enable();
   if (st) st = axis.start();
   // Move to the sweep's start first (not fused; the ranger is off meanwhile so no profile is
   // ray-cast in vain), then sweep at the requested speed.
   if (st && from != 0.0) st = axis.move_to(from, o.geometry.max_speed_mm_s);
-  bool ok = static_cast<bool>(st);
-  for (int leg = 0; ok && leg < 2; ++leg) {
-    if (leg == 1) {
+  ScanLoopEnd end = ScanLoopEnd::kFailed;
+  if (st) {
+    const auto start_sweep = [&](std::string*) {
       assembler.begin_scan();
       st = ranger.start();
       if (st) st = axis.move_to(to, speed);
-      ok = static_cast<bool>(st);
-    }
-    while (ok && !axis.motion_complete()) {
-      if (run.cancel) {
-        why = "cancelled";
-        ok = false;
-        break;
-      }
-      profiles.clear();
-      samples.clear();
-      axis.read(samples, kReadSlice);
-      ranger.read(profiles, hal::Duration::zero());
-      if (leg == 1) {
-        for (const auto& s : samples) assembler.add_axis(s);
-        for (const auto& p : profiles) assembler.add_profile(p);
-      }
-      if (!samples.empty() || !profiles.empty()) run.progress();
-      ok = run.watch(ranger, axis, &why);
-    }
+      return static_cast<bool>(st);
+    };
+    end = sweep_stripe(axis, ranger, assembler, run.control(), start_sweep,
+                       run.healthy(ranger, axis), &why);
   }
   if (!st) why = "axis: " + st.message;
+  const bool ok = end == ScanLoopEnd::kDone;
   run.end(ranger, axis, ok);
   if (!ok) return {hal::Status::Error(run.device.name + ": " + why), {}};
-  return run.finish(assembler.finish(), run.scene.scene.mounts.T_scene_stripe);
+  return finish_scan(run.device, assembler.finish(), run.scene.scene.mounts.T_scene_stripe);
 }
 
 ScanOutcome SimCell::scan_pan_tilt(Run& run) {
@@ -311,27 +272,19 @@ ScanOutcome SimCell::scan_pan_tilt(Run& run) {
   sim::PanTiltHead head(run.scene.scene, run.scene.caster, o, *clock_);
   fusion::PanTiltAssembler assembler(fc);
   assembler.begin_scan();
-  std::vector<hal::RangerProfile> profiles;
-  std::vector<hal::PanTiltSample> angles;
-  bool ok = static_cast<bool>(head.angles().start()) && static_cast<bool>(head.ranger().start());
-  while (ok && clock_->now() < head.sweep_end()) {
-    if (run.cancel) {
-      why = "cancelled";
-      ok = false;
-      break;
-    }
-    profiles.clear();
-    angles.clear();
-    head.angles().read(angles, kReadSlice);
-    head.ranger().read(profiles, hal::Duration::zero());
+  const auto fuse = [&assembler](const std::vector<hal::PanTiltSample>& angles,
+                                 const std::vector<hal::RangerProfile>& profiles) {
     for (const auto& s : angles) assembler.add_pan_tilt(s);
     for (const auto& p : profiles) assembler.add_profile(p);
-    if (!angles.empty() || !profiles.empty()) run.progress();
-    ok = run.watch(head.ranger(), head.angles(), &why);
-  }
+  };
+  bool ok = static_cast<bool>(head.angles().start()) && static_cast<bool>(head.ranger().start());
+  ok = ok && run_scan_loop(
+                 head.angles(), head.ranger(), run.control(),
+                 [&] { return clock_->now() >= head.sweep_end(); }, fuse,
+                 run.healthy(head.ranger(), head.angles()), &why) == ScanLoopEnd::kDone;
   run.end(head.ranger(), head.angles(), ok);
   if (!ok) return {hal::Status::Error(run.device.name + ": " + why), {}};
-  return run.finish(assembler.finish(), run.scene.scene.mounts.T_scene_pantilt);
+  return finish_scan(run.device, assembler.finish(), run.scene.scene.mounts.T_scene_pantilt);
 }
 
 }  // namespace rangefit::daemon

@@ -13,7 +13,6 @@
 // the scene and the device's xyz_mm/rpy_rad extrinsics, when set, place the scene in the world:
 // p_world = T(xyz, rpy) * T_scene_sensor * p_sensor.
 
-#include <Eigen/Geometry>
 #include <atomic>
 #include <functional>
 #include <map>
@@ -30,9 +29,6 @@ class SimClock;
 }  // namespace rangefit::sim
 
 namespace rangefit::daemon {
-
-// T(xyz_mm, rpy_rad) of a device: roll about x, then pitch about y, then yaw about z (fixed axes).
-Eigen::Isometry3d device_extrinsics(const DeviceConfig& d);
 
 class SimCell {
  public:

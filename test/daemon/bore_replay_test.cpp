@@ -3,47 +3,31 @@
 // separate DDS participant; the pose must agree with the ground truth.
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <filesystem>
-#include <thread>
+#include <memory>
 
 #include "daemon/client.hpp"
 #include "daemon/service.hpp"
 #include "io/ply.hpp"
 #include "sim/synthetic_bore.hpp"
-#include "test/daemon/dds_test_env.hpp"
+#include "test/daemon/replay_service.hpp"
 
 namespace rangefit::daemon {
 namespace {
 namespace fs = std::filesystem;
 
 TEST(BoreReplayThroughDds, BoreRequestFindsTheSimulatedBoreWithinTolerance) {
-  const fs::path dir = fs::temp_directory_path() / "rangefit_bore_replay_test";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = test::fresh_test_dir("rangefit_bore_replay_test");
   sim::SyntheticBoreOptions opt;
   opt.radius = 5.0;
   opt.seed = 7;
   const auto scan = sim::make_synthetic_bore(opt);
   io::write_ply(dir / "plate.ply", scan.cloud);
 
-  DaemonConfig config;
-  config.dds.domain_id = test::dds_test_domain();
-  config.spool.directory = dir / "spool";
-  DeviceConfig css;
-  css.name = "css";
-  css.kind = "css";
-  css.driver = DriverKind::kReplay;
-  css.replay_file = dir / "plate.ply";
-  config.devices.push_back(css);
-  config.service.bore_sensor = "css";
-
+  const DaemonConfig config = test::replay_css_config(dir, dir / "plate.ply");
   hal::MonotonicClock clock;
   Service service(config, clock);
-  std::atomic<bool> running{true};
-  std::thread loop([&] {
-    while (running) service.step(std::chrono::milliseconds(20));
-  });
+  auto loop = std::make_unique<test::ServiceLoop>(service);
 
   DdsClient client(config.dds.domain_id);
   ASSERT_TRUE(client.wait_for_daemon(std::chrono::seconds(20)));
@@ -55,8 +39,7 @@ TEST(BoreReplayThroughDds, BoreRequestFindsTheSimulatedBoreWithinTolerance) {
   req.bore.radius_mm = 5.0;
   ASSERT_TRUE(client.send(req, false));
   const auto result = client.wait_result("bore-1", std::chrono::seconds(60));
-  running = false;
-  loop.join();
+  loop.reset();
   ASSERT_TRUE(result);
   ASSERT_TRUE(result->found) << result->reason;
   EXPECT_NEAR(result->bore_radius_mm, scan.truth.radius, 0.1);

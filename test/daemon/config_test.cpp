@@ -154,10 +154,12 @@ TEST(DaemonConfig, BusAddressesAreReadAndUnsetOnesStayAtTheDriverDefault) {
   EXPECT_EQ(r.config->device("stripe")->can_node, 0) << "0: the driver's default";
 }
 
+// A real robot whose joint sits on can0 at the default node 1 (lines 1-5).
+constexpr const char* kArmOnCan0 =
+    "[[devices]]\nname = \"arm\"\nkind = \"robot\"\ndriver = \"real\"\ntransport = \"can0\"\n";
+
 TEST(DaemonConfig, RealDevicesSharingANodeOnOneInterfaceIsAnErrorNamingBoth) {
-  const std::string arm =
-      "[[devices]]\nname = \"arm\"\nkind = \"robot\"\ndriver = \"real\"\n"
-      "transport = \"can0\"\n";
+  const std::string arm = kArmOnCan0;
   // The robot's joint and the head's pan axis both default to node 1.
   const auto r = parse_config(arm +
                                   "[[devices]]\nname = \"head\"\nkind = \"pan_tilt\"\n"
@@ -180,9 +182,7 @@ TEST(DaemonConfig, RealDevicesSharingANodeOnOneInterfaceIsAnErrorNamingBoth) {
 }
 
 TEST(DaemonConfig, SameNodeOnAnotherInterfaceOrOnASimulatedDeviceIsFine) {
-  const std::string arm =
-      "[[devices]]\nname = \"arm\"\nkind = \"robot\"\ndriver = \"real\"\n"
-      "transport = \"can0\"\n";
+  const std::string arm = kArmOnCan0;
   const auto other_bus = parse_config(arm +
                                       "[[devices]]\nname = \"head\"\nkind = \"pan_tilt\"\n"
                                       "driver = \"real\"\ntransport = \"can1\"\n");

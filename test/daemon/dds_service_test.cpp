@@ -4,14 +4,13 @@
 
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <filesystem>
-#include <thread>
+#include <memory>
 
 #include "daemon/client.hpp"
 #include "io/ply.hpp"
-#include "test/daemon/dds_test_env.hpp"
 #include "test/daemon/fakes.hpp"
+#include "test/daemon/replay_service.hpp"
 
 namespace rangefit::daemon {
 namespace {
@@ -20,33 +19,20 @@ namespace fs = std::filesystem;
 class DdsServiceTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / "rangefit_dds_service_test" /
-           ::testing::UnitTest::GetInstance()->current_test_info()->name();
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    config_.dds.domain_id = test::dds_test_domain();
+    dir_ = test::fresh_test_dir(fs::path("rangefit_dds_service_test") /
+                                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    config_ = test::replay_css_config(dir_, dir_ / "scan.ply");
     config_.dds.diagnostics_period_s = 0.1;
-    config_.spool.directory = dir_ / "spool";
-    DeviceConfig css;
-    css.name = "css";
-    css.kind = "css";
-    css.driver = DriverKind::kReplay;
-    css.replay_file = dir_ / "scan.ply";
-    config_.devices.push_back(css);
-    config_.service.bore_sensor = "css";
     config_.objects.push_back({"box", {40, 30, 20}, {0.1, 0.1}, {}});
   }
   void TearDown() override {
-    running_ = false;
-    if (loop_.joinable()) loop_.join();
+    loop_.reset();
     service_.reset();
     fs::remove_all(dir_);
   }
   void start(std::unique_ptr<ScanBackend> backend, std::unique_ptr<Detector> detector) {
     service_ = std::make_unique<Service>(config_, clock_, std::move(backend), std::move(detector));
-    loop_ = std::thread([this] {
-      while (running_) service_->step(std::chrono::milliseconds(20));
-    });
+    loop_ = std::make_unique<test::ServiceLoop>(*service_);
   }
   ScanRequest bore(const std::string& id) {
     ScanRequest r;
@@ -60,8 +46,7 @@ class DdsServiceTest : public ::testing::Test {
   DaemonConfig config_;
   hal::MonotonicClock clock_;
   std::unique_ptr<Service> service_;
-  std::atomic<bool> running_{true};
-  std::thread loop_;
+  std::unique_ptr<test::ServiceLoop> loop_;
 };
 
 TEST_F(DdsServiceTest, RequestGetsItsResultInMetresAndTheCloudArrivesWhole) {
