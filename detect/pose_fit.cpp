@@ -3,9 +3,12 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <vector>
 
 #include "detect/pca.hpp"
+#include "detect/superquadric_eval.hpp"
 
 namespace rangefit {
 namespace {
@@ -21,31 +24,99 @@ struct Linearisation {
   Vector6d g = Vector6d::Zero();
 };
 
+// The points in lanes of four (structure of arrays); the tail is padded with copies of the last
+// point at weight 0. Plain doubles, loaded with memcpy (unaligned loads).
+struct PointLanes {
+  std::vector<double> x, y, z, w;
+  std::size_t blocks = 0;
+  explicit PointLanes(std::span<const Eigen::Vector3d> points) : blocks((points.size() + 3) / 4) {
+    for (std::size_t i = 0; i < 4 * blocks; ++i) {
+      const bool real = i < points.size();
+      const Eigen::Vector3d& p = points[real ? i : points.size() - 1];
+      x.push_back(p.x());
+      y.push_back(p.y());
+      z.push_back(p.z());
+      w.push_back(real ? 1.0 : 0.0);
+    }
+  }
+  [[gnu::always_inline]] static lanes::V4d load(const std::vector<double>& v, std::size_t block) {
+    lanes::V4d out;
+    std::memcpy(&out, v.data() + 4 * block, sizeof out);
+    return out;
+  }
+};
+
+// Sums per point, in the part frame (dt of the increment in the part frame, where dq/d(dt) =
+// -I): 0.5 r^2, the upper triangle of J^T J row by row (21), then J^T r (6). Four points at a
+// time; the lanes are added in a fixed order, so the AVX2 and SSE2 builds agree bit for bit.
+constexpr int kSums = 28;
+[[gnu::always_inline]] inline void linearise_lanes(const SuperquadricMetric& m,
+                                                   const Eigen::Matrix3d& Rt,
+                                                   const Eigen::Vector3d& t, const PointLanes& pts,
+                                                   double* out) {
+  using lanes::V4d;
+  V4d acc[kSums] = {};
+  for (std::size_t i = 0; i < pts.blocks; ++i) {
+    const V4d px = PointLanes::load(pts.x, i) - t.x(), py = PointLanes::load(pts.y, i) - t.y(),
+              pz = PointLanes::load(pts.z, i) - t.z();
+    const V4d qx = Rt(0, 0) * px + Rt(0, 1) * py + Rt(0, 2) * pz;
+    const V4d qy = Rt(1, 0) * px + Rt(1, 1) * py + Rt(1, 2) * pz;
+    const V4d qz = Rt(2, 0) * px + Rt(2, 1) * py + Rt(2, 2) * pz;
+    V4d gx, gy, gz;
+    const V4d w = PointLanes::load(pts.w, i);
+    const V4d r = (m.evaluate<V4d, true>(qx, qy, qz, &gx, &gy, &gz) - 1.0) * w;
+    gx *= w;
+    gy *= w;
+    gz *= w;
+    // q = exp(-[w]x) (R^T (p - t) - dt): dr/d(dt) = -grad^T, dr/dw = (grad x q)^T.
+    const V4d j[6] = {-gx, -gy, -gz, gy * qz - gz * qy, gz * qx - gx * qz, gx * qy - gy * qx};
+    acc[0] += 0.5 * r * r;
+    int k = 1;
+    for (int a = 0; a < 6; ++a) {
+      for (int b = a; b < 6; ++b) acc[k++] += j[a] * j[b];
+    }
+    for (int a = 0; a < 6; ++a) acc[k++] += j[a] * r;
+  }
+  for (int k = 0; k < kSums; ++k) out[k] = ((acc[k][0] + acc[k][1]) + acc[k][2]) + acc[k][3];
+}
+
+using LineariseFn = void (*)(const SuperquadricMetric&, const Eigen::Matrix3d&,
+                             const Eigen::Vector3d&, const PointLanes&, double*);
+void linearise_sse2(const SuperquadricMetric& m, const Eigen::Matrix3d& Rt,
+                    const Eigen::Vector3d& t, const PointLanes& pts, double* out) {
+  linearise_lanes(m, Rt, t, pts, out);
+}
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+// No FMA on purpose: fused products would round differently from the SSE2 build.
+[[gnu::target("avx2")]] void linearise_avx2(const SuperquadricMetric& m, const Eigen::Matrix3d& Rt,
+                                            const Eigen::Vector3d& t, const PointLanes& pts,
+                                            double* out) {
+  linearise_lanes(m, Rt, t, pts, out);
+}
+#endif
+
+LineariseFn pick_linearise() {
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+  if (__builtin_cpu_supports("avx2")) return linearise_avx2;
+#endif
+  return linearise_sse2;
+}
+
 Linearisation linearise(const SuperquadricMetric& m, const Eigen::Isometry3d& T,
-                        std::span<const Eigen::Vector3d> points) {
-  // Accumulated for the increment with dt in the part frame, where dq/d(dt) = -I, then turned
-  // into the world-frame dt once: J_world = J_part diag(R^T, I). Only the upper triangle of
-  // J^T J is summed per point (21 products instead of 36).
-  Linearisation lin;
+                        const PointLanes& pts) {
+  static const LineariseFn kernel = pick_linearise();
   const Eigen::Matrix3d R = T.linear();
   const Eigen::Matrix3d Rt = R.transpose();
-  const Eigen::Vector3d t = T.translation();
-  Eigen::Vector3d grad;
-  Vector6d j;
+  double sums[kSums];
+  kernel(m, Rt, T.translation(), pts, sums);
+  Linearisation lin;
+  lin.cost = sums[0];
   Matrix6d& a = lin.jtj;
-  for (const Eigen::Vector3d& p : points) {
-    const Eigen::Vector3d q = Rt * (p - t);
-    const double r = m.value_and_gradient(q, grad) - 1.0;
-    // q = exp(-[w]x) (R^T (p - t) - dt): dr/d(dt) = -grad^T, dr/dw = (grad x q)^T.
-    j.head<3>() = -grad;
-    j.tail<3>() = grad.cross(q);
-    lin.cost += 0.5 * r * r;
-    for (int c = 0; c < 6; ++c) {
-      for (int k = 0; k <= c; ++k) a(k, c) += j[k] * j[c];
-    }
-    lin.g += j * r;
+  int k = 1;
+  for (int r = 0; r < 6; ++r) {
+    for (int c = r; c < 6; ++c) a(r, c) = a(c, r) = sums[k++];
   }
-  a.triangularView<Eigen::StrictlyLower>() = a.transpose();
+  for (int r = 0; r < 6; ++r) lin.g[r] = sums[k++];
   // Back to the world-frame translation increment: B = diag(R, I), A <- B A B^T, g <- B g.
   a.topLeftCorner<3, 3>() = R * a.topLeftCorner<3, 3>() * Rt;
   a.topRightCorner<3, 3>() = R * a.topRightCorner<3, 3>();
@@ -100,8 +171,9 @@ PoseFitResult fit_pose(const Superquadric& sq, std::span<const Eigen::Vector3d> 
     return result;
   }
   const SuperquadricMetric m(sq);
+  const PointLanes soa(points);
   Eigen::Isometry3d T = initial;
-  Linearisation lin = linearise(m, T, points);
+  Linearisation lin = linearise(m, T, soa);
   double mu = options.tau * lin.jtj.diagonal().maxCoeff();  // eq. 2.60
   if (!(mu > 0.0)) mu = options.tau;
   double nu = 2.0;
@@ -122,7 +194,7 @@ PoseFitResult fit_pose(const Superquadric& sq, std::span<const Eigen::Vector3d> 
       break;
     }
     const Eigen::Isometry3d T_new = apply_step(T, h);
-    Linearisation lin_new = linearise(m, T_new, points);
+    Linearisation lin_new = linearise(m, T_new, soa);
     const double predicted = 0.5 * h.dot(mu * h - lin.g);      // eq. 2.62
     const double rho = (lin.cost - lin_new.cost) / predicted;  // eq. 2.61
     if (predicted > 0.0 && rho > 0.0 && std::isfinite(lin_new.cost)) {

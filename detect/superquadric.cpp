@@ -3,30 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "detect/superquadric_eval.hpp"
+
 namespace rangefit {
 namespace {
-
-// Tapering factors are clamped here: beyond the tip of a cone the part does not exist.
-constexpr double kMinTaperFactor = 1e-9;
-// Normalised coordinates below this (relative to the largest one) count as zero for gradients.
-constexpr double kTinyRatio = 1e-12;
-// G saturates here instead of overflowing (finite points farther than ~1e150 part sizes).
-constexpr double kMaxScale = 1e150;
 
 // Signed power used by the explicit form (eq. 2.14).
 double spow(double c, double e) { return std::copysign(std::pow(std::abs(c), e), c); }
 
 }  // namespace
-
-double SuperquadricMetric::Power::integer_power(double x, int n) {
-  double r = 1.0;
-  while (n > 0) {
-    if (n & 1) r *= x;
-    x *= x;
-    n >>= 1;
-  }
-  return r;
-}
 
 double Superquadric::min_size() const { return std::min({a1, a2, a3}); }
 double Superquadric::max_size() const { return std::max({a1, a2, a3}); }
@@ -59,62 +44,12 @@ SuperquadricMetric::SuperquadricMetric(const Superquadric& sq) : sq_(sq) {
 }
 
 double SuperquadricMetric::value(const Eigen::Vector3d& p) const {
-  return evaluate<false>(p, nullptr);
+  return evaluate<double, false>(p.x(), p.y(), p.z(), nullptr, nullptr, nullptr);
 }
 
 double SuperquadricMetric::value_and_gradient(const Eigen::Vector3d& p,
                                               Eigen::Vector3d& gradient) const {
-  return evaluate<true>(p, &gradient);
-}
-
-template <bool kGradient>
-double SuperquadricMetric::evaluate(const Eigen::Vector3d& p, Eigen::Vector3d* gradient) const {
-  if constexpr (kGradient) gradient->setZero();
-  // Undo eq. 2.19-2.21: X = fx(z) x, Y = fy(z) y, Z = z (skipped for untapered parts).
-  double fx_raw = 1.0, fy_raw = 1.0, fx = 1.0, fy = 1.0, x = p.x(), y = p.y();
-  const double z = p.z();
-  if (tapered_) {
-    fx_raw = 1.0 + sq_.kx / sq_.a3 * z;
-    fy_raw = 1.0 + sq_.ky / sq_.a3 * z;
-    fx = std::max(fx_raw, kMinTaperFactor);
-    fy = std::max(fy_raw, kMinTaperFactor);
-    x /= fx;
-    y /= fy;
-  }
-  const double nx = std::abs(x) * inv_a1_, ny = std::abs(y) * inv_a2_, nz = std::abs(z) * inv_a3_;
-  const double s = std::max(std::max(nx, ny), nz);
-  if (!(s > 0.0)) return 0.0;  // the centre (or NaN input, which gives 0 rather than NaN)
-  if (!(s <= kMaxScale)) return kMaxScale * kMaxScale;  // also catches infinity
-  // Eq. 2.15 on the scaled point: every term is in [0, 1], F' in [1, 1 + 2^(eps2/eps1)].
-  const double inv_s = 1.0 / s;
-  const double sx = nx * inv_s, sy = ny * inv_s, sz = nz * inv_s;
-  const double ax = p_xy_(sx), ay = p_xy_(sy);
-  const double a = ax + ay;
-  const double u = a > 0.0 ? p_a_(a) : 0.0;
-  const double v = p_z_(sz);
-  const double f = u + v;
-  const double g = s * s * p_g_(f);  // eq. 5.1: G = F^eps1 = s^2 F'^eps1
-  if constexpr (!kGradient) {
-    return g;
-  } else {
-    // dG/dx = 2 G (u/F)(ax/A) / x and dG/dz = 2 G (v/F) / z (x, z unscaled; |x| = sx s a1).
-    const double two_g_f = 2.0 * g / f;
-    const double gu = a > 0.0 ? two_g_f * u / a : 0.0;
-    const double gx = sx > kTinyRatio ? gu * ax / x : 0.0;
-    const double gy = sy > kTinyRatio ? gu * ay / y : 0.0;
-    const double gz = sz > kTinyRatio ? two_g_f * v / z : 0.0;
-    Eigen::Vector3d& grad = *gradient;
-    if (!tapered_) {
-      grad = Eigen::Vector3d(gx, gy, gz);
-    } else {
-      // Chain rule through the inverse taper: x = X / fx(Z), dx/dZ = -x kx / (a3 fx).
-      const double dx_dz = fx_raw < kMinTaperFactor ? 0.0 : -x * sq_.kx / (sq_.a3 * fx);
-      const double dy_dz = fy_raw < kMinTaperFactor ? 0.0 : -y * sq_.ky / (sq_.a3 * fy);
-      grad = Eigen::Vector3d(gx / fx, gy / fy, gz + gx * dx_dz + gy * dy_dz);
-    }
-    if (!grad.allFinite()) grad.setZero();
-    return g;
-  }
+  return evaluate<double, true>(p.x(), p.y(), p.z(), &gradient.x(), &gradient.y(), &gradient.z());
 }
 
 double metric(const Superquadric& sq, const Eigen::Vector3d& p_part) {

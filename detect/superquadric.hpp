@@ -41,37 +41,19 @@ class SuperquadricMetric {
   double value_and_gradient(const Eigen::Vector3d& p_part, Eigen::Vector3d& gradient) const;
   const Superquadric& model() const { return sq_; }
 
+  // G (and with kGradient its gradient) at one point (V = double) or at four (V = lanes::V4d),
+  // with the same arithmetic on every lane, so the pose fit's vectorised loop and value() agree
+  // bit for bit. Defined in detect/superquadric_eval.hpp.
+  template <class V, bool kGradient>
+  V evaluate(V x, V y, V z, V* gx, V* gy, V* gz) const;
+
  private:
   struct Power {
     double e = 1.0;
     int n = -1;  // >= 0: e is this integer
-    // Inline: the pose fit evaluates four of these per point and iteration.
-    double operator()(double x) const {
-      // The exponents of the usual shapes (eps 0.1, 0.5, 1, 2) multiplied out without a loop;
-      // x^e as exp(e log x) for the rest (x > 0 here), cheaper than the general pow().
-      switch (n) {
-        case -1:
-          return x > 0.0 ? std::exp(e * std::log(x)) : std::pow(x, e);
-        case 1:
-          return x;
-        case 2:
-          return x * x;
-        case 10: {
-          const double x2 = x * x, x4 = x2 * x2;
-          return x4 * x4 * x2;
-        }
-        case 20: {
-          const double x2 = x * x, x4 = x2 * x2, x10 = x4 * x4 * x2;
-          return x10 * x10;
-        }
-        default:
-          return integer_power(x, n);
-      }
-    }
-    static double integer_power(double x, int n);
+    template <class V>
+    V operator()(V x) const;
   };
-  template <bool kGradient>
-  double evaluate(const Eigen::Vector3d& p_part, Eigen::Vector3d* gradient) const;
 
   Superquadric sq_;
   Power p_xy_, p_a_, p_z_, p_g_;  // 2/eps2, eps2/eps1, 2/eps1, eps1
