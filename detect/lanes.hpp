@@ -12,6 +12,19 @@
 
 namespace rangefit::lanes {
 
+// Kernels written with these types are compiled twice, for SSE2 and with
+// [[gnu::target("avx2")]] (not FMA: fused products would round differently), and pick their
+// AVX2 copy at run time when the CPU has it.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define RANGEFIT_LANES_AVX2 1
+inline bool cpu_has_avx2() {
+  static const bool has = __builtin_cpu_supports("avx2");
+  return has;
+}
+#else
+inline bool cpu_has_avx2() { return false; }
+#endif
+
 using V4d = double __attribute__((vector_size(32)));
 using V4i = std::int64_t __attribute__((vector_size(32)));
 

@@ -86,8 +86,7 @@ void linearise_sse2(const SuperquadricMetric& m, const Eigen::Matrix3d& Rt,
                     const Eigen::Vector3d& t, const PointLanes& pts, double* out) {
   linearise_lanes(m, Rt, t, pts, out);
 }
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-// No FMA on purpose: fused products would round differently from the SSE2 build.
+#ifdef RANGEFIT_LANES_AVX2
 [[gnu::target("avx2")]] void linearise_avx2(const SuperquadricMetric& m, const Eigen::Matrix3d& Rt,
                                             const Eigen::Vector3d& t, const PointLanes& pts,
                                             double* out) {
@@ -95,16 +94,13 @@ void linearise_sse2(const SuperquadricMetric& m, const Eigen::Matrix3d& Rt,
 }
 #endif
 
-LineariseFn pick_linearise() {
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-  if (__builtin_cpu_supports("avx2")) return linearise_avx2;
-#endif
-  return linearise_sse2;
-}
-
 Linearisation linearise(const SuperquadricMetric& m, const Eigen::Isometry3d& T,
                         const PointLanes& pts) {
-  static const LineariseFn kernel = pick_linearise();
+#ifdef RANGEFIT_LANES_AVX2
+  const LineariseFn kernel = lanes::cpu_has_avx2() ? linearise_avx2 : linearise_sse2;
+#else
+  const LineariseFn kernel = linearise_sse2;
+#endif
   const Eigen::Matrix3d R = T.linear();
   const Eigen::Matrix3d Rt = R.transpose();
   double sums[kSums];

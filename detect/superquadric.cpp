@@ -11,6 +11,47 @@ namespace {
 // Signed power used by the explicit form (eq. 2.14).
 double spow(double c, double e) { return std::copysign(std::pow(std::abs(c), e), c); }
 
+using lanes::V4d;
+
+// SuperquadricMetric::values, four points at a time; the tail repeats the last point.
+[[gnu::always_inline]] inline void values_lanes(const SuperquadricMetric& m,
+                                                const Eigen::Isometry3d& T,
+                                                std::span<const Eigen::Vector3d> points,
+                                                std::span<const std::uint32_t> indices,
+                                                std::span<double> out) {
+  const Eigen::Matrix3d R = T.linear();
+  const Eigen::Vector3d t = T.translation();
+  const std::size_t n = indices.size();
+  for (std::size_t k = 0; k < n; k += 4) {
+    V4d x, y, z;
+    for (std::size_t l = 0; l < 4; ++l) {
+      const Eigen::Vector3d& p = points[indices[std::min(k + l, n - 1)]];
+      x[l] = p.x();
+      y[l] = p.y();
+      z[l] = p.z();
+    }
+    const V4d qx = R(0, 0) * x + R(0, 1) * y + R(0, 2) * z + t.x();
+    const V4d qy = R(1, 0) * x + R(1, 1) * y + R(1, 2) * z + t.y();
+    const V4d qz = R(2, 0) * x + R(2, 1) * y + R(2, 2) * z + t.z();
+    const V4d g = m.evaluate<V4d, false>(qx, qy, qz, nullptr, nullptr, nullptr);
+    for (std::size_t l = 0; l < 4 && k + l < n; ++l) out[k + l] = g[l];
+  }
+}
+
+void values_sse2(const SuperquadricMetric& m, const Eigen::Isometry3d& T,
+                 std::span<const Eigen::Vector3d> points, std::span<const std::uint32_t> indices,
+                 std::span<double> out) {
+  values_lanes(m, T, points, indices, out);
+}
+#ifdef RANGEFIT_LANES_AVX2
+[[gnu::target("avx2")]] void values_avx2(const SuperquadricMetric& m, const Eigen::Isometry3d& T,
+                                         std::span<const Eigen::Vector3d> points,
+                                         std::span<const std::uint32_t> indices,
+                                         std::span<double> out) {
+  values_lanes(m, T, points, indices, out);
+}
+#endif
+
 }  // namespace
 
 double Superquadric::min_size() const { return std::min({a1, a2, a3}); }
@@ -50,6 +91,17 @@ double SuperquadricMetric::value(const Eigen::Vector3d& p) const {
 double SuperquadricMetric::value_and_gradient(const Eigen::Vector3d& p,
                                               Eigen::Vector3d& gradient) const {
   return evaluate<double, true>(p.x(), p.y(), p.z(), &gradient.x(), &gradient.y(), &gradient.z());
+}
+
+void SuperquadricMetric::values(const Eigen::Isometry3d& T_part_from,
+                                std::span<const Eigen::Vector3d> points,
+                                std::span<const std::uint32_t> indices,
+                                std::span<double> out) const {
+  if (indices.empty()) return;
+#ifdef RANGEFIT_LANES_AVX2
+  if (lanes::cpu_has_avx2()) return values_avx2(*this, T_part_from, points, indices, out);
+#endif
+  values_sse2(*this, T_part_from, points, indices, out);
 }
 
 double metric(const Superquadric& sq, const Eigen::Vector3d& p_part) {

@@ -14,6 +14,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstdint>
+#include <span>
 
 namespace rangefit {
 
@@ -46,6 +48,12 @@ class SuperquadricMetric {
   // bit for bit. Defined in detect/superquadric_eval.hpp.
   template <class V, bool kGradient>
   V evaluate(V x, V y, V z, V* gx, V* gy, V* gz) const;
+
+  // G at the points `indices` of `points`, moved into the part frame by T_part_from: out[k] =
+  // value(T_part_from * points[indices[k]]). Four points per lane vector (AVX2 when the CPU
+  // has it); the verification and refinement scans of the object detector run through here.
+  void values(const Eigen::Isometry3d& T_part_from, std::span<const Eigen::Vector3d> points,
+              std::span<const std::uint32_t> indices, std::span<double> out) const;
 
  private:
   struct Power {

@@ -86,5 +86,25 @@ TEST(Lanes, SuperquadricLanesEqualTheScalarMetric) {
   }
 }
 
+TEST(Lanes, BatchValuesMatchThePointwiseMetric) {
+  const Superquadric cone{20, 20, 40, 0.1, 1.0, -1, -1};
+  const SuperquadricMetric m(cone);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-60.0, 60.0);
+  std::vector<Eigen::Vector3d> pts;
+  for (int i = 0; i < 103; ++i) pts.emplace_back(u(rng), u(rng), u(rng));  // not a multiple of 4
+  const std::vector<std::uint32_t> idx = {5, 0, 102, 7, 7, 50, 1};
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(3, -4, 5);
+  std::vector<double> out(idx.size(), -1.0);
+  m.values(T, pts, idx, out);
+  for (std::size_t k = 0; k < idx.size(); ++k) {
+    const double want = m.value(T * pts[idx[k]]);
+    EXPECT_NEAR(out[k], want, 1e-12 * std::max(1.0, want)) << k;
+  }
+  m.values(T, pts, {}, {});  // nothing to do, nothing touched
+}
+
 }  // namespace
 }  // namespace rangefit
