@@ -138,6 +138,29 @@ void read_service(FieldReader& r, ServiceConfig& s) {
   r.reject_unknown();
 }
 
+// Paths go into Cyclone's configuration, a comma-separated list of URIs and XML: no commas.
+void read_path(FieldReader& r, std::string_view key, std::filesystem::path& out) {
+  std::string path = out.string();
+  r.read(key, path);
+  if (path.find(',') != std::string::npos) r.fail(key, "must not contain ','");
+  out = path;
+}
+
+void read_dds_security(FieldReader& r, DdsSecurityConfig& s) {
+  for (const auto& [key, path] : {std::pair{"identity_ca", &s.identity_ca},
+                                  {"identity_certificate", &s.identity_certificate},
+                                  {"private_key", &s.private_key},
+                                  {"permissions_ca", &s.permissions_ca},
+                                  {"governance", &s.governance},
+                                  {"permissions", &s.permissions}}) {
+    read_path(r, key, *path);
+    if (path->empty()) r.fail(key, "is required in [dds.security]");
+  }
+  read_path(r, "plugin_dir", s.plugin_dir);
+  if (s.plugin_dir.empty()) r.fail("plugin_dir", "must not be empty");
+  r.reject_unknown();
+}
+
 void read_dds(FieldReader& r, DdsConfig& d) {
   std::int64_t domain = d.domain_id;
   r.read("domain_id", domain, 0, 232);  // the DDSI port mapping allows domains 0..232
@@ -150,6 +173,10 @@ void read_dds(FieldReader& r, DdsConfig& d) {
   depth = d.request_depth;
   r.read("request_depth", depth, 1, 1000);
   d.request_depth = static_cast<int>(depth);
+  if (const auto* t = r.sub_table("security")) {
+    FieldReader sub(*t, r.field("security"));
+    read_dds_security(sub, d.security);
+  }
   r.reject_unknown();
 }
 
@@ -337,6 +364,11 @@ DaemonConfig read_root(const toml::table& root, std::string_view source_name,
   if (const auto* t = r.sub_table("dds")) {
     FieldReader sub(*t, "dds");
     read_dds(sub, c.dds);
+  }
+  for (auto* p : {&c.dds.security.identity_ca, &c.dds.security.identity_certificate,
+                  &c.dds.security.private_key, &c.dds.security.permissions_ca,
+                  &c.dds.security.governance, &c.dds.security.permissions}) {
+    *p = resolve(*p, base_dir);
   }
   if (const auto* t = r.sub_table("spool")) {
     FieldReader sub(*t, "spool");

@@ -69,12 +69,32 @@ struct SimConfig {
   bool noise = true;            // sensor noise (CSS 60 um, thesis 4.2.1) and quantisation
 };
 
+// DDS Security (OMG DDS Security 1.1: authentication, access control, encryption) through
+// Cyclone's builtin plugins, from [dds.security]; all six documents or none. Certificates and
+// keys are PEM (the key unencrypted), governance and permissions S/MIME-signed by the
+// permissions CA; scripts/make_dds_security.sh makes a test set. daemon/dds_security.hpp turns
+// this into Cyclone's Domain/Security configuration.
+struct DdsSecurityConfig {
+  std::filesystem::path identity_ca;           // CA that signed every participant's identity
+  std::filesystem::path identity_certificate;  // this daemon's identity certificate
+  std::filesystem::path private_key;           // its private key
+  std::filesystem::path permissions_ca;        // CA that signed governance and permissions
+  std::filesystem::path governance;            // signed governance document (.p7s)
+  std::filesystem::path permissions;           // signed permissions document (.p7s)
+  // Cyclone's builtin security plugins (Debian 12: package libddsc0debian).
+  std::filesystem::path plugin_dir = "/usr/lib/x86_64-linux-gnu/libddsc0debian";
+
+  bool enabled() const { return !identity_ca.empty(); }
+  bool operator==(const DdsSecurityConfig&) const = default;
+};
+
 struct DdsConfig {
   std::uint32_t domain_id = 0;        // 0 .. 232
   std::string config_uri;             // Cyclone XML (file://...); empty = CYCLONEDDS_URI/default
   double diagnostics_period_s = 1.0;  // rt/diagnostics period (REP 107 expects ~1 Hz)
   int cloud_depth = 2;                // keep-last depth of rt/rangefit/cloud
   int request_depth = 16;             // keep-last depth of the request reader
+  DdsSecurityConfig security;         // [dds.security]; off when absent
 };
 
 struct SpoolConfig {
@@ -111,7 +131,8 @@ struct ConfigResult {
   std::string error;                   // "<source>[:<line>]: <field>: <problem>" when not
 };
 
-// Relative scene paths are resolved against base_dir (load_config: the config file's folder).
+// Relative scene and security paths are resolved against base_dir (load_config: the config file's
+// folder).
 ConfigResult parse_config(std::string_view toml_text, std::string_view source_name = "config",
                           const std::filesystem::path& base_dir = {});
 ConfigResult load_config(const std::filesystem::path& path);

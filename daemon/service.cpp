@@ -90,7 +90,7 @@ std::string Service::status_line() const {
 
 bool Service::reload(const DaemonConfig& next, std::string* why) {
   if (next.dds.domain_id != config_.dds.domain_id ||
-      next.dds.config_uri != config_.dds.config_uri ||
+      next.dds.config_uri != config_.dds.config_uri || next.dds.security != config_.dds.security ||
       next.dds.cloud_depth != config_.dds.cloud_depth ||
       next.dds.request_depth != config_.dds.request_depth) {
     *why = "dds settings changed; they apply on restart only (config not reloaded)";

@@ -8,6 +8,7 @@ packages=(
   libspdlog-dev libfmt-dev libsystemd-dev libgtest-dev libgmock-dev libbenchmark-dev
   cyclonedds-dev cyclonedds-tools libmodbus-dev libusb-1.0-0-dev
   python3-pymodbus python3-serial-asyncio mbpoll  # independent Modbus peers for the drivers tests
+  openssl  # scripts/make_dds_security.sh: the DDS Security test's CA and signed documents
 )
 
 missing=()

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "daemon/config.hpp"
+#include "daemon/dds_security.hpp"
 #include "daemon/dds_service.hpp"
 #include "daemon/service.hpp"
 #include "daemon/systemd_notify.hpp"
@@ -79,6 +80,7 @@ int main(int argc, char** argv) {
   std::unique_ptr<daemon::Service> service;
   try {
     daemon::apply_dds_config_uri(loaded.config->dds.config_uri);
+    daemon::apply_dds_security(loaded.config->dds.security);
     service = std::make_unique<daemon::Service>(*loaded.config, clock);
   } catch (const std::exception& e) {
     spdlog::critical("start-up failed: {}", e.what());

@@ -48,6 +48,21 @@ TEST(ServiceReload, BrokenSceneIsRefusedAndTheRunningConfigStays) {
   fs::remove_all(dir);
 }
 
+TEST(ServiceReload, ChangedDdsSecurityWaitsForARestart) {
+  const fs::path dir = fs::temp_directory_path() / "rangefit_service_reload_security_test";
+  fs::remove_all(dir);
+  const fs::path plate = std::string(RANGEFIT_SOURCE_DIR) + "/data/scenes/bore_plate.toml";
+  hal::MonotonicClock clock;
+  Service service(sim_config(dir, plate), clock);
+  DaemonConfig secured = sim_config(dir, plate);
+  secured.dds.security.identity_ca = dir / "ca.pem";
+  std::string why;
+  EXPECT_FALSE(service.reload(secured, &why));
+  EXPECT_NE(why.find("apply on restart only"), std::string::npos) << why;
+  EXPECT_FALSE(service.config().dds.security.enabled());
+  fs::remove_all(dir);
+}
+
 TEST(ServiceReload, BrokenSceneAtStartIsAStartUpError) {
   const fs::path dir = fs::temp_directory_path() / "rangefit_service_start_test";
   hal::MonotonicClock clock;
