@@ -147,12 +147,7 @@ void read_path(FieldReader& r, std::string_view key, std::filesystem::path& out)
 }
 
 void read_dds_security(FieldReader& r, DdsSecurityConfig& s) {
-  for (const auto& [key, path] : {std::pair{"identity_ca", &s.identity_ca},
-                                  {"identity_certificate", &s.identity_certificate},
-                                  {"private_key", &s.private_key},
-                                  {"permissions_ca", &s.permissions_ca},
-                                  {"governance", &s.governance},
-                                  {"permissions", &s.permissions}}) {
+  for (const auto& [key, path] : DdsSecurityConfig::documents(s)) {
     read_path(r, key, *path);
     if (path->empty()) r.fail(key, "is required in [dds.security]");
   }
@@ -365,10 +360,8 @@ DaemonConfig read_root(const toml::table& root, std::string_view source_name,
     FieldReader sub(*t, "dds");
     read_dds(sub, c.dds);
   }
-  for (auto* p : {&c.dds.security.identity_ca, &c.dds.security.identity_certificate,
-                  &c.dds.security.private_key, &c.dds.security.permissions_ca,
-                  &c.dds.security.governance, &c.dds.security.permissions}) {
-    *p = resolve(*p, base_dir);
+  for (const auto& [key, path] : DdsSecurityConfig::documents(c.dds.security)) {
+    *path = resolve(*path, base_dir);
   }
   if (const auto* t = r.sub_table("spool")) {
     FieldReader sub(*t, "spool");

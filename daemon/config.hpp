@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "fusion/config.hpp"
@@ -86,6 +87,17 @@ struct DdsSecurityConfig {
 
   bool enabled() const { return !identity_ca.empty(); }
   bool operator==(const DdsSecurityConfig&) const = default;
+  // The six documents by field name, as pointers into s (a DdsSecurityConfig, const or not),
+  // for the code that reads, resolves and checks them.
+  template <class Self>
+  static auto documents(Self& s) {
+    return std::array{std::pair{"identity_ca", &s.identity_ca},
+                      std::pair{"identity_certificate", &s.identity_certificate},
+                      std::pair{"private_key", &s.private_key},
+                      std::pair{"permissions_ca", &s.permissions_ca},
+                      std::pair{"governance", &s.governance},
+                      std::pair{"permissions", &s.permissions}};
+  }
 };
 
 struct DdsConfig {

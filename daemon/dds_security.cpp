@@ -3,7 +3,6 @@
 #include <cstdlib>
 #include <fstream>
 #include <stdexcept>
-#include <utility>
 
 namespace rangefit::daemon {
 namespace {
@@ -68,12 +67,7 @@ std::string dds_security_xml(const DdsSecurityConfig& s) {
 
 std::string with_dds_security(const std::string& uri, const DdsSecurityConfig& s) {
   if (!s.enabled()) return uri;
-  for (const auto& [field, path] : {std::pair{"identity_ca", &s.identity_ca},
-                                    {"identity_certificate", &s.identity_certificate},
-                                    {"private_key", &s.private_key},
-                                    {"permissions_ca", &s.permissions_ca},
-                                    {"governance", &s.governance},
-                                    {"permissions", &s.permissions}}) {
+  for (const auto& [field, path] : DdsSecurityConfig::documents(s)) {
     if (!std::ifstream(*path)) {
       throw std::runtime_error(std::string("dds.security.") + field + ": cannot read " +
                                path->string());
