@@ -8,6 +8,10 @@
 namespace rangefit {
 namespace {
 
+// Cosine between the surface normal and the view direction below which samples are not
+// checked for free space (about 73 degrees).
+constexpr double kMinFacing = 0.0;
+
 // Where the ray from the part centre along d leaves the part (G = 1), part frame. G is
 // homogeneous of degree 2 without taper (G(s d) = s^2 G(d)); with taper it is still increasing
 // along the ray (the tapered part is star-shaped about its centre), so bisection finishes it.
@@ -27,10 +31,10 @@ Eigen::Vector3d surface_along(const SuperquadricMetric& m, const Eigen::Vector3d
 
 }  // namespace
 
-double surface_coverage(const Superquadric& sq, const Eigen::Isometry3d& T,
-                        std::span<const Eigen::Vector3d> points, const KdTree& tree,
-                        const CoverageOptions& o) {
-  if (!sq.valid() || points.empty() || o.samples < 1) return 0.0;
+SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d& T,
+                                 std::span<const Eigen::Vector3d> points, const KdTree& tree,
+                                 const CoverageOptions& o) {
+  if (!sq.valid() || points.empty() || o.samples < 1) return {};
   const SuperquadricMetric m(sq);
   const double tol = std::max(o.tolerance_mm, o.tolerance_of_min_size * sq.min_size());
   std::vector<std::uint32_t> nbr;
@@ -42,10 +46,10 @@ double surface_coverage(const Superquadric& sq, const Eigen::Isometry3d& T,
     for (std::uint32_t i : nbr) {
       if (std::abs(m.value(inv * points[i]) - 1.0) < 0.2) towards += points[i] - T.translation();
     }
-    if (towards.norm() < 1e-9) return 0.0;
+    if (towards.norm() < 1e-9) return {};
   }
   const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
-  int visible = 0, covered = 0;
+  int visible = 0, covered = 0, seen_through = 0;
   for (int i = 0; i < o.samples; ++i) {
     // Fibonacci sphere, stretched by the sizes: even in the normalised coordinates.
     const double z = 1.0 - (2.0 * i + 1.0) / o.samples;
@@ -68,8 +72,15 @@ double surface_coverage(const Superquadric& sq, const Eigen::Isometry3d& T,
     ++visible;
     tree.knn_search(p, 1, nbr);
     if (!nbr.empty() && (points[nbr[0]] - p).norm() <= tol) ++covered;
+    // Seen past, on surface that faces the sensor: at grazing angles a small pose error moves
+    // the claimed surface off the silhouette, which is no evidence against the part.
+    if (o.first_returns && n.normalized().dot(view.normalized()) > kMinFacing &&
+        o.first_returns->along(p, tol) == RayEvidence::kBehind) {
+      ++seen_through;
+    }
   }
-  return visible > 0 ? static_cast<double>(covered) / visible : 0.0;
+  if (visible == 0) return {};
+  return {static_cast<double>(covered) / visible, static_cast<double>(seen_through) / visible};
 }
 
 }  // namespace rangefit

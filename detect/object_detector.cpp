@@ -4,11 +4,13 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <thread>
 
 #include "detect/object_coverage.hpp"
 #include "detect/object_hypotheses.hpp"
 #include "detect/object_vote.hpp"
+#include "detect/range_image.hpp"
 
 namespace rangefit {
 namespace {
@@ -44,7 +46,8 @@ bool options_ok(const ObjectDetectOptions& o) {
          o.iterations >= 1 && o.init_iterations >= 1 && o.refine_rounds >= 0 && o.gamma > 0.0 &&
          o.gamma < 1.0 && o.neighbourhood_factor > 0.0 && o.instances >= 1 && o.batch >= 1 &&
          o.confirmations >= 1 && o.refine_trim >= 0.0 && o.max_measure > 0.0 &&
-         o.max_interior_ratio >= 0.0 && o.min_coverage >= 0.0 && o.max_candidates >= 1;
+         o.max_interior_ratio >= 0.0 && o.min_coverage >= 0.0 && o.max_seen_through >= 0.0 &&
+         o.max_candidates >= 1;
 }
 
 // Confirmation of one hypothesis (see ObjectDetectOptions::max_measure).
@@ -53,6 +56,11 @@ bool plausible(const PartHypothesis& h, const ObjectDetectOptions& o) {
   const double on = static_cast<double>(h.scores.surface);
   return h.valid && h.scores.measure <= o.max_measure && h.scores.surface >= o.min_surface_points &&
          in <= o.max_interior_ratio * (in + on);
+}
+
+// Confirmation by the surface the part shows the sensor (see ObjectDetectOptions::min_coverage).
+bool confirmed(const SurfaceCoverage& c, const ObjectDetectOptions& o) {
+  return c.covered >= o.min_coverage && c.seen_through <= o.max_seen_through;
 }
 
 // Same physical pose: the centres agree to 5% of the smallest size.
@@ -130,8 +138,8 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& ctx, const Supe
     const bool clean = static_cast<double>(ls.interior) <=
                        kCleanInteriorRatio * static_cast<double>(ls.interior + ls.surface);
     if (agree >= o.confirmations && clean &&
-        surface_coverage(part, valid[lead].T_world_part, ctx.points, *ctx.tree, cover) >=
-            o.min_coverage) {
+        confirmed(surface_coverage(part, valid[lead].T_world_part, ctx.points, *ctx.tree, cover),
+                  o)) {
       break;
     }
   }
@@ -328,6 +336,9 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
   }
   // 5.1.1: dominant plane removal.
   Clock::time_point t0 = Clock::now();
+  // Built before the plane goes: rays that pass a claimed surface mostly end on the table.
+  std::optional<RangeImage> first_returns;
+  if (options.viewpoint) first_returns.emplace(finite, *options.viewpoint);
   std::vector<Eigen::Vector3d> cloud;
   if (options.remove_plane) {
     result.plane = remove_dominant_plane(finite, options.plane);
@@ -348,6 +359,7 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
 
   CoverageOptions cover;
   cover.viewpoint = options.viewpoint;
+  if (first_returns) cover.first_returns = &*first_returns;
   if (result.plane.removed()) cover.removed_plane = result.plane.plane;
 
   // 5.1.2: m hypotheses per part.
@@ -418,9 +430,11 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
     bool covered = true;
     for (std::size_t p = 0; p < model.parts.size(); ++p) {
       DetectedPart& part = inst.parts[p];
-      part.scores.coverage =
+      const SurfaceCoverage seen =
           surface_coverage(model.parts[p].shape, part.T_world_part, cloud, tree, cover);
-      covered = covered && part.scores.coverage >= options.min_coverage;
+      part.scores.coverage = seen.covered;
+      part.scores.seen_through = seen.seen_through;
+      covered = covered && confirmed(seen, options);
     }
     if (!covered) {
       rejected.push_back(std::move(centres));

@@ -6,8 +6,10 @@
 //
 // Beyond the thesis: hypotheses run on all cores in fixed batches, each with its own seed, so
 // the result depends only on options.seed and not on thread timing; the search stops early once
-// the leading hypothesis has been found again by independent hypotheses; and several instances
-// of the object can be returned without duplicates.
+// the leading hypothesis has been found again by independent hypotheses; several instances of
+// the object can be returned without duplicates; and a part is only confirmed when the scan
+// covers the surface it shows the sensor and, given the viewpoint, does not claim surface where
+// the sensor saw past it (free space, detect/range_image.hpp).
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -51,6 +53,9 @@ struct ObjectDetectOptions {
   // And the scan holds points on this share of the surface the part shows the sensor
   // (object_coverage.hpp); checked on the vote's best candidates, occlusion lowers it.
   double min_coverage = 0.6;
+  // With a viewpoint: and at most this share of that surface lies where the sensor saw past it
+  // (free space, RangeImage). Rejects a part posed on a fragment of a larger object.
+  double max_seen_through = 0.05;
   int max_candidates = 20;            // candidates checked for coverage before giving up
   double neighbourhood_factor = 1.2;  // r = factor * max(a) for refinement and verification
   Selection selection = Selection::kRankedVote;
@@ -83,11 +88,12 @@ enum class DetectReason {
 const char* to_string(DetectReason reason);
 
 struct PartScores {
-  double measure = 0.0;      // M, eq. 5.2
-  std::size_t interior = 0;  // I, eq. 5.3
-  std::size_t surface = 0;   // S, eq. 5.4
-  int rank_sum = 0;          // sum of this part's ranks in the vote
-  double coverage = 0.0;     // share of the visible surface with scan points (object_coverage)
+  double measure = 0.0;       // M, eq. 5.2
+  std::size_t interior = 0;   // I, eq. 5.3
+  std::size_t surface = 0;    // S, eq. 5.4
+  int rank_sum = 0;           // sum of this part's ranks in the vote
+  double coverage = 0.0;      // share of the visible surface with scan points (object_coverage)
+  double seen_through = 0.0;  // share of it the sensor saw past (needs the viewpoint)
 };
 
 struct DetectedPart {

@@ -54,7 +54,8 @@ nlohmann::json to_json(const ObjectModel& model, const ObjectDetectResult& r) {
                          {"I", p.scores.interior},
                          {"S", p.scores.surface},
                          {"rank_sum", p.scores.rank_sum},
-                         {"coverage", p.scores.coverage}}}});
+                         {"coverage", p.scores.coverage},
+                         {"seen_through", p.scores.seen_through}}}});
     }
     instances.push_back({{"parts", parts},
                          {"rank_sum", inst.rank_sum},
@@ -82,7 +83,8 @@ void print_text(const ObjectModel& model, const ObjectDetectResult& r) {
       std::cout << "  [" << i << "] " << p.name << " centre " << c.x() << " " << c.y() << " "
                 << c.z() << " mm, z-axis " << z.x() << " " << z.y() << " " << z.z() << ", M "
                 << p.scores.measure << " I " << p.scores.interior << " S " << p.scores.surface
-                << " coverage " << p.scores.coverage << "\n";
+                << " coverage " << p.scores.coverage << " seen through " << p.scores.seen_through
+                << "\n";
     }
   }
 }
@@ -138,7 +140,8 @@ void add_object_command(CLI::App& app, int* exit_code) {
   cmd->add_option("--instances", args->instances, "K: instances to report, best first")
       ->check(CLI::Range(1, 1000));
   cmd->add_option("--seed", args->seed, "random seed (the result depends only on it)");
-  cmd->add_option("--viewpoint", args->viewpoint, "sensor position x y z, mm (optional)")
+  cmd->add_option("--viewpoint", args->viewpoint,
+                  "sensor position x y z, mm (optional; enables the free-space check)")
       ->expected(3);
   cmd->add_flag("--json", args->json, "print the result as JSON");
   cmd->callback([args, exit_code] { *exit_code = run(*args); });
