@@ -8,6 +8,7 @@
 
 #include "detect/superquadric.hpp"
 #include "detect/superquadric_eval.hpp"
+#include "test/detect/object_scenes.hpp"
 
 namespace rangefit {
 namespace {
@@ -53,10 +54,10 @@ TEST(Lanes, VectorLanesEqualTheScalar) {
 
 // The pose fit evaluates four points per lane vector; its values must be the scalar metric's.
 TEST(Lanes, SuperquadricLanesEqualTheScalarMetric) {
-  const std::vector<Superquadric> parts = {{30, 30, 50, 0.1, 1.0, 0, 0},
-                                           {25, 25, 50, 0.1, 0.1, 0, 0},
-                                           {50, 50, 50, 1.0, 1.0, 0, 0},
-                                           {20, 20, 40, 0.1, 1.0, -1, -1},
+  const std::vector<Superquadric> parts = {test::cylinder_model(),
+                                           test::box_model(),
+                                           test::sphere_model(),
+                                           test::cone_model(),
                                            {10, 20, 30, 0.7, 1.3, 0.5, -0.3}};
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-80.0, 80.0);
@@ -87,8 +88,7 @@ TEST(Lanes, SuperquadricLanesEqualTheScalarMetric) {
 }
 
 TEST(Lanes, BatchValuesMatchThePointwiseMetric) {
-  const Superquadric cone{20, 20, 40, 0.1, 1.0, -1, -1};
-  const SuperquadricMetric m(cone);
+  const SuperquadricMetric m(test::cone_model());
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(-60.0, 60.0);
   std::vector<Eigen::Vector3d> pts;
