@@ -357,10 +357,8 @@ void print_methods(int seeds) {
     }
   }
   const auto [sphere_ms, cylinder_ms] = row("ours", method('O', fig_scene()));
-  std::printf(
-      "A-D: the thesis's methods; +trim: refined only on points near the surface, as ours (G < "
-      "1.6,\n"
-      "then a band narrowing to 3 M)\n");
+  std::printf("A-D: the thesis's methods; +trim: refined only on points near the surface\n");
+  std::printf("as ours does (G < 1.6, then a band narrowing to 3 M)\n");
   std::printf("time ratio ours / method C (same run): sphere %.2f, cylinder %.2f\n",
               sphere_ms / base_ms[0], cylinder_ms / base_ms[1]);
 }
