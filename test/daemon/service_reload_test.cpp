@@ -25,12 +25,27 @@ DaemonConfig sim_config(const fs::path& dir, const fs::path& scene) {
   return c;
 }
 
-TEST(ServiceReload, BrokenSceneIsRefusedAndTheRunningConfigStays) {
-  const fs::path dir = fs::temp_directory_path() / "rangefit_service_reload_test";
+fs::path emptied_temp_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / name;
   fs::remove_all(dir);
-  const fs::path plate = std::string(RANGEFIT_SOURCE_DIR) + "/data/scenes/bore_plate.toml";
+  return dir;
+}
+
+// A service running the simulated bore plate, its spool in a temporary folder of its own.
+struct RunningService {
+  fs::path dir;
+  fs::path plate = std::string(RANGEFIT_SOURCE_DIR) + "/data/scenes/bore_plate.toml";
   hal::MonotonicClock clock;
-  Service service(sim_config(dir, plate), clock);
+  Service service;
+  explicit RunningService(const std::string& name)
+      : dir(emptied_temp_dir(name)), service(sim_config(dir, plate), clock) {}
+  ~RunningService() { fs::remove_all(dir); }
+};
+
+TEST(ServiceReload, BrokenSceneIsRefusedAndTheRunningConfigStays) {
+  RunningService running("rangefit_service_reload_test");
+  const fs::path &dir = running.dir, &plate = running.plate;
+  Service& service = running.service;
 
   DaemonConfig broken = sim_config(dir, dir / "missing_scene.toml");
   broken.service.queue_capacity = 9;
@@ -45,22 +60,17 @@ TEST(ServiceReload, BrokenSceneIsRefusedAndTheRunningConfigStays) {
   why.clear();
   EXPECT_TRUE(service.reload(good, &why)) << why;
   EXPECT_EQ(service.config().service.queue_capacity, 9u);
-  fs::remove_all(dir);
 }
 
 TEST(ServiceReload, ChangedDdsSecurityWaitsForARestart) {
-  const fs::path dir = fs::temp_directory_path() / "rangefit_service_reload_security_test";
-  fs::remove_all(dir);
-  const fs::path plate = std::string(RANGEFIT_SOURCE_DIR) + "/data/scenes/bore_plate.toml";
-  hal::MonotonicClock clock;
-  Service service(sim_config(dir, plate), clock);
-  DaemonConfig secured = sim_config(dir, plate);
-  secured.dds.security.identity_ca = dir / "ca.pem";
+  RunningService running("rangefit_service_reload_security_test");
+  Service& service = running.service;
+  DaemonConfig secured = sim_config(running.dir, running.plate);
+  secured.dds.security.identity_ca = running.dir / "ca.pem";
   std::string why;
   EXPECT_FALSE(service.reload(secured, &why));
   EXPECT_NE(why.find("apply on restart only"), std::string::npos) << why;
   EXPECT_FALSE(service.config().dds.security.enabled());
-  fs::remove_all(dir);
 }
 
 TEST(ServiceReload, BrokenSceneAtStartIsAStartUpError) {
