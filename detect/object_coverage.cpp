@@ -8,10 +8,6 @@
 namespace rangefit {
 namespace {
 
-// Cosine between the surface normal and the view direction below which samples are not
-// checked for free space (about 73 degrees).
-constexpr double kMinFacing = 0.0;
-
 // Where the ray from the part centre along d leaves the part (G = 1), part frame. G is
 // homogeneous of degree 2 without taper (G(s d) = s^2 G(d)); with taper it is still increasing
 // along the ray (the tapered part is star-shaped about its centre), so bisection finishes it.
@@ -72,12 +68,9 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
     ++visible;
     tree.knn_search(p, 1, nbr);
     if (!nbr.empty() && (points[nbr[0]] - p).norm() <= tol) ++covered;
-    // Seen past, on surface that faces the sensor: at grazing angles a small pose error moves
-    // the claimed surface off the silhouette, which is no evidence against the part.
-    if (o.first_returns && n.normalized().dot(view.normalized()) > kMinFacing &&
-        o.first_returns->along(p, tol) == RayEvidence::kBehind) {
-      ++seen_through;
-    }
+    // A sample at a silhouette is not seen past by a small pose error: along() looks at the
+    // neighbouring pixels too.
+    if (o.first_returns && o.first_returns->along(p, tol) == RayEvidence::kBehind) ++seen_through;
   }
   if (visible == 0) return {};
   return {static_cast<double>(covered) / visible, static_cast<double>(seen_through) / visible};

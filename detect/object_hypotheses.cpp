@@ -29,13 +29,13 @@ double verification_radius(const ObjectDetectOptions& o, const Superquadric& par
   return o.neighbourhood_factor * part.max_size();
 }
 
-// Point filter for the parts already placed: true when one of them explains the point.
 // Buffers reused across the searches of one hypothesis.
 struct Scratch {
   std::vector<std::uint32_t> indices;
   std::vector<double> values;
 };
 
+// Point filter for the parts already placed: true when one of them explains the point.
 class ExplainedBy {
  public:
   ExplainedBy(std::span<const PlacedPart> parts, const ObjectDetectOptions& o)
@@ -100,9 +100,8 @@ Eigen::Isometry3d refine(const HypothesisContext& ctx, const Superquadric& part,
     const std::vector<Eigen::Vector3d> sel =
         refinement_points(ctx, part, T, trim, explained, scratch);
     if (sel.size() < kMinPatchPoints) break;
-    const double before = measure_of_fit(part, T, sel);
     const PoseFitResult r = fit_pose(part, sel, T, fit);
-    if (!r.ok() || !(r.measure < before * (1.0 - 1e-3))) break;
+    if (!r.ok() || !(r.measure < r.initial_measure * (1.0 - 1e-3))) break;
     const double moved = (r.T_world_part.translation() - T.translation()).norm();
     T = r.T_world_part;
     // The band narrows with the fit: to 3 M (M: rms of G - 1), not below the surface band

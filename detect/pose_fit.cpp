@@ -170,6 +170,8 @@ PoseFitResult fit_pose(const Superquadric& sq, std::span<const Eigen::Vector3d> 
   const PointLanes soa(points);
   Eigen::Isometry3d T = initial;
   Linearisation lin = linearise(m, T, soa);
+  const double n = static_cast<double>(points.size());
+  result.initial_measure = std::sqrt(2.0 * lin.cost / n);
   double mu = options.tau * lin.jtj.diagonal().maxCoeff();  // eq. 2.60
   if (!(mu > 0.0)) mu = options.tau;
   double nu = 2.0;
@@ -205,7 +207,7 @@ PoseFitResult fit_pose(const Superquadric& sq, std::span<const Eigen::Vector3d> 
   }
   result.iterations = k;
   result.T_world_part = T;
-  result.measure = std::sqrt(2.0 * lin.cost / static_cast<double>(points.size()));
+  result.measure = std::sqrt(2.0 * lin.cost / n);
   return result;
 }
 

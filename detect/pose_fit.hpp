@@ -29,7 +29,8 @@ enum class FitTermination {
 
 struct PoseFitResult {
   Eigen::Isometry3d T_world_part = Eigen::Isometry3d::Identity();
-  double measure = 0.0;  // M of eq. 5.2 at the result (rms of F^eps1 - 1)
+  double measure = 0.0;          // M of eq. 5.2 at the result (rms of F^eps1 - 1)
+  double initial_measure = 0.0;  // M at `initial` (the first linearisation's cost)
   int iterations = 0;
   FitTermination termination = FitTermination::kInvalidInput;
   bool ok() const {

@@ -41,6 +41,9 @@ TEST(PoseFit, RecoversAPerturbedPoseExactly) {
   EXPECT_LT((r.T_world_part.translation() - truth.translation()).norm(), 1e-4);
   EXPECT_GT(std::abs(r.T_world_part.linear().col(2).dot(truth.linear().col(2))), 1.0 - 1e-9);
   EXPECT_LT(r.measure, 1e-6);
+  // M at the start, as the detector's refinement compares it with the result.
+  EXPECT_NEAR(r.initial_measure, measure_of_fit(cyl, start, pts), 1e-12);
+  EXPECT_GT(r.initial_measure, 0.01);
 }
 
 TEST(PoseFit, HandlesAnAxisPointingStraightUpWithoutGimbalLock) {
