@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "detect/lanes.hpp"
+
 namespace rangefit {
 namespace {
 
@@ -86,7 +88,7 @@ template <int W>
 void ball4(const NeighbourGrid::View& g, const double* q, double r, double* out) {
   ball_kernel<4>(g, q, r, out);
 }
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#ifdef RANGEFIT_LANES_AVX2
 [[gnu::target("avx2")]] void ball8(const NeighbourGrid::View& g, const double* q, double r,
                                    double* out) {
   ball_kernel<8>(g, q, r, out);
@@ -95,12 +97,7 @@ void ball4(const NeighbourGrid::View& g, const double* q, double r, double* out)
 
 }  // namespace
 
-int NeighbourGrid::lanes() {
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-  if (__builtin_cpu_supports("avx2")) return 8;
-#endif
-  return 4;
-}
+int NeighbourGrid::lanes() { return rangefit::lanes::cpu_has_avx2() ? 8 : 4; }
 
 NeighbourGrid::NeighbourGrid(std::span<const Eigen::Vector3d> points, const Eigen::Vector3d& dir,
                              double cell) {
@@ -156,16 +153,11 @@ pca::Moments NeighbourGrid::ball(const Eigen::Vector3d& p, double radius) const 
   const View g{x_.data(), y_.data(), z_.data(), start_.data(), cell_, lo_u_, lo_v_, nu_, nv_};
   double s[10];
   static_assert(sizeof(q) == 3 * sizeof(double));
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-  const int w = lanes();
-  if (w == 8) {
-    ball8(g, q.data(), radius, s);
-  } else {
-    ball4(g, q.data(), radius, s);
-  }
-#else
-  ball4(g, q.data(), radius, s);
+  const bool wide = lanes() == 8;  // never without RANGEFIT_LANES_AVX2
+#ifdef RANGEFIT_LANES_AVX2
+  if (wide) ball8(g, q.data(), radius, s);
 #endif
+  if (!wide) ball4(g, q.data(), radius, s);
   Eigen::Matrix3d outer;
   outer << s[4], s[5], s[6], s[5], s[7], s[8], s[6], s[8], s[9];
   m.count = s[0];
