@@ -228,13 +228,10 @@ struct Stats {
   double median_ms() const { return median(ms); }
 };
 
-// Centre and axis errors of a detected part against the truth (axis sign folded unless tapered).
 void add_errors(const Eigen::Isometry3d& T, const sim::ScenePart& truth, Stats& st) {
-  st.centre_mm.push_back((T.translation() - truth.T_world_part.translation()).norm());
-  const double c = T.linear().col(2).dot(truth.T_world_part.linear().col(2));
-  const bool tapered = truth.model.kx != 0.0 || truth.model.ky != 0.0;
-  st.axis_deg.push_back(std::acos(std::min(1.0, tapered ? c : std::abs(c))) * 180.0 /
-                        std::numbers::pi);
+  const test::PoseError e = test::pose_error(T, truth);
+  st.centre_mm.push_back(e.centre_mm);
+  st.axis_deg.push_back(e.axis_deg());
 }
 
 Stats run_seeds(const ObjectModel& model, const Scene& s, std::size_t truth, bool axis, int seeds,
@@ -388,10 +385,8 @@ void print_noise(int seeds) {
                                 s.parts[1].T_world_part.translation();
       if (d.cwiseAbs().maxCoeff() < 1.0) ++tp;
     }
-    std::sort(ms.begin(), ms.end());
     std::printf("%10.3f %7.0f%% %9.0f%% %7.0f%% %10.1f\n", sigma, 100.0 * tp / seeds,
-                100.0 * declined / seeds, 100.0 * (seeds - tp - declined) / seeds,
-                ms[ms.size() / 2]);
+                100.0 * declined / seeds, 100.0 * (seeds - tp - declined) / seeds, median(ms));
   }
 }
 

@@ -70,19 +70,17 @@ TEST(ObjectDetector, PosesAreWithinAMillimetreAndADegree) {
         detect_object(test::single("part", models[i]), fig_scene().rendered.cloud.points,
                       options_for(fig_scene(), 1));
     ASSERT_TRUE(r.found()) << i;
-    const Eigen::Isometry3d& T = r.instances[0].parts[0].T_world_part;
-    const Eigen::Isometry3d& truth = fig_scene().parts[i].T_world_part;
-    EXPECT_LT((T.translation() - truth.translation()).norm(), 1.0) << i;
+    const test::PoseError e =
+        test::pose_error(r.instances[0].parts[0].T_world_part, fig_scene().parts[i]);
+    EXPECT_LT(e.centre_mm, 1.0) << i;
     if (i != 2) {  // the sphere has no axis
-      const double c = std::abs(T.linear().col(2).dot(truth.linear().col(2)));
-      EXPECT_GT(c, std::cos(1.0 * std::numbers::pi / 180.0)) << i;
+      EXPECT_GT(e.axis_cos, std::cos(1.0 * std::numbers::pi / 180.0)) << i;
     }
   }
 }
 
 TEST(ObjectDetector, FindsTheTaperedConeForEverySeed) {
-  EXPECT_EQ(true_positives(test::single("cone", test::cone_model()), fig_scene(), 3, true),
-            kSeeds);
+  EXPECT_EQ(true_positives(test::single("cone", test::cone_model()), fig_scene(), 3, true), kSeeds);
 }
 
 // The link vote picks the real mallet (head and shaft) over the look-alikes, and the joint

@@ -3,6 +3,7 @@
 // detection tests and test/bench/object_benchmark.cpp.
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -127,16 +128,28 @@ inline Scene mallet_scene(double noise_sigma = 0.0, std::uint64_t noise_seed = 1
   return render(std::move(parts), view);
 }
 
-// True positive as in the thesis: centre within 3 mm and, except for spheres, the z-axis within
-// 5 degrees (sign ignored for parts symmetric about their equator).
-inline bool true_positive(const Eigen::Isometry3d& found, const sim::ScenePart& truth,
-                          bool check_axis = true, double max_centre_mm = 3.0) {
-  if ((found.translation() - truth.T_world_part.translation()).norm() > max_centre_mm) return false;
-  if (!check_axis) return true;
+// How far a found pose is from the truth: centre distance and the cosine between the z-axes
+// (sign ignored for parts symmetric about their equator, i.e. all but tapered ones).
+struct PoseError {
+  double centre_mm = 0.0;
+  double axis_cos = 1.0;
+  double axis_deg() const { return std::acos(std::min(1.0, axis_cos)) * 180.0 / std::numbers::pi; }
+};
+
+inline PoseError pose_error(const Eigen::Isometry3d& found, const sim::ScenePart& truth) {
   const Eigen::Vector3d a = found.linear().col(2), b = truth.T_world_part.linear().col(2);
   const bool tapered = truth.model.kx != 0.0 || truth.model.ky != 0.0;
-  const double c = tapered ? a.dot(b) : std::abs(a.dot(b));
-  return c >= std::cos(5.0 * std::numbers::pi / 180.0);
+  return {(found.translation() - truth.T_world_part.translation()).norm(),
+          tapered ? a.dot(b) : std::abs(a.dot(b))};
+}
+
+// True positive as in the thesis: centre within 3 mm and, except for spheres, the z-axis within
+// 5 degrees.
+inline bool true_positive(const Eigen::Isometry3d& found, const sim::ScenePart& truth,
+                          bool check_axis = true, double max_centre_mm = 3.0) {
+  const PoseError e = pose_error(found, truth);
+  if (e.centre_mm > max_centre_mm) return false;
+  return !check_axis || e.axis_cos >= std::cos(5.0 * std::numbers::pi / 180.0);
 }
 
 }  // namespace rangefit::test
