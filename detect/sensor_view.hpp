@@ -1,0 +1,52 @@
+#pragma once
+// Where the rays that measured a scan came from, as far as visibility goes. A laser-stripe
+// ranger measures a point only when its laser fan reaches it and its camera sees the lit spot,
+// so a point needs two unobstructed lines of sight; a range camera or a time-of-flight ranger at
+// one place needs one. Detection uses this to tell the surface a part could have shown this
+// scan (and was not measured: evidence against it) from the surface this sensor could never
+// have seen (shadows: no evidence either way). Beyond the thesis, whose coverage-free vote
+// assumed one fixed viewpoint.
+//
+// All vectors are in the frame of the scan's points (mm, rad).
+
+#include <Eigen/Core>
+#include <array>
+
+namespace rangefit {
+
+struct SensorView {
+  enum class Kind {
+    kUnknown,      // nothing known: detection falls back to the scan's own evidence
+    kPoint,        // one eye at `origin` (pinhole camera, a single ranger position)
+    kLinearSweep,  // a stripe ranger moved along `direction` (stripe cell: the table moves)
+    kRotarySweep,  // a stripe ranger turned about the line (`pivot`, `direction`) (pan-tilt head)
+  };
+  Kind kind = Kind::kUnknown;
+  // kPoint: the eye. Sweeps: the laser fan's apex at sweep position 0.
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  // Sweeps: the laser plane's normal at sweep position 0, and the camera's projection centre
+  // relative to the apex at position 0 (zero: the ranger has no separate camera, one eye).
+  Eigen::Vector3d plane_normal = Eigen::Vector3d::UnitY();
+  Eigen::Vector3d camera_offset = Eigen::Vector3d::Zero();
+  // kLinearSweep: unit direction the ranger moves relative to the points per mm of sweep.
+  // kRotarySweep: unit axis of the turn (right hand), through `pivot`; sweep in rad.
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitY();
+  Eigen::Vector3d pivot = Eigen::Vector3d::Zero();
+  double sweep_min = 0.0;  // the sweep positions the scan covered (mm or rad)
+  double sweep_max = 0.0;
+};
+
+// The eyes that had to see p for it to be measured: 0 when the view is unknown or no sweep
+// position inside [sweep_min, sweep_max] puts p in the laser plane, else 1 or 2 (laser apex
+// first, then the camera).
+struct Eyes {
+  int count = 0;
+  std::array<Eigen::Vector3d, 2> at{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+};
+Eyes sensor_eyes(const SensorView& view, const Eigen::Vector3d& p);
+
+// False for non-finite fields, a non-unit direction or normal, an empty sweep, or a linear sweep
+// that runs inside its own laser plane (it would never sweep the plane across anything).
+bool valid(const SensorView& view);
+
+}  // namespace rangefit
