@@ -20,6 +20,7 @@
 
 #include "detect/object_model.hpp"
 #include "detect/plane_removal.hpp"
+#include "detect/sensor_view.hpp"
 
 namespace rangefit {
 
@@ -72,6 +73,9 @@ struct ObjectDetectOptions {
   bool remove_plane = true;
   PlaneRemovalOptions plane;
   std::optional<Eigen::Vector3d> viewpoint;  // sensor position, when known (speeds up 5.1.2)
+  // How the scan was taken (stripe sweep, pan-tilt, one viewpoint), when known: the coverage and
+  // free-space checks then judge a part only by the surface this sensor could have measured.
+  SensorView sensor;
   std::uint64_t seed = 1;
 };
 
