@@ -8,6 +8,13 @@
 namespace rangefit {
 namespace {
 
+// Surface seen more obliquely than ~75 degrees is no evidence either way: a scan samples it
+// sparsely (or not at all), and its lines of sight graze the part's own measured surface.
+constexpr double kMinIncidenceCosine = 0.25;
+
+// Eyes of an unknown sensor are this far away along their direction (mm): beyond any scene.
+constexpr double kFarEye = 1e4;
+
 // Where the ray from the part centre along d leaves the part (G = 1), part frame. G is
 // homogeneous of degree 2 without taper (G(s d) = s^2 G(d)); with taper it is still increasing
 // along the ray (the tapered part is star-shaped about its centre), so bisection finishes it.
@@ -25,6 +32,31 @@ Eigen::Vector3d surface_along(const SuperquadricMetric& m, const Eigen::Vector3d
   return 0.5 * (lo + hi) * d;
 }
 
+// Directions an unknown sensor is taken to look from: towards the points near the part's
+// surface (they were seen, so the sensor is on their side) and up from the removed plane.
+struct FarEyes {
+  int count = 0;
+  std::array<Eigen::Vector3d, 2> dir;
+};
+
+FarEyes far_eyes(const SuperquadricMetric& m, const Eigen::Isometry3d& T, double radius,
+                 std::span<const Eigen::Vector3d> points, const KdTree& tree,
+                 const std::optional<pca::Plane>& plane) {
+  FarEyes e;
+  std::vector<std::uint32_t> nbr;
+  tree.radius_search(T.translation(), radius, nbr);
+  const Eigen::Isometry3d inv = T.inverse();
+  Eigen::Vector3d towards = Eigen::Vector3d::Zero();
+  for (std::uint32_t i : nbr) {
+    if (std::abs(m.value(inv * points[i]) - 1.0) < 0.2) towards += points[i] - T.translation();
+  }
+  if (towards.norm() < 1e-9) return e;
+  towards.normalize();
+  if (plane && plane->valid) e.dir[e.count++] = plane->normal.normalized();
+  e.dir[e.count++] = towards;
+  return e;
+}
+
 }  // namespace
 
 SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d& T,
@@ -33,19 +65,16 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
   if (!sq.valid() || points.empty() || o.samples < 1) return {};
   const SuperquadricMetric m(sq);
   const double tol = std::max(o.tolerance_mm, o.tolerance_of_min_size * sq.min_size());
-  std::vector<std::uint32_t> nbr;
-  // Without a viewpoint: the visible side faces the points near the surface.
-  Eigen::Vector3d towards = Eigen::Vector3d::Zero();
-  if (!o.viewpoint) {
-    tree.radius_search(T.translation(), 1.2 * sq.max_size(), nbr);
-    const Eigen::Isometry3d inv = T.inverse();
-    for (std::uint32_t i : nbr) {
-      if (std::abs(m.value(inv * points[i]) - 1.0) < 0.2) towards += points[i] - T.translation();
-    }
-    if (towards.norm() < 1e-9) return {};
-  }
+  const bool known = o.sensor.kind != SensorView::Kind::kUnknown;
+  const FarEyes far =
+      known ? FarEyes{} : far_eyes(m, T, 1.2 * sq.max_size(), points, tree, o.removed_plane);
+  if (!known && far.count == 0) return {};
+  // Lines of sight start this far from the sample: its own points and its pose error stay out.
+  const double skip = o.occupancy ? tol + o.occupancy->cell_mm() : tol;
   const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
-  int visible = 0, covered = 0, seen_through = 0;
+  std::vector<std::uint32_t> nbr;
+  int facing = 0, measurable = 0, covered = 0, seen_through = 0;
+  double below = 0.0;
   for (int i = 0; i < o.samples; ++i) {
     // Fibonacci sphere, stretched by the sizes: even in the normalised coordinates.
     const double z = 1.0 - (2.0 * i + 1.0) / o.samples;
@@ -58,22 +87,54 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
     if (grad.squaredNorm() == 0.0) continue;
     const Eigen::Vector3d p = T * q;
     const Eigen::Vector3d n = T.linear() * grad;
-    const Eigen::Vector3d view = o.viewpoint ? Eigen::Vector3d(*o.viewpoint - p) : towards;
-    if (n.dot(view) <= 0.0) continue;  // faces away: not seen in a single view
-    if (o.removed_plane && o.removed_plane->valid &&
-        std::abs(o.removed_plane->normal.dot(p - o.removed_plane->point)) <
-            o.plane_margin_mm + tol) {
+    if (o.removed_plane && o.removed_plane->valid) {
+      const double h = o.removed_plane->normal.dot(p - o.removed_plane->point);
+      below = std::max(below, -h);
+      if (std::abs(h) < o.plane_margin_mm + tol) continue;
+    }
+    Eyes eyes;
+    if (known) {
+      eyes = sensor_eyes(o.sensor, p);
+    } else {
+      eyes.count = far.count;
+      for (int k = 0; k < far.count; ++k) eyes.at[k] = p + kFarEye * far.dir[k];
+    }
+    if (eyes.count == 0) continue;  // outside the sweep
+    bool faces = true, hidden = false;
+    const Eigen::Vector3d un = n.normalized();
+    for (int k = 0; k < eyes.count; ++k) {
+      faces = faces && un.dot((eyes.at[k] - p).normalized()) > kMinIncidenceCosine;
+    }
+    if (!faces) continue;  // in the part's own shadow, or seen too obliquely to judge
+    ++facing;
+    for (int k = 0; k < eyes.count && o.occupancy && !hidden; ++k) {
+      hidden = o.occupancy->first_hit(p, eyes.at[k], skip) >= 0.0;
+    }
+    if (hidden) continue;
+    ++measurable;
+    tree.knn_search(p, 1, nbr);
+    const double nearest = nbr.empty() ? INFINITY : (points[nbr[0]] - p).norm();
+    if (nearest <= tol) {
+      ++covered;
       continue;
     }
-    ++visible;
-    tree.knn_search(p, 1, nbr);
-    if (!nbr.empty() && (points[nbr[0]] - p).norm() <= tol) ++covered;
-    // A sample at a silhouette is not seen past by a small pose error: along() looks at the
-    // neighbouring pixels too.
-    if (o.first_returns && o.first_returns->along(p, tol) == RayEvidence::kBehind) ++seen_through;
+    // The first eye (the laser, or the only one) lit everything along its ray until the first
+    // surface: a measured cell beyond the sample means the light went through it. A sample
+    // between scan lines (grazing surface, coarse step) is not: it has points within a cell.
+    if (o.occupancy && nearest > tol + o.occupancy->cell_mm()) {
+      const Eigen::Vector3d beyond = p + kFarEye * (p - eyes.at[0]).normalized();
+      if (o.occupancy->first_hit(p, beyond, skip) >= 0.0) ++seen_through;
+    }
   }
-  if (visible == 0) return {};
-  return {static_cast<double>(covered) / visible, static_cast<double>(seen_through) / visible};
+  SurfaceCoverage c;
+  c.below_plane_mm = below;
+  c.min_size_mm = sq.min_size();
+  c.facing = facing;
+  if (measurable == 0) return c;
+  c.measurable = measurable;
+  c.covered = static_cast<double>(covered) / measurable;
+  c.seen_through = static_cast<double>(seen_through) / measurable;
+  return c;
 }
 
 }  // namespace rangefit

@@ -1,47 +1,57 @@
 #pragma once
-// Surface coverage of a posed part: the share of its visible surface that the scan actually
-// holds points on. Beyond the thesis: M, I and S (eq. 5.2-5.4) only look at the points near a
-// hypothesis, so a part posed against a fragment of another object (a flat box on a cylinder's
-// cap, a shaft along an edge) fits well and is empty inside, yet most of the surface it claims
-// has no points where the sensor would have seen them. Used to confirm a detection.
+// Surface evidence for a posed part: of the surface this scan could have measured, how much it
+// did measure, and how much of it lies where the sensor saw past it. Beyond the thesis: M, I and
+// S (eq. 5.2-5.4) only look at the points near a hypothesis, so a part posed against a fragment
+// of another object (a flat box on a cylinder's cap, a shaft along an edge) fits well and is
+// empty inside, yet claims surface the sensor would have seen. Used to confirm a detection.
+//
+// "Could have measured" is decided per surface sample by the sensor's own visibility: the sample
+// faces every eye the sensor needed for it (a stripe ranger needs its laser apex and its camera,
+// detect/sensor_view.hpp) and no measured surface lies between it and them. Surface in a laser
+// or camera shadow, hidden behind another object or outside the sweep is then no evidence
+// either way, whatever the triangulation angle, camera side or stand-off.
 
 #include <Eigen/Geometry>
 #include <optional>
 #include <span>
 
 #include "detect/kdtree.hpp"
+#include "detect/occupancy_grid.hpp"
 #include "detect/pca.hpp"
-#include "detect/range_image.hpp"
+#include "detect/sensor_view.hpp"
 #include "detect/superquadric.hpp"
 
 namespace rangefit {
 
 struct CoverageOptions {
-  int samples = 200;                         // surface samples (about half of them visible)
-  double tolerance_mm = 3.0;                 // a sample is covered by a point this close
-  double tolerance_of_min_size = 0.1;        // ... or this share of the smallest size, if larger
-  std::optional<Eigen::Vector3d> viewpoint;  // sensor position; unset: see surface_coverage
-  // Samples this close to the removed plane are not checked (their points went with it).
+  int samples = 200;                   // surface samples (about half of them visible)
+  double tolerance_mm = 3.0;           // a sample is covered by a point this close
+  double tolerance_of_min_size = 0.1;  // ... or this share of the smallest size, if larger
+  // How the scan was taken. Unknown: the part is judged as seen from far away along the side the
+  // points near it lie on, and, with a removed plane, from above that plane.
+  SensorView sensor;
+  // Samples this close to the removed plane are not checked (their points went with it). Its
+  // normal points to the side the scan's objects are on.
   std::optional<pca::Plane> removed_plane;
   double plane_margin_mm = 5.0;
-  // The scan's first returns from the viewpoint (the whole scan, plane included): when set, the
-  // samples the sensor saw past are counted too.
-  const RangeImage* first_returns = nullptr;
+  // The whole scan (plane included) as occupied cells: lines of sight blocked by it are
+  // occluded, and a line of sight that runs on past a sample to a measured cell saw past it.
+  // Without it nothing counts as occluded or seen past.
+  const OccupancyGrid* occupancy = nullptr;
 };
 
 struct SurfaceCoverage {
-  double covered = 0.0;       // share of the visible samples with a scan point near them
-  double seen_through = 0.0;  // share the sensor saw past (RayEvidence::kBehind): free space
+  int facing = 0;               // samples facing every eye (the rest are in the part's own shadow)
+  int measurable = 0;           // of them, the ones no measured surface hides: the sensor could
+                                // have measured them
+  double covered = 0.0;         // share of them with a scan point near them
+  double seen_through = 0.0;    // share of them the sensor saw past: free space
+  double below_plane_mm = 0.0;  // how far the part reaches through the removed plane
+  double min_size_mm = 0.0;     // the part's smallest size parameter
 };
 
-// Shares in [0, 1] of the surface samples facing the viewpoint that have a point of `points`
-// (indexed by `tree`) within the tolerance. Without a viewpoint the visible side is taken as
-// the one towards the centroid of the points near the surface. Samples are spread over the
-// surface evenly in the part's normalised coordinates (exactly even for a sphere). Both are 0
-// when no sample is visible. Samples hidden behind other objects count as uncovered, so an
-// occluded part scores lower: the threshold that uses this must allow for it.
-// A part that is really there has few samples seen through (its silhouette's pose error); a
-// part posed on a fragment of another object claims surface where the sensor saw the table.
+// Samples are spread over the surface evenly in the part's normalised coordinates (exactly even
+// for a sphere). Shares are 0 when no sample was measurable.
 SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d& T_world_part,
                                  std::span<const Eigen::Vector3d> points, const KdTree& tree,
                                  const CoverageOptions& options = {});

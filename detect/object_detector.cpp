@@ -10,7 +10,7 @@
 #include "detect/object_coverage.hpp"
 #include "detect/object_hypotheses.hpp"
 #include "detect/object_vote.hpp"
-#include "detect/range_image.hpp"
+#include "detect/occupancy_grid.hpp"
 
 namespace rangefit {
 namespace {
@@ -46,21 +46,70 @@ bool options_ok(const ObjectDetectOptions& o) {
          o.iterations >= 1 && o.init_iterations >= 1 && o.refine_rounds >= 0 && o.gamma > 0.0 &&
          o.gamma < 1.0 && o.neighbourhood_factor > 0.0 && o.instances >= 1 && o.batch >= 1 &&
          o.confirmations >= 1 && o.refine_trim >= 0.0 && o.max_measure > 0.0 &&
-         o.max_interior_ratio >= 0.0 && o.min_coverage >= 0.0 && o.max_seen_through >= 0.0 &&
-         o.max_candidates >= 1;
+         o.max_interior_ratio >= 0.0 && o.min_coverage >= 0.0 &&
+         o.min_coverage_unknown_sensor >= 0.0 && o.max_seen_through >= 0.0 &&
+         o.max_size_deviation > 0.0 && o.max_candidates >= 1 && o.min_measurable_samples >= 0 &&
+         o.min_measurable_share >= 0.0 && o.plane_margin_mm >= 0.0 && valid(o.sensor);
 }
 
-// Confirmation of one hypothesis (see ObjectDetectOptions::max_measure).
-bool plausible(const PartHypothesis& h, const ObjectDetectOptions& o) {
+// The check of eq. 5.2-5.4 that a hypothesis fails (see ObjectDetectOptions::max_measure).
+std::optional<Rejection> implausible(const PartHypothesis& h, const ObjectDetectOptions& o) {
   const double in = static_cast<double>(h.scores.interior);
   const double on = static_cast<double>(h.scores.surface);
-  return h.valid && h.scores.measure <= o.max_measure && h.scores.surface >= o.min_surface_points &&
-         in <= o.max_interior_ratio * (in + on);
+  const Eigen::Vector3d c = h.T_world_part.translation();
+  if (!(h.scores.measure <= o.max_measure)) {
+    return Rejection{0, Check::kMeasure, h.scores.measure, o.max_measure, c};
+  }
+  if (h.scores.surface < o.min_surface_points) {
+    return Rejection{0, Check::kSurfacePoints, on, static_cast<double>(o.min_surface_points), c};
+  }
+  if (in > o.max_interior_ratio * (in + on)) {
+    return Rejection{0, Check::kInterior, in / (in + on), o.max_interior_ratio, c};
+  }
+  return std::nullopt;
 }
 
-// Confirmation by the surface the part shows the sensor (see ObjectDetectOptions::min_coverage).
-bool confirmed(const SurfaceCoverage& c, const ObjectDetectOptions& o) {
-  return c.covered >= o.min_coverage && c.seen_through <= o.max_seen_through;
+bool plausible(const PartHypothesis& h, const ObjectDetectOptions& o) {
+  return h.valid && !implausible(h, o);
+}
+
+// Confirmation by the surface evidence (see ObjectDetectOptions::min_coverage).
+std::optional<Rejection> unconfirmed(const SurfaceCoverage& c, const ObjectDetectOptions& o,
+                                     bool sensor_known) {
+  const double min_cover = sensor_known ? o.min_coverage : o.min_coverage_unknown_sensor;
+  if (c.measurable < o.min_measurable_samples || c.measurable < o.min_measurable_share * c.facing) {
+    return Rejection{0, Check::kHidden, static_cast<double>(c.measurable),
+                     static_cast<double>(o.min_measurable_samples), Eigen::Vector3d::Zero()};
+  }
+  if (c.below_plane_mm > std::max(o.plane_margin_mm, 0.1 * c.min_size_mm)) {
+    return Rejection{0, Check::kBelowPlane, c.below_plane_mm,
+                     std::max(o.plane_margin_mm, 0.1 * c.min_size_mm), Eigen::Vector3d::Zero()};
+  }
+  if (c.seen_through > o.max_seen_through) {
+    return Rejection{0, Check::kSeenThrough, c.seen_through, o.max_seen_through,
+                     Eigen::Vector3d::Zero()};
+  }
+  if (!(c.covered >= min_cover))
+    return Rejection{0, Check::kCoverage, c.covered, min_cover, Eigen::Vector3d::Zero()};
+  return std::nullopt;
+}
+
+// Cells of the occupancy grid: about twice the scan's point spacing (so a measured surface has
+// no holes for a line of sight to slip through), from the nearest neighbours of a spread sample.
+double occupancy_cell_mm(std::span<const Eigen::Vector3d> points, const KdTree& tree) {
+  constexpr std::size_t kSample = 256;
+  if (points.size() < 2) return 2.0;
+  std::vector<std::uint32_t> nbr;
+  std::vector<double> d;
+  const std::size_t stride = std::max<std::size_t>(1, points.size() / kSample);
+  for (std::size_t i = 0; i < points.size(); i += stride) {
+    const Eigen::Vector3d& p = points[i];
+    tree.knn_search(p, 2, nbr);
+    if (nbr.size() == 2) d.push_back((points[nbr[1]] - p).norm());
+  }
+  if (d.empty()) return 2.0;
+  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+  return std::clamp(2.0 * d[d.size() / 2], 1.5, 6.0);
 }
 
 // Same physical pose: the centres agree to 5% of the smallest size.
@@ -104,6 +153,19 @@ void run_batch(const HypothesisContext& ctx, const Superquadric& part, std::size
   for (std::thread& t : pool) t.join();
 }
 
+// The size check (see ObjectDetectOptions::max_size_deviation).
+std::optional<Rejection> oversized(const HypothesisContext& ctx, const Superquadric& part,
+                                   const Eigen::Isometry3d& T, std::span<const PlacedPart> others,
+                                   PartScores* scores = nullptr) {
+  const SizeEvidence e = size_evidence(ctx, part, T, others);
+  if (scores) scores->size_determined = e.determined, scores->size_scale = e.scale;
+  const double limit = ctx.options->max_size_deviation;
+  if (e.determined && std::abs(e.scale - 1.0) > limit) {
+    return Rejection{0, Check::kSize, e.scale - 1.0, limit, T.translation()};
+  }
+  return std::nullopt;
+}
+
 // Hypotheses of one part, stopping early (single-part models) once the vote leader has been
 // found again by `confirmations` hypotheses. Batches are fixed, so the stop is deterministic.
 std::vector<PartHypothesis> search_part(const HypothesisContext& ctx, const Superquadric& part,
@@ -138,8 +200,9 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& ctx, const Supe
     const bool clean = static_cast<double>(ls.interior) <=
                        kCleanInteriorRatio * static_cast<double>(ls.interior + ls.surface);
     if (agree >= o.confirmations && clean &&
-        confirmed(surface_coverage(part, valid[lead].T_world_part, ctx.points, *ctx.tree, cover),
-                  o)) {
+        !unconfirmed(surface_coverage(part, valid[lead].T_world_part, ctx.points, *ctx.tree, cover),
+                     o, cover.sensor.kind != SensorView::Kind::kUnknown) &&
+        !oversized(ctx, part, valid[lead].T_world_part, {})) {
       break;
     }
   }
@@ -292,6 +355,28 @@ void refine_jointly(const HypothesisContext& ctx, const ObjectModel& model,
 
 }  // namespace
 
+const char* to_string(Check check) {
+  switch (check) {
+    case Check::kMeasure:
+      return "measure";
+    case Check::kInterior:
+      return "interior";
+    case Check::kSurfacePoints:
+      return "surface points";
+    case Check::kCoverage:
+      return "coverage";
+    case Check::kSeenThrough:
+      return "seen through";
+    case Check::kSize:
+      return "size";
+    case Check::kHidden:
+      return "hidden";
+    case Check::kBelowPlane:
+      return "below plane";
+  }
+  return "unknown";
+}
+
 const char* to_string(DetectReason reason) {
   switch (reason) {
     case DetectReason::kFound:
@@ -336,9 +421,6 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
   }
   // 5.1.1: dominant plane removal.
   Clock::time_point t0 = Clock::now();
-  // Built before the plane goes: rays that pass a claimed surface mostly end on the table.
-  std::optional<RangeImage> first_returns;
-  if (options.viewpoint) first_returns.emplace(finite, *options.viewpoint);
   std::vector<Eigen::Vector3d> cloud;
   if (options.remove_plane) {
     result.plane = remove_dominant_plane(finite, options.plane);
@@ -355,25 +437,49 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
   }
   t0 = Clock::now();
   const KdTree tree(cloud);
+  // The whole scan, plane included: lines of sight that pass a claimed surface mostly end on the
+  // table.
+  const OccupancyGrid occupancy(options.remove_plane ? std::span<const Eigen::Vector3d>(finite)
+                                                     : std::span<const Eigen::Vector3d>(cloud),
+                                occupancy_cell_mm(cloud, tree));
   result.time.search_index_ms = ms_since(t0);
 
   CoverageOptions cover;
-  cover.viewpoint = options.viewpoint;
-  if (first_returns) cover.first_returns = &*first_returns;
-  if (result.plane.removed()) cover.removed_plane = result.plane.plane;
+  cover.sensor = options.sensor;
+  if (cover.sensor.kind == SensorView::Kind::kUnknown && options.viewpoint) {
+    cover.sensor.kind = SensorView::Kind::kPoint;
+    cover.sensor.origin = *options.viewpoint;
+  }
+  const bool sensor_known = cover.sensor.kind != SensorView::Kind::kUnknown;
+  cover.occupancy = &occupancy;
+  if (result.plane.removed()) {
+    // Oriented towards the objects: they rest on the plane, the sensor looks from their side.
+    pca::Plane up = result.plane.plane;
+    up.normal.normalize();
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d& p : cloud) mean += p;
+    mean /= static_cast<double>(cloud.size());
+    if (up.normal.dot(mean - up.point) < 0.0) up.normal = -up.normal;
+    cover.removed_plane = up;
+  }
+  cover.plane_margin_mm = options.plane_margin_mm;
 
   // 5.1.2: m hypotheses per part.
   t0 = Clock::now();
   const HypothesisContext ctx{cloud, &tree, &options};
   const bool single = model.parts.size() == 1;
-  std::vector<std::vector<PartHypothesis>> hyps(model.parts.size());
+  std::vector<std::vector<PartHypothesis>> hyps(model.parts.size()), unfit(model.parts.size());
   bool any_valid = false, all_confirmed = true;
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
     std::vector<PartHypothesis> all = search_part(ctx, model.parts[p].shape, p, !single, cover);
     result.hypotheses_evaluated += static_cast<int>(all.size());
     for (PartHypothesis& h : all) {
       any_valid = any_valid || h.valid;
-      if (plausible(h, options)) hyps[p].push_back(std::move(h));
+      if (plausible(h, options)) {
+        hyps[p].push_back(std::move(h));
+      } else if (h.valid) {
+        unfit[p].push_back(std::move(h));
+      }
     }
     all_confirmed = all_confirmed && !hyps[p].empty();
     if (!single) hyps[p] = best_of(std::move(hyps[p]), options.selection, 40);
@@ -427,16 +533,27 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
       inst.parts.push_back(std::move(part));
     }
     if (!single) refine_jointly(ctx, model, inst);
-    bool covered = true;
-    for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    std::optional<Rejection> why;
+    for (std::size_t p = 0; p < model.parts.size() && !why; ++p) {
       DetectedPart& part = inst.parts[p];
       const SurfaceCoverage seen =
           surface_coverage(model.parts[p].shape, part.T_world_part, cloud, tree, cover);
+      part.scores.facing = seen.facing;
+      part.scores.measurable = seen.measurable;
       part.scores.coverage = seen.covered;
       part.scores.seen_through = seen.seen_through;
-      covered = covered && confirmed(seen, options);
+      why = unconfirmed(seen, options, sensor_known);
+      if (!why) {
+        std::vector<PlacedPart> others;
+        for (std::size_t q = 0; q < model.parts.size(); ++q) {
+          if (q != p) others.push_back({model.parts[q].shape, inst.parts[q].T_world_part});
+        }
+        why = oversized(ctx, model.parts[p].shape, part.T_world_part, others, &part.scores);
+      }
+      if (why) why->part = p, why->centre = part.center();
     }
-    if (!covered) {
+    if (why) {
+      result.rejections.push_back(*why);
       rejected.push_back(std::move(centres));
       continue;
     }
@@ -449,8 +566,25 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
     result.reason = DetectReason::kFound;
   } else if (!any_valid) {
     result.reason = DetectReason::kNoHypothesis;
+  } else if (all_confirmed && !single && result.rejections.empty()) {
+    result.reason = DetectReason::kNotLinked;  // plausible parts, but no linked combination
   } else {
-    result.reason = all_confirmed ? DetectReason::kNotLinked : DetectReason::kNotConfirmed;
+    result.reason = DetectReason::kNotConfirmed;
+    if (result.rejections.empty()) {
+      // No hypothesis passed eq. 5.2-5.4: say which check the best-fitting ones failed.
+      for (std::size_t p = 0; p < model.parts.size(); ++p) {
+        if (!hyps[p].empty()) continue;
+        const PartHypothesis* best = nullptr;
+        for (const PartHypothesis& h : unfit[p]) {
+          if (!best || h.scores.measure < best->scores.measure) best = &h;
+        }
+        if (!best) continue;
+        if (std::optional<Rejection> r = implausible(*best, options)) {
+          r->part = p;
+          result.rejections.push_back(*r);
+        }
+      }
+    }
   }
   result.time.total_ms = ms_since(t_start);
   return result;

@@ -8,8 +8,9 @@
 // the result depends only on options.seed and not on thread timing; the search stops early once
 // the leading hypothesis has been found again by independent hypotheses; several instances of
 // the object can be returned without duplicates; and a part is only confirmed when the scan
-// covers the surface it shows the sensor and, given the viewpoint, does not claim surface where
-// the sensor saw past it (free space, detect/range_image.hpp).
+// covers the surface this sensor could have measured of it, it claims no surface where the
+// sensor saw past it (free space, detect/object_coverage.hpp), and its points want the model's
+// size (so a look-alike a few per cent larger or smaller is not taken for it).
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -51,12 +52,27 @@ struct ObjectDetectOptions {
   double max_measure = 0.25;
   double max_interior_ratio = 0.2;
   std::size_t min_surface_points = 20;
-  // And the scan holds points on this share of the surface the part shows the sensor
-  // (object_coverage.hpp); checked on the vote's best candidates, occlusion lowers it.
+  // And the scan holds points on this share of the surface the sensor could have measured of
+  // the part (object_coverage.hpp: shadows, occlusion and the sweep's ends excluded); checked on
+  // the vote's best candidates. With an unknown sensor the measurable surface is a guess that
+  // includes shadows, so a lower share is asked for.
   double min_coverage = 0.6;
-  // With a viewpoint: and at most this share of that surface lies where the sensor saw past it
-  // (free space, RangeImage). Rejects a part posed on a fragment of a larger object.
+  double min_coverage_unknown_sensor = 0.4;
+  // And at most this share of it lies where the sensor saw past it (free space). Rejects a part
+  // posed on a fragment of a larger object.
   double max_seen_through = 0.05;
+  // And it shows the sensor at least this many of the coverage's surface samples, and this share
+  // of those facing it (a part hidden behind others, under the table or inside a measured
+  // object leaves too little to judge it by), and it does not reach
+  // farther than max(plane_margin, 10 % of its smallest size) through the removed plane (parts
+  // rest on the table, they do not sink into it).
+  int min_measurable_samples = 10;
+  double min_measurable_share = 0.3;
+  double plane_margin_mm = 5.0;
+  // And, where its points determine it, the size the points want is the model's within this
+  // share (object_hypotheses.hpp size_evidence): a sphere 4 % larger or smaller is not it; a box
+  // or a cone seen from one side places its size to about 2 %.
+  double max_size_deviation = 0.03;
   int max_candidates = 20;            // candidates checked for coverage before giving up
   double neighbourhood_factor = 1.2;  // r = factor * max(a) for refinement and verification
   Selection selection = Selection::kRankedVote;
@@ -85,19 +101,46 @@ enum class DetectReason {
   kInvalidModel,    // no parts, invalid part parameters or links to missing parts
   kInvalidOptions,  // non-positive counts or tolerances
   kNoHypothesis,    // no RANSAC sample had enough neighbours to fit
-  kNotConfirmed,    // hypotheses were fitted, but none fits and covers well enough
+  kNotConfirmed,    // hypotheses were fitted, but none passed the checks (see rejections)
   kNotLinked,       // compound model: confirmed parts, but no combination matches the links
 };
 
 const char* to_string(DetectReason reason);
 
+// The checks a candidate part must pass to be confirmed (ObjectDetectOptions).
+enum class Check {
+  kMeasure,        // M > max_measure
+  kInterior,       // I > max_interior_ratio (I + S)
+  kSurfacePoints,  // S < min_surface_points
+  kCoverage,       // coverage < min_coverage (or min_coverage_unknown_sensor)
+  kSeenThrough,    // seen_through > max_seen_through
+  kSize,           // |size the points want - 1| > max_size_deviation
+  kHidden,         // fewer measurable samples than min_measurable_samples
+  kBelowPlane,     // reaches through the removed plane by more than its margin (mm)
+};
+
+const char* to_string(Check check);
+
 struct PartScores {
-  double measure = 0.0;       // M, eq. 5.2
-  std::size_t interior = 0;   // I, eq. 5.3
-  std::size_t surface = 0;    // S, eq. 5.4
-  int rank_sum = 0;           // sum of this part's ranks in the vote
-  double coverage = 0.0;      // share of the visible surface with scan points (object_coverage)
-  double seen_through = 0.0;  // share of it the sensor saw past (needs the viewpoint)
+  double measure = 0.0;          // M, eq. 5.2
+  std::size_t interior = 0;      // I, eq. 5.3
+  std::size_t surface = 0;       // S, eq. 5.4
+  int rank_sum = 0;              // sum of this part's ranks in the vote
+  int facing = 0;                // surface samples facing the sensor (object_coverage)
+  int measurable = 0;            // of them, the ones not hidden behind measured surface
+  double coverage = 0.0;         // share of them with scan points
+  double seen_through = 0.0;     // share of them the sensor saw past
+  bool size_determined = false;  // the points determine the part's size (size_evidence)
+  double size_scale = 1.0;       // the scale of the model they want
+};
+
+// Why a candidate was not confirmed: the first check it failed, its value and the limit.
+struct Rejection {
+  std::size_t part = 0;  // index into ObjectModel::parts
+  Check check = Check::kMeasure;
+  double value = 0.0;
+  double limit = 0.0;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // where the candidate part was
 };
 
 struct DetectedPart {
@@ -128,7 +171,10 @@ struct ObjectDetectResult {
   DetectReason reason = DetectReason::kEmptyCloud;
   std::vector<DetectedInstance> instances;  // best first; empty unless found()
   PlaneRemovalResult plane;                 // the dominant plane (removed() tells if it was)
-  int hypotheses_evaluated = 0;             // over all parts
+  // Not found: the candidates checked and why each failed, best first (for a hypothesis that
+  // never reached the coverage checks, the check of eq. 5.2-5.4 it failed).
+  std::vector<Rejection> rejections;
+  int hypotheses_evaluated = 0;  // over all parts
   StageTimes time;
   bool found() const { return reason == DetectReason::kFound && !instances.empty(); }
 };

@@ -160,6 +160,63 @@ PartScores verify_pose(const HypothesisContext& ctx, const Superquadric& part,
   return s;
 }
 
+// Radial distance of a part-frame point from the surface, |x| (1 - G^-1/2) (thesis 2.1.3): in
+// mm, and linear in the part's size for a sphere, where G - 1 is neither.
+double radial_distance(const SuperquadricMetric& m, const Eigen::Vector3d& q) {
+  const double g = m.value(q);
+  return g > 0.0 ? q.norm() * (1.0 - 1.0 / std::sqrt(g)) : -q.norm();
+}
+
+SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& part,
+                           const Eigen::Isometry3d& T, std::span<const PlacedPart> explained,
+                           double du) {
+  const ObjectDetectOptions& o = *ctx.options;
+  Scratch scratch;
+  const std::vector<Eigen::Vector3d> near =
+      refinement_points(ctx, part, T, o.refine_trim > 0.0 ? o.refine_trim : o.gamma,
+                        ExplainedBy(explained, o), scratch);
+  SizeEvidence e;
+  if (near.size() < 3 * kMinPatchPoints) return e;
+  // The points on the surface, both sides alike: the band of the refinement keeps everything
+  // inside but only a little outside, and what it lets in of a neighbouring object would ask for
+  // a larger part.
+  const SuperquadricMetric m1(part);
+  const Eigen::Isometry3d inv = T.inverse();
+  std::vector<double> d(near.size());
+  for (std::size_t i = 0; i < near.size(); ++i) d[i] = std::abs(radial_distance(m1, inv * near[i]));
+  std::vector<double> sorted = d;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const double gate = std::max(1.0, 3.0 * sorted[sorted.size() / 2]);
+  std::vector<Eigen::Vector3d> sel;
+  for (std::size_t i = 0; i < near.size(); ++i) {
+    if (d[i] < gate) sel.push_back(near[i]);
+  }
+  if (sel.size() < 3 * kMinPatchPoints) return e;
+  // Scaling the part by s scales G by u = 1 / s^2 (G is homogeneous of degree 2 without taper),
+  // so G - 1 of a point is linear in u and steps of +-du in u ask the fits the same question
+  // from both sides: the pose is re-fitted at u = 1 + du, 1, 1 - du, and a parabola in u through
+  // the three mean squares of G - 1 has its vertex at the size the points want. (Steps even in s
+  // would favour the larger part.)
+  PoseFitOptions fit;
+  fit.max_iterations = o.iterations;
+  double ms[3];
+  for (int k = 0; k < 3; ++k) {
+    const double s = 1.0 / std::sqrt(1.0 + (1 - k) * du);
+    Superquadric scaled = part;
+    scaled.a1 *= s, scaled.a2 *= s, scaled.a3 *= s;
+    const PoseFitResult r = fit_pose(scaled, sel, T, fit);
+    if (!r.ok()) return e;
+    ms[k] = r.measure * r.measure;
+  }
+  const double curvature = ms[0] - 2.0 * ms[1] + ms[2];
+  if (!(curvature > 0.05 * ms[1]) || !(curvature > 1e-12)) return e;
+  const double u = 1.0 + du * 0.5 * (ms[2] - ms[0]) / curvature;
+  if (!(u > 0.0)) return e;
+  e.determined = true;
+  e.scale = 1.0 / std::sqrt(u);
+  return e;
+}
+
 PartHypothesis generate_hypothesis(const HypothesisContext& ctx, const Superquadric& part,
                                    std::uint64_t seed) {
   const ObjectDetectOptions& o = *ctx.options;

@@ -1,0 +1,44 @@
+#pragma once
+// Which cells of space hold scan points: a dense bit grid over the scan's bounding box. It answers
+// "what lies on the line of sight from this surface point to an eye?" for any eye, fixed or
+// moving with the sweep (a stripe ranger's laser apex and camera), where a range image needs one
+// fixed viewpoint. Used to tell the surface a posed part could have shown the scan from what was
+// hidden (occluded by measured surface) and from where the sensor saw past it (free space).
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace rangefit {
+
+class OccupancyGrid {
+ public:
+  OccupancyGrid() = default;
+  // Cells of `cell_mm` (grown when the box would need more than `max_cells`). Non-finite
+  // points are skipped.
+  OccupancyGrid(std::span<const Eigen::Vector3d> points, double cell_mm,
+                std::size_t max_cells = std::size_t{1} << 26);
+
+  bool empty() const { return bits_.empty(); }
+  double cell_mm() const { return cell_; }
+  bool occupied(const Eigen::Vector3d& p) const;
+
+  // Walks from `from` towards `to` (both world, mm), skipping the first `skip_mm`, and returns the
+  // distance from `from` of the first occupied cell met, or a negative value when none is met
+  // before `to` (or the box ends). Steps of half a cell: a surface of points at about the cell
+  // spacing is not stepped over.
+  double first_hit(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double skip_mm) const;
+
+ private:
+  std::size_t index(std::int64_t i, std::int64_t j, std::int64_t k) const {
+    return (static_cast<std::size_t>(k) * ny_ + static_cast<std::size_t>(j)) * nx_ +
+           static_cast<std::size_t>(i);
+  }
+  Eigen::Vector3d lo_ = Eigen::Vector3d::Zero();
+  double cell_ = 1.0;
+  std::size_t nx_ = 0, ny_ = 0, nz_ = 0;
+  std::vector<std::uint64_t> bits_;
+};
+
+}  // namespace rangefit

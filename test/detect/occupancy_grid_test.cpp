@@ -1,0 +1,125 @@
+#include "detect/occupancy_grid.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "detect/kdtree.hpp"
+#include "detect/object_coverage.hpp"
+#include "test/detect/object_scenes.hpp"
+
+namespace rangefit {
+namespace {
+
+// A 400 x 400 mm wall in the plane z = 0, 2 mm grid, seen from 500 mm above its centre.
+std::vector<Eigen::Vector3d> wall() {
+  std::vector<Eigen::Vector3d> pts;
+  for (double x = -200; x <= 200; x += 2.0) {
+    for (double y = -200; y <= 200; y += 2.0) pts.emplace_back(x, y, 0.0);
+  }
+  return pts;
+}
+
+const Eigen::Vector3d kEye(0, 0, 500);
+
+TEST(OccupancyGrid, LinesOfSightMeetTheMeasuredSurface) {
+  const OccupancyGrid grid(wall(), 4.0);
+  ASSERT_FALSE(grid.empty());
+  EXPECT_TRUE(grid.occupied({10, 20, 0.5}));
+  EXPECT_FALSE(grid.occupied({10, 20, 50}));
+  // From a point above the wall, the line to the eye is clear and the line beyond meets the wall.
+  const Eigen::Vector3d above(10, 20, 100);
+  EXPECT_LT(grid.first_hit(above, kEye, 5.0), 0.0);
+  const double behind = grid.first_hit(above, above + 400.0 * (above - kEye).normalized(), 5.0);
+  EXPECT_NEAR(behind, 100.0 * (above - kEye).norm() / (kEye.z() - above.z()), 5.0);
+  // From below, the wall hides the eye.
+  EXPECT_GT(grid.first_hit({10, 20, -100}, kEye, 5.0), 0.0);
+  // Beside the wall: nothing on the way.
+  EXPECT_LT(grid.first_hit({600, 0, 0}, {600, 0, 500}, 5.0), 0.0);
+  // The first cells are skipped: a point on the wall does not hide itself.
+  EXPECT_LT(grid.first_hit({10, 20, 0}, kEye, 5.0), 0.0);
+}
+
+TEST(OccupancyGrid, ACoarseGridStaysWithinItsBudget) {
+  const OccupancyGrid grid(wall(), 0.01, 1u << 16);
+  ASSERT_FALSE(grid.empty());
+  EXPECT_GT(grid.cell_mm(), 0.01);
+  EXPECT_TRUE(grid.occupied({0, 0, 0}));
+}
+
+TEST(OccupancyGrid, EmptyOrNonFiniteInputHoldsNothing) {
+  const OccupancyGrid none({}, 2.0);
+  EXPECT_TRUE(none.empty());
+  EXPECT_LT(none.first_hit({0, 0, 0}, kEye, 0.0), 0.0);
+  const std::vector<Eigen::Vector3d> bad = {{std::nan(""), 0, 0}};
+  EXPECT_TRUE(OccupancyGrid(bad, 2.0).empty());
+  EXPECT_TRUE(OccupancyGrid(wall(), std::nan("")).empty());
+  const OccupancyGrid grid(wall(), 4.0);
+  EXPECT_FALSE(grid.occupied({std::nan(""), 0, 0}));
+  EXPECT_LT(grid.first_hit({0, 0, 100}, {std::nan(""), 0, 0}, 0.0), 0.0);
+}
+
+// The sphere of figure 5.18 where it is, and moved to the empty table in front of the objects:
+// the first covers its visible surface and hides nothing the sensor saw; the second claims
+// surface exactly where the sensor saw the table.
+TEST(SurfaceCoverage, SeenThroughSeparatesAPartFromFreeSpace) {
+  const test::Scene s = test::fig_5_18_scene(0.0, 1, 0.6);
+  const std::vector<Eigen::Vector3d>& pts = s.rendered.cloud.points;
+  const KdTree tree(pts);
+  const OccupancyGrid grid(pts, 3.0);
+  CoverageOptions o;
+  o.sensor.kind = SensorView::Kind::kPoint;
+  o.sensor.origin = s.eye;
+  o.occupancy = &grid;
+  const Superquadric ball = test::sphere_model();
+  const Eigen::Isometry3d here = s.parts[2].T_world_part;
+  Eigen::Isometry3d floating = here;
+  floating.translation() = Eigen::Vector3d(40, 0, 80);  // above the empty front of the table
+  const SurfaceCoverage at = surface_coverage(ball, here, pts, tree, o);
+  const SurfaceCoverage away = surface_coverage(ball, floating, pts, tree, o);
+  EXPECT_GT(at.covered, 0.9);
+  EXPECT_LT(at.seen_through, 0.02);
+  EXPECT_LT(away.covered, 0.1);
+  EXPECT_GT(away.seen_through, 0.8);
+  o.occupancy = nullptr;  // without the scan's cells nothing is counted as seen through
+  EXPECT_EQ(surface_coverage(ball, floating, pts, tree, o).seen_through, 0.0);
+}
+
+// A stripe ranger's camera shadow: the surface of a part that faces the laser but that its camera
+// cannot see is not asked for, so a part measured on one flank only is still covered.
+TEST(SurfaceCoverage, SurfaceInTheCameraShadowIsNotAskedFor) {
+  const Superquadric ball = test::sphere_model();
+  const Eigen::Isometry3d T = test::pose_from_axis({0, 0, 50}, {0, 0, 1});
+  CoverageOptions o;  // laser from 600 mm above, sweeping along y; camera 45 deg to +y
+  o.sensor.kind = SensorView::Kind::kLinearSweep;
+  o.sensor.origin = {0, -300, 600};
+  o.sensor.direction = Eigen::Vector3d::UnitY();
+  o.sensor.plane_normal = Eigen::Vector3d::UnitY();
+  o.sensor.camera_offset = {0, 600, 0};
+  o.sensor.sweep_min = 0, o.sensor.sweep_max = 600;
+  // What this ranger measures of the ball: the surface facing both its laser and its camera.
+  std::vector<Eigen::Vector3d> pts;
+  for (int i = 0; i < 40000; ++i) {
+    const double z = 1.0 - (2.0 * i + 1.0) / 40000, r = std::sqrt(1.0 - z * z), phi = 2.39996 * i;
+    const Eigen::Vector3d n(r * std::cos(phi), r * std::sin(phi), z);
+    const Eigen::Vector3d p = T * (50.0 * n);
+    const Eyes eyes = sensor_eyes(o.sensor, p);
+    bool seen = eyes.count == 2;
+    for (int k = 0; k < eyes.count; ++k) seen = seen && n.dot(eyes.at[k] - p) > 0.0;
+    if (seen) pts.push_back(p);
+  }
+  const KdTree tree(pts);
+  const OccupancyGrid grid(pts, 3.0);
+  o.occupancy = &grid;
+  const SurfaceCoverage two_eyes = surface_coverage(ball, T, pts, tree, o);
+  EXPECT_GT(two_eyes.covered, 0.95);
+  EXPECT_LT(two_eyes.seen_through, 0.02);
+  o.sensor.camera_offset.setZero();  // as if the laser's eye alone had measured it
+  const SurfaceCoverage one_eye = surface_coverage(ball, T, pts, tree, o);
+  EXPECT_GT(one_eye.measurable, two_eyes.measurable);
+  EXPECT_LT(one_eye.covered, two_eyes.covered - 0.1);  // its camera shadow counted as missing
+}
+
+}  // namespace
+}  // namespace rangefit
