@@ -9,7 +9,9 @@ namespace {
 struct SpanAdaptor {
   std::span<const Eigen::Vector3d> pts;
   std::size_t kdtree_get_point_count() const { return pts.size(); }
-  double kdtree_get_pt(std::size_t i, std::size_t dim) const { return pts[i][static_cast<int>(dim)]; }
+  double kdtree_get_pt(std::size_t i, std::size_t dim) const {
+    return pts[i][static_cast<int>(dim)];
+  }
   template <class Bbox>
   bool kdtree_get_bbox(Bbox&) const {
     return false;

@@ -69,8 +69,9 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
   const FarEyes far =
       known ? FarEyes{} : far_eyes(m, T, 1.2 * sq.max_size(), points, tree, o.removed_plane);
   if (!known && far.count == 0) return {};
-  // Lines of sight start this far from the sample: its own points and its pose error stay out.
-  const double skip = o.occupancy ? tol + o.occupancy->cell_mm() : tol;
+  // Lines of sight start this far from the surface: its own points and its pose error stay out
+  // (along an oblique line of sight, farther from the sample).
+  const double clearance = o.occupancy ? tol + o.occupancy->cell_mm() : tol;
   const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
   std::vector<std::uint32_t> nbr;
   int facing = 0, measurable = 0, covered = 0, seen_through = 0;
@@ -102,13 +103,16 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
     if (eyes.count == 0) continue;  // outside the sweep
     bool faces = true, hidden = false;
     const Eigen::Vector3d un = n.normalized();
+    std::array<double, 2> skip{clearance, clearance};
     for (int k = 0; k < eyes.count; ++k) {
-      faces = faces && un.dot((eyes.at[k] - p).normalized()) > kMinIncidenceCosine;
+      const double incidence = un.dot((eyes.at[k] - p).normalized());
+      faces = faces && incidence > kMinIncidenceCosine;
+      skip[k] = clearance / std::max(incidence, kMinIncidenceCosine);
     }
     if (!faces) continue;  // in the part's own shadow, or seen too obliquely to judge
     ++facing;
     for (int k = 0; k < eyes.count && o.occupancy && !hidden; ++k) {
-      hidden = o.occupancy->first_hit(p, eyes.at[k], skip) >= 0.0;
+      hidden = o.occupancy->first_hit(p, eyes.at[k], skip[k]) >= 0.0;
     }
     if (hidden) continue;
     ++measurable;
@@ -123,7 +127,7 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
     // between scan lines (grazing surface, coarse step) is not: it has points within a cell.
     if (o.occupancy && nearest > tol + o.occupancy->cell_mm()) {
       const Eigen::Vector3d beyond = p + kFarEye * (p - eyes.at[0]).normalized();
-      if (o.occupancy->first_hit(p, beyond, skip) >= 0.0) ++seen_through;
+      if (o.occupancy->first_hit(p, beyond, skip[0]) >= 0.0) ++seen_through;
     }
   }
   SurfaceCoverage c;

@@ -153,15 +153,24 @@ void run_batch(const HypothesisContext& ctx, const Superquadric& part, std::size
   for (std::thread& t : pool) t.join();
 }
 
-// The size check (see ObjectDetectOptions::max_size_deviation).
-std::optional<Rejection> oversized(const HypothesisContext& ctx, const Superquadric& part,
-                                   const Eigen::Isometry3d& T, std::span<const PlacedPart> others,
-                                   PartScores* scores = nullptr) {
+// The fit-quality checks in mm (see ObjectDetectOptions::max_size_deviation and
+// residual_noise_factor); noise_mm is the scan's range noise (the removed plane's rms).
+std::optional<Rejection> misfit(const HypothesisContext& ctx, const Superquadric& part,
+                                const Eigen::Isometry3d& T, std::span<const PlacedPart> others,
+                                double noise_mm, PartScores* scores = nullptr) {
+  const ObjectDetectOptions& o = *ctx.options;
   const SizeEvidence e = size_evidence(ctx, part, T, others);
-  if (scores) scores->size_determined = e.determined, scores->size_scale = e.scale;
-  const double limit = ctx.options->max_size_deviation;
-  if (e.determined && std::abs(e.scale - 1.0) > limit) {
-    return Rejection{0, Check::kSize, e.scale - 1.0, limit, T.translation()};
+  if (scores) {
+    scores->size_determined = e.determined;
+    scores->size_scale = e.scale;
+    scores->residual_mm = e.residual_mm;
+  }
+  const double max_residual = o.residual_noise_factor * noise_mm + o.max_residual_floor_mm;
+  if (e.residual_mm > max_residual) {
+    return Rejection{0, Check::kResidual, e.residual_mm, max_residual, T.translation()};
+  }
+  if (e.determined && std::abs(e.scale - 1.0) > o.max_size_deviation) {
+    return Rejection{0, Check::kSize, e.scale - 1.0, o.max_size_deviation, T.translation()};
   }
   return std::nullopt;
 }
@@ -170,7 +179,7 @@ std::optional<Rejection> oversized(const HypothesisContext& ctx, const Superquad
 // found again by `confirmations` hypotheses. Batches are fixed, so the stop is deterministic.
 std::vector<PartHypothesis> search_part(const HypothesisContext& ctx, const Superquadric& part,
                                         std::size_t part_index, bool compound,
-                                        const CoverageOptions& cover) {
+                                        const CoverageOptions& cover, double noise_mm) {
   const bool allow_early_stop = !compound && ctx.options->early_stop;
   const ObjectDetectOptions& o = *ctx.options;
   const int threads = o.threads > 0
@@ -202,7 +211,7 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& ctx, const Supe
     if (agree >= o.confirmations && clean &&
         !unconfirmed(surface_coverage(part, valid[lead].T_world_part, ctx.points, *ctx.tree, cover),
                      o, cover.sensor.kind != SensorView::Kind::kUnknown) &&
-        !oversized(ctx, part, valid[lead].T_world_part, {})) {
+        !misfit(ctx, part, valid[lead].T_world_part, {}, noise_mm)) {
       break;
     }
   }
@@ -369,6 +378,8 @@ const char* to_string(Check check) {
       return "seen through";
     case Check::kSize:
       return "size";
+    case Check::kResidual:
+      return "residual";
     case Check::kHidden:
       return "hidden";
     case Check::kBelowPlane:
@@ -463,6 +474,8 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
     cover.removed_plane = up;
   }
   cover.plane_margin_mm = options.plane_margin_mm;
+  // The scan's range noise, as the table shows it (0 without a plane: the floor alone).
+  const double noise_mm = result.plane.removed() ? result.plane.plane.rms : 0.0;
 
   // 5.1.2: m hypotheses per part.
   t0 = Clock::now();
@@ -471,7 +484,8 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
   std::vector<std::vector<PartHypothesis>> hyps(model.parts.size()), unfit(model.parts.size());
   bool any_valid = false, all_confirmed = true;
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
-    std::vector<PartHypothesis> all = search_part(ctx, model.parts[p].shape, p, !single, cover);
+    std::vector<PartHypothesis> all =
+        search_part(ctx, model.parts[p].shape, p, !single, cover, noise_mm);
     result.hypotheses_evaluated += static_cast<int>(all.size());
     for (PartHypothesis& h : all) {
       any_valid = any_valid || h.valid;
@@ -548,7 +562,7 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
         for (std::size_t q = 0; q < model.parts.size(); ++q) {
           if (q != p) others.push_back({model.parts[q].shape, inst.parts[q].T_world_part});
         }
-        why = oversized(ctx, model.parts[p].shape, part.T_world_part, others, &part.scores);
+        why = misfit(ctx, model.parts[p].shape, part.T_world_part, others, noise_mm, &part.scores);
       }
       if (why) why->part = p, why->centre = part.center();
     }

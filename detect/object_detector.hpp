@@ -67,12 +67,17 @@ struct ObjectDetectOptions {
   // farther than max(plane_margin, 10 % of its smallest size) through the removed plane (parts
   // rest on the table, they do not sink into it).
   int min_measurable_samples = 10;
-  double min_measurable_share = 0.3;
+  double min_measurable_share = 0.4;
   double plane_margin_mm = 5.0;
   // And, where its points determine it, the size the points want is the model's within this
   // share (object_hypotheses.hpp size_evidence): a sphere 4 % larger or smaller is not it; a box
   // or a cone seen from one side places its size to about 2 %.
   double max_size_deviation = 0.03;
+  // And its points lie on its surface as closely as the scan's noise allows: the robust spread
+  // of their radial distances (mm) is at most residual_noise_factor x the noise of the removed
+  // plane plus max_residual_floor_mm (a part fitted across fragments of other objects is not).
+  double residual_noise_factor = 3.0;
+  double max_residual_floor_mm = 0.5;
   int max_candidates = 20;            // candidates checked for coverage before giving up
   double neighbourhood_factor = 1.2;  // r = factor * max(a) for refinement and verification
   Selection selection = Selection::kRankedVote;
@@ -115,6 +120,7 @@ enum class Check {
   kCoverage,       // coverage < min_coverage (or min_coverage_unknown_sensor)
   kSeenThrough,    // seen_through > max_seen_through
   kSize,           // |size the points want - 1| > max_size_deviation
+  kResidual,       // the points' spread about the surface (mm) above the scan's noise allows
   kHidden,         // fewer measurable samples than min_measurable_samples
   kBelowPlane,     // reaches through the removed plane by more than its margin (mm)
 };
@@ -132,6 +138,7 @@ struct PartScores {
   double seen_through = 0.0;     // share of them the sensor saw past
   bool size_determined = false;  // the points determine the part's size (size_evidence)
   double size_scale = 1.0;       // the scale of the model they want
+  double residual_mm = 0.0;      // robust spread of their radial distances from the surface
 };
 
 // Why a candidate was not confirmed: the first check it failed, its value and the limit.

@@ -186,6 +186,7 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
   for (std::size_t i = 0; i < near.size(); ++i) d[i] = std::abs(radial_distance(m1, inv * near[i]));
   std::vector<double> sorted = d;
   std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  e.residual_mm = 1.4826 * sorted[sorted.size() / 2];
   const double gate = std::max(1.0, 3.0 * sorted[sorted.size() / 2]);
   std::vector<Eigen::Vector3d> sel;
   for (std::size_t i = 0; i < near.size(); ++i) {

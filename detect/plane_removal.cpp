@@ -30,7 +30,8 @@ PlaneRemovalResult remove_dominant_plane(std::span<const Eigen::Vector3d> points
   const double stride = static_cast<double>(n) / static_cast<double>(sub_n);
   const double offset = static_cast<double>(options.seed % 997) / 997.0 * stride;
   for (std::size_t i = 0; i < sub_n; ++i) {
-    sub[i] = points[std::min(n - 1, static_cast<std::size_t>(offset + stride * static_cast<double>(i)))];
+    sub[i] =
+        points[std::min(n - 1, static_cast<std::size_t>(offset + stride * static_cast<double>(i)))];
   }
   const std::size_t seeds = std::min(sub_n, static_cast<std::size_t>(options.seeds));
   std::vector<std::size_t> seed_idx(seeds);

@@ -24,11 +24,11 @@ struct GridLayout {
 };
 
 struct PointCloud {
-  std::string frame_id = "world";          // frame the positions are expressed in
-  std::vector<Eigen::Vector3d> points;     // positions, mm
-  std::vector<Eigen::Vector3d> normals;    // empty, or one unit vector per point
+  std::string frame_id = "world";                // frame the positions are expressed in
+  std::vector<Eigen::Vector3d> points;           // positions, mm
+  std::vector<Eigen::Vector3d> normals;          // empty, or one unit vector per point
   std::vector<std::chrono::nanoseconds> stamps;  // empty, or CLOCK_MONOTONIC time per point
-  GridLayout grid;                         // empty when the cloud is unorganised
+  GridLayout grid;                               // empty when the cloud is unorganised
 
   std::size_t size() const { return points.size(); }
   bool empty() const { return points.empty(); }
