@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "detect/sensor_view.hpp"
+
 namespace rangefit {
 
 // Organised layout of a scan, e.g. revolution x sample for the CSS (512 columns) or profile x
@@ -29,6 +31,7 @@ struct PointCloud {
   std::vector<Eigen::Vector3d> normals;          // empty, or one unit vector per point
   std::vector<std::chrono::nanoseconds> stamps;  // empty, or CLOCK_MONOTONIC time per point
   GridLayout grid;                               // empty when the cloud is unorganised
+  SensorView sensor;                             // how the scan was taken (kUnknown: not known)
 
   std::size_t size() const { return points.size(); }
   bool empty() const { return points.empty(); }

@@ -1,10 +1,67 @@
 #include "io/cloud_extras.hpp"
 
+#include <array>
 #include <cmath>
+#include <cstdio>
 
+#include "io/bounded_reader.hpp"
 #include "io/io_error.hpp"
 
 namespace rangefit::io::detail {
+
+namespace {
+
+constexpr std::array<std::pair<SensorView::Kind, std::string_view>, 3> kSensorKinds = {{
+    {SensorView::Kind::kPoint, "point"},
+    {SensorView::Kind::kLinearSweep, "linear_sweep"},
+    {SensorView::Kind::kRotarySweep, "rotary_sweep"},
+}};
+
+}  // namespace
+
+std::string format_sensor(const SensorView& v) {
+  std::string out;
+  for (const auto& [kind, name] : kSensorKinds) {
+    if (kind == v.kind) out = std::string(name);
+  }
+  if (out.empty()) return out;
+  char b[40];
+  for (const Eigen::Vector3d* x :
+       {&v.origin, &v.plane_normal, &v.camera_offset, &v.direction, &v.pivot}) {
+    for (int i = 0; i < 3; ++i) {
+      std::snprintf(b, sizeof b, " %.17g", (*x)[i]);
+      out += b;
+    }
+  }
+  for (double x : {v.sweep_min, v.sweep_max}) {
+    std::snprintf(b, sizeof b, " %.17g", x);
+    out += b;
+  }
+  return out;
+}
+
+std::optional<SensorView> parse_sensor(std::span<const std::string_view> w) {
+  if (w.size() != 18) return std::nullopt;
+  SensorView v;
+  bool known = false;
+  for (const auto& [kind, name] : kSensorKinds) {
+    if (w[0] == name) v.kind = kind, known = true;
+  }
+  if (!known) return std::nullopt;
+  double x[17];
+  for (std::size_t i = 0; i < 17; ++i) {
+    if (!parse_double(w[i + 1], x[i]) || !std::isfinite(x[i])) return std::nullopt;
+  }
+  v.origin = {x[0], x[1], x[2]};
+  v.plane_normal = {x[3], x[4], x[5]};
+  v.camera_offset = {x[6], x[7], x[8]};
+  v.direction = {x[9], x[10], x[11]};
+  v.pivot = {x[12], x[13], x[14]};
+  v.sweep_min = x[15];
+  v.sweep_max = x[16];
+  if (!valid(v)) return std::nullopt;
+  return v;
+}
 
 StampWords split_stamp(std::chrono::nanoseconds stamp) {
   const auto bits = static_cast<std::uint64_t>(stamp.count());

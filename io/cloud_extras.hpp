@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -34,6 +35,13 @@ std::vector<std::int32_t> checked_cells(const std::filesystem::path& file, const
 // Largest grid a file of `file_bytes` may declare: the index is allocated before the points are
 // read, so it is bounded by the file size (with a floor for sparse scans in small files).
 std::size_t max_grid_cells(std::size_t file_bytes);
+
+// The scan's SensorView as the words of a header comment after "rangefit sensor": the kind
+// (point, linear_sweep, rotary_sweep) and 17 numbers (origin, plane normal, camera offset,
+// direction, pivot, sweep min and max). Empty for an unknown sensor.
+std::string format_sensor(const SensorView& view);
+// From the words after "sensor"; nullopt when they are not a valid SensorView.
+std::optional<SensorView> parse_sensor(std::span<const std::string_view> words);
 
 // A frame id is written on a header line, so it must be one printable word.
 bool is_safe_frame_id(std::string_view frame_id);

@@ -41,6 +41,7 @@ struct Header {
   std::uint64_t values = 0;  // numbers per point
   Data data = Data::kAscii;
   std::string frame_id = "world";
+  SensorView sensor;
 };
 
 std::uint64_t parse_count(BoundedReader& r, std::string_view key, std::string_view token) {
@@ -79,6 +80,12 @@ Header parse_header(BoundedReader& r) {
     if (w.empty()) continue;
     if (w[0].front() == '#') {
       if (w.size() == 4 && w[1] == "rangefit" && w[2] == "frame_id") h.frame_id = std::string(w[3]);
+      if (w.size() >= 3 && w[1] == "rangefit" && w[2] == "sensor") {
+        const std::optional<SensorView> v =
+            detail::parse_sensor(std::span<const std::string_view>(w).subspan(3));
+        if (!v) r.fail_at_line("header: 'rangefit sensor' is not a kind and 17 finite numbers");
+        h.sensor = *v;
+      }
       continue;
     }
     const std::vector<std::string_view> args(w.begin() + 1, w.end());
@@ -282,6 +289,7 @@ PointCloud read_pcd(const std::filesystem::path& path, CloudReadReport* report_o
   Values values(r, h);  // checks h.points against the data before anything is reserved
   PointCloud cloud;
   cloud.frame_id = h.frame_id;
+  cloud.sensor = h.sensor;
   cloud.points.reserve(h.points);
   if (nx >= 0) cloud.normals.reserve(h.points);
   if (hi >= 0) cloud.stamps.reserve(h.points);

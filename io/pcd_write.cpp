@@ -45,6 +45,9 @@ void write_pcd(const std::filesystem::path& path, const PointCloud& cloud, PcdEn
   const bool ascii = encoding == PcdEncoding::kAscii;
   std::string out = "# .PCD v0.7 - Point Cloud Data file format (written by rangefit, units mm)\n";
   if (!cloud.frame_id.empty()) out += "# rangefit frame_id " + cloud.frame_id + "\n";
+  if (const std::string sensor = detail::format_sensor(cloud.sensor); !sensor.empty()) {
+    out += "# rangefit sensor " + sensor + "\n";
+  }
   out += "VERSION 0.7\nFIELDS " + fields + "\nSIZE " + sizes + "\nTYPE " + types + "\nCOUNT " +
          counts + "\nWIDTH " + std::to_string(width) + "\nHEIGHT " + std::to_string(height) +
          "\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + std::to_string(width * height) + "\nDATA " +

@@ -41,6 +41,7 @@ struct Header {
   int grid_rows = 0;
   int grid_cols = 0;
   std::string frame_id = "world";
+  SensorView sensor;
 };
 
 std::optional<Scalar> ply_scalar(std::string_view name) {
@@ -80,6 +81,11 @@ void parse_rangefit_comment(BoundedReader& r, const std::vector<std::string_view
     h.grid_cols = static_cast<int>(cols);
   } else if (w.size() == 4 && w[2] == "frame_id") {
     h.frame_id = std::string(w[3]);
+  } else if (w.size() >= 3 && w[2] == "sensor") {
+    const std::optional<SensorView> v =
+        detail::parse_sensor(std::span<const std::string_view>(w).subspan(3));
+    if (!v) r.fail_at_line("header: 'rangefit sensor' is not a kind and 17 finite numbers");
+    h.sensor = *v;
   }
 }
 
@@ -294,6 +300,7 @@ PointCloud read_ply(const std::filesystem::path& path, CloudReadReport* report_o
 
   PointCloud cloud;
   cloud.frame_id = h.frame_id;
+  cloud.sensor = h.sensor;
   cloud.points.reserve(vertex->count);  // bounded by check_counts
   if (v.nx >= 0) cloud.normals.reserve(vertex->count);
   if (v.stamp_hi >= 0) cloud.stamps.reserve(vertex->count);

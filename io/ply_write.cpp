@@ -27,6 +27,9 @@ void write_ply(const std::filesystem::path& path, const PointCloud& cloud, PlyEn
                                                         : "binary_big_endian";
   out += " 1.0\ncomment written by rangefit, units mm\n";
   if (!cloud.frame_id.empty()) out += "comment rangefit frame_id " + cloud.frame_id + "\n";
+  if (const std::string sensor = detail::format_sensor(cloud.sensor); !sensor.empty()) {
+    out += "comment rangefit sensor " + sensor + "\n";
+  }
   if (grid) {
     out += "comment rangefit grid " + std::to_string(cloud.grid.rows) + " " +
            std::to_string(cloud.grid.cols) + "\n";

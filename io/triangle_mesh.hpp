@@ -9,8 +9,8 @@
 namespace rangefit::io {
 
 struct TriangleMesh {
-  std::vector<Eigen::Vector3d> vertices;                  // mm
-  std::vector<std::array<std::uint32_t, 3>> triangles;   // counter-clockwise seen from outside
+  std::vector<Eigen::Vector3d> vertices;                // mm
+  std::vector<std::array<std::uint32_t, 3>> triangles;  // counter-clockwise seen from outside
 };
 
 }  // namespace rangefit::io

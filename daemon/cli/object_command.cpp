@@ -55,7 +55,12 @@ nlohmann::json to_json(const ObjectModel& model, const ObjectDetectResult& r) {
                          {"S", p.scores.surface},
                          {"rank_sum", p.scores.rank_sum},
                          {"coverage", p.scores.coverage},
-                         {"seen_through", p.scores.seen_through}}}});
+                         {"seen_through", p.scores.seen_through},
+                         {"measurable", p.scores.measurable},
+                         {"facing", p.scores.facing},
+                         {"size_scale", p.scores.size_scale},
+                         {"size_determined", p.scores.size_determined},
+                         {"residual_mm", p.scores.residual_mm}}}});
     }
     instances.push_back({{"parts", parts},
                          {"rank_sum", inst.rank_sum},
@@ -65,6 +70,16 @@ nlohmann::json to_json(const ObjectModel& model, const ObjectDetectResult& r) {
   // parts[] of the best instance at the top level; all instances listed as well.
   j["parts"] = r.instances.empty() ? nlohmann::json::array() : instances[0]["parts"];
   j["instances"] = instances;
+  // Not found: which check each candidate failed, its value and the limit it missed.
+  nlohmann::json rejections = nlohmann::json::array();
+  for (const Rejection& x : r.rejections) {
+    rejections.push_back({{"part", model.parts[x.part].name},
+                          {"check", to_string(x.check)},
+                          {"value", x.value},
+                          {"limit", x.limit},
+                          {"center", vec(x.centre)}});
+  }
+  j["rejections"] = rejections;
   j["time_ms"] = {{"plane", r.time.plane_ms},
                   {"search_index", r.time.search_index_ms},
                   {"hypotheses", r.time.hypotheses_ms},
@@ -77,6 +92,11 @@ void print_text(const ObjectModel& model, const ObjectDetectResult& r) {
   std::cout << model.name << ": " << (r.found() ? "found" : "not found") << " ("
             << to_string(r.reason) << "), " << r.hypotheses_evaluated << " hypotheses, "
             << r.time.total_ms << " ms\n";
+  for (const Rejection& x : r.rejections) {
+    std::cout << "  rejected " << model.parts[x.part].name << " at " << x.centre.x() << " "
+              << x.centre.y() << " " << x.centre.z() << ": " << to_string(x.check) << " " << x.value
+              << " (limit " << x.limit << ")\n";
+  }
   for (std::size_t i = 0; i < r.instances.size(); ++i) {
     for (const DetectedPart& p : r.instances[i].parts) {
       const Eigen::Vector3d c = p.center(), z = p.z_axis();
@@ -104,6 +124,7 @@ int run(const ObjectArgs& a) {
   o.trials = a.trials;
   o.instances = a.instances;
   o.seed = a.seed;
+  o.sensor = cloud.sensor;  // a scan saved by rangefit says how it was taken
   if (a.viewpoint.size() == 3)
     o.viewpoint = Eigen::Vector3d(a.viewpoint[0], a.viewpoint[1], a.viewpoint[2]);
   const ObjectDetectResult r = detect_object(model, cloud.points, o);

@@ -53,5 +53,38 @@ TEST(CloudIo, ContentMustMatchTheExtension) {
               ::testing::ThrowsMessage<IoError>(HasSubstr("fake.ply: not a PLY file")));
 }
 
+// A scan remembers how it was taken, so detection on a saved stripe sweep knows the sensor's
+// shadows as it did live.
+TEST(CloudIo, SensorViewRoundTripsThroughBothFormats) {
+  TempDir dir;
+  PointCloud cloud = test::organised_cloud();
+  cloud.sensor.kind = SensorView::Kind::kLinearSweep;
+  cloud.sensor.origin = {1.5, -300.25, 612.0};
+  cloud.sensor.plane_normal = Eigen::Vector3d(0.0, 0.6, 0.8);
+  cloud.sensor.camera_offset = {0.0, 400.0, 1e-3};
+  cloud.sensor.direction = Eigen::Vector3d::UnitY();
+  cloud.sensor.sweep_min = -1.0 / 3.0;
+  cloud.sensor.sweep_max = 420.0;
+  for (const char* name : {"s.ply", "s.pcd"}) {
+    write_cloud(dir.path(name), cloud);
+    const SensorView back = read_cloud(dir.path(name)).sensor;
+    EXPECT_EQ(back.kind, cloud.sensor.kind) << name;
+    EXPECT_EQ(back.origin, cloud.sensor.origin) << name;
+    EXPECT_EQ(back.plane_normal, cloud.sensor.plane_normal) << name;
+    EXPECT_EQ(back.camera_offset, cloud.sensor.camera_offset) << name;
+    EXPECT_EQ(back.direction, cloud.sensor.direction) << name;
+    EXPECT_EQ(back.sweep_min, cloud.sensor.sweep_min) << name;
+    EXPECT_EQ(back.sweep_max, cloud.sensor.sweep_max) << name;
+  }
+  // Without one the sensor stays unknown; a broken one is an error naming the line.
+  write_cloud(dir.path("u.ply"), test::organised_cloud());
+  EXPECT_EQ(read_cloud(dir.path("u.ply")).sensor.kind, SensorView::Kind::kUnknown);
+  std::string text = TempDir::read(dir.path("s.ply"));
+  text.replace(text.find("linear_sweep"), 12, "warp_drive");
+  const auto bad = dir.write("bad.ply", text);
+  EXPECT_THAT([&] { read_cloud(bad); },
+              ::testing::ThrowsMessage<IoError>(HasSubstr("'rangefit sensor' is not a kind")));
+}
+
 }  // namespace
 }  // namespace rangefit::io
