@@ -176,44 +176,56 @@ std::optional<Rejection> misfit(const HypothesisContext& ctx, const Superquadric
 }
 
 // Hypotheses of one part, stopping early (single-part models) once the vote leader has been
-// found again by `confirmations` hypotheses. Batches are fixed, so the stop is deterministic.
-std::vector<PartHypothesis> search_part(const HypothesisContext& ctx, const Superquadric& part,
+// found again by `confirmations` hypotheses and passes every check. A leader that fails a check
+// is set aside: its points are no longer drawn as RANSAC seeds, so in a cluttered scene the
+// later hypotheses go to the objects not yet judged instead of to the same look-alike again.
+// Batches are fixed, so the stop and the set-aside points are deterministic.
+std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Superquadric& part,
                                         std::size_t part_index, bool compound,
                                         const CoverageOptions& cover, double noise_mm) {
-  const bool allow_early_stop = !compound && ctx.options->early_stop;
-  const ObjectDetectOptions& o = *ctx.options;
+  const bool allow_early_stop = !compound && base.options->early_stop;
+  const ObjectDetectOptions& o = *base.options;
   const int threads = o.threads > 0
                           ? o.threads
                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   const std::size_t m = static_cast<std::size_t>(compound ? o.compound_hypotheses : o.hypotheses);
   std::vector<PartHypothesis> all(m);
+  std::vector<PlacedPart> set_aside;
+  HypothesisContext ctx = base;
   std::size_t done = 0;
   while (done < m) {
     const std::size_t end = std::min(m, done + static_cast<std::size_t>(o.batch));
+    ctx.seed_excluded = set_aside;
     run_batch(ctx, part, part_index, done, end, threads, all);
     done = end;
     if (!allow_early_stop || done >= m) continue;
     std::vector<PartHypothesis> valid;
     for (std::size_t i = 0; i < done; ++i) {
-      if (plausible(all[i], o)) valid.push_back(all[i]);
+      const bool aside = std::any_of(set_aside.begin(), set_aside.end(), [&](const PlacedPart& r) {
+        return same_place(all[i].T_world_part, r.T_world_part, part);
+      });
+      if (plausible(all[i], o) && !aside) valid.push_back(all[i]);
     }
     if (valid.empty()) continue;
     const std::vector<int> sums = part_rank_sums(valid, o.selection);
     const std::size_t lead =
         static_cast<std::size_t>(std::min_element(sums.begin(), sums.end()) - sums.begin());
+    const Eigen::Isometry3d& T = valid[lead].T_world_part;
+    const bool passes = !unconfirmed(surface_coverage(part, T, ctx.points, *ctx.tree, cover), o,
+                                     cover.sensor.kind != SensorView::Kind::kUnknown) &&
+                        !misfit(ctx, part, T, {}, noise_mm);
+    if (!passes) {
+      set_aside.push_back({part, T});
+      continue;
+    }
     int agree = 0;
     for (const PartHypothesis& h : valid) {
-      if (same_place(h.T_world_part, valid[lead].T_world_part, part)) ++agree;
+      if (same_place(h.T_world_part, T, part)) ++agree;
     }
     const PartScores& ls = valid[lead].scores;
     const bool clean = static_cast<double>(ls.interior) <=
                        kCleanInteriorRatio * static_cast<double>(ls.interior + ls.surface);
-    if (agree >= o.confirmations && clean &&
-        !unconfirmed(surface_coverage(part, valid[lead].T_world_part, ctx.points, *ctx.tree, cover),
-                     o, cover.sensor.kind != SensorView::Kind::kUnknown) &&
-        !misfit(ctx, part, valid[lead].T_world_part, {}, noise_mm)) {
-      break;
-    }
+    if (agree >= o.confirmations && clean) break;
   }
   all.resize(done);
   return all;
@@ -479,7 +491,7 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
 
   // 5.1.2: m hypotheses per part.
   t0 = Clock::now();
-  const HypothesisContext ctx{cloud, &tree, &options};
+  const HypothesisContext ctx{cloud, &tree, &options, {}};
   const bool single = model.parts.size() == 1;
   std::vector<std::vector<PartHypothesis>> hyps(model.parts.size()), unfit(model.parts.size());
   bool any_valid = false, all_confirmed = true;

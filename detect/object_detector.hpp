@@ -74,10 +74,10 @@ struct ObjectDetectOptions {
   // or a cone seen from one side places its size to about 2 %.
   double max_size_deviation = 0.03;
   // And its points lie on its surface as closely as the scan's noise allows: the robust spread
-  // of their radial distances (mm) is at most residual_noise_factor x the noise of the removed
+  // of their distances from it (mm) is at most residual_noise_factor x the noise of the removed
   // plane plus max_residual_floor_mm (a part fitted across fragments of other objects is not).
-  double residual_noise_factor = 3.0;
-  double max_residual_floor_mm = 0.5;
+  double residual_noise_factor = 2.0;
+  double max_residual_floor_mm = 0.3;
   int max_candidates = 20;            // candidates checked for coverage before giving up
   double neighbourhood_factor = 1.2;  // r = factor * max(a) for refinement and verification
   Selection selection = Selection::kRankedVote;
@@ -121,7 +121,8 @@ enum class Check {
   kSeenThrough,    // seen_through > max_seen_through
   kSize,           // |size the points want - 1| > max_size_deviation
   kResidual,       // the points' spread about the surface (mm) above the scan's noise allows
-  kHidden,         // fewer measurable samples than min_measurable_samples
+  kHidden,         // fewer measurable samples than min_measurable_samples (value: the count),
+                   // or less than min_measurable_share of the facing ones (value: the share)
   kBelowPlane,     // reaches through the removed plane by more than its margin (mm)
 };
 
@@ -138,7 +139,7 @@ struct PartScores {
   double seen_through = 0.0;     // share of them the sensor saw past
   bool size_determined = false;  // the points determine the part's size (size_evidence)
   double size_scale = 1.0;       // the scale of the model they want
-  double residual_mm = 0.0;      // robust spread of their radial distances from the surface
+  double residual_mm = 0.0;      // robust spread of their distances from the surface
 };
 
 // Why a candidate was not confirmed: the first check it failed, its value and the limit.

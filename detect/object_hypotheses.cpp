@@ -12,6 +12,7 @@ namespace {
 
 constexpr std::size_t kMinPatchPoints = 8;
 constexpr double kTrimPerMeasure = 3.0;
+constexpr int kSeedRedraws = 8;
 
 std::uint64_t splitmix64(std::uint64_t& state) {
   std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
@@ -23,6 +24,13 @@ std::uint64_t splitmix64(std::uint64_t& state) {
 // Uniform index in [0, n) from the generator state.
 std::size_t uniform_index(std::uint64_t& state, std::size_t n) {
   return static_cast<std::size_t>(splitmix64(state) % static_cast<std::uint64_t>(n));
+}
+
+// RANSAC patch radius: the smallest size (5.1.2), wider for an elongated part (a shaft), whose
+// small patches are nearly round bits of a thin cylinder and leave its axis to chance.
+double patch_radius(const Superquadric& part) {
+  const double elongation = part.max_size() / part.min_size();
+  return part.min_size() * std::clamp(0.5 * elongation, 1.0, 2.5);
 }
 
 double verification_radius(const ObjectDetectOptions& o, const Superquadric& part) {
@@ -160,11 +168,14 @@ PartScores verify_pose(const HypothesisContext& ctx, const Superquadric& part,
   return s;
 }
 
-// Radial distance of a part-frame point from the surface, |x| (1 - G^-1/2) (thesis 2.1.3): in
-// mm, and linear in the part's size for a sphere, where G - 1 is neither.
-double radial_distance(const SuperquadricMetric& m, const Eigen::Vector3d& q) {
-  const double g = m.value(q);
-  return g > 0.0 ? q.norm() * (1.0 - 1.0 / std::sqrt(g)) : -q.norm();
+// Distance of a part-frame point from the surface to first order, (G - 1) / |grad G| (mm). The
+// radial distance |x| (1 - G^-1/2) of thesis 2.1.3 grows without bound along a thin part (a
+// point on a shaft's side far from its centre is reached by a ray that grazes the surface).
+double surface_distance(const SuperquadricMetric& m, const Eigen::Vector3d& q) {
+  Eigen::Vector3d grad;
+  const double g = m.value_and_gradient(q, grad);
+  const double norm = grad.norm();
+  return norm > 0.0 ? (g - 1.0) / norm : q.norm();
 }
 
 SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& part,
@@ -183,7 +194,8 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
   const SuperquadricMetric m1(part);
   const Eigen::Isometry3d inv = T.inverse();
   std::vector<double> d(near.size());
-  for (std::size_t i = 0; i < near.size(); ++i) d[i] = std::abs(radial_distance(m1, inv * near[i]));
+  for (std::size_t i = 0; i < near.size(); ++i)
+    d[i] = std::abs(surface_distance(m1, inv * near[i]));
   std::vector<double> sorted = d;
   std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
   e.residual_mm = 1.4826 * sorted[sorted.size() / 2];
@@ -232,11 +244,17 @@ PartHypothesis generate_hypothesis(const HypothesisContext& ctx, const Superquad
   init.full_iterations = o.iterations;
   init.viewpoint = o.viewpoint;
   const ExplainedBy none({}, o);
+  const ExplainedBy set_aside(ctx.seed_excluded, o);
   double best_measure = std::numeric_limits<double>::infinity();
   for (int trial = 0; trial < o.trials; ++trial) {
-    // A random seed point and a random patch within the smallest size parameter (5.1.2).
-    const Eigen::Vector3d& c = ctx.points[uniform_index(state, ctx.points.size())];
-    ctx.tree->radius_search(c, part.min_size(), nbr);
+    // A random seed point and a random patch within the smallest size parameter (5.1.2); seeds
+    // on candidates already set aside are drawn again (a few times: they may be most points).
+    std::size_t pick = uniform_index(state, ctx.points.size());
+    for (int redraw = 0; redraw < kSeedRedraws && set_aside(ctx.points[pick]); ++redraw) {
+      pick = uniform_index(state, ctx.points.size());
+    }
+    const Eigen::Vector3d& c = ctx.points[pick];
+    ctx.tree->radius_search(c, patch_radius(part), nbr);
     if (nbr.size() < kMinPatchPoints) continue;
     const std::size_t want = std::min(nbr.size(), static_cast<std::size_t>(o.sample_points));
     sample.clear();

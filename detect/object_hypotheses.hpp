@@ -19,11 +19,16 @@ struct PartHypothesis {
   PartScores scores;  // M, I, S (rank_sum filled by the vote)
 };
 
+struct PlacedPart;
+
 // Everything a hypothesis needs to read; shared, read-only, by all worker threads.
 struct HypothesisContext {
   std::span<const Eigen::Vector3d> points;  // the cloud after plane removal
   const KdTree* tree = nullptr;             // over `points`
   const ObjectDetectOptions* options = nullptr;
+  // Candidates already judged and set aside: RANSAC seeds are not drawn among the points they
+  // explain (G < 1 + refine_trim), so new hypotheses go elsewhere.
+  std::span<const PlacedPart> seed_excluded;
 };
 
 // A part already placed (another part of the same compound object): the points it explains
@@ -56,7 +61,7 @@ PartScores verify_pose(const HypothesisContext& ctx, const Superquadric& part,
 struct SizeEvidence {
   bool determined = false;  // the parabola is curved enough to place its vertex
   double scale = 1.0;       // the scale the points want (vertex of the parabola)
-  // Robust spread of the radial distances of the points near the surface at the given pose,
+  // Robust spread of the distances from the surface of the points near it at the given pose,
   // mm (1.4826 median |d|: the sigma of the range noise for a part that is really there).
   double residual_mm = 0.0;
 };

@@ -17,6 +17,7 @@ struct PlaneRemovalOptions {
   std::size_t subsample = 4000;        // points the patches and the support are computed on
   int patch_points = 16;               // nearest subsample points of each seed in its PCA patch
   double distance_tolerance_mm = 2.0;  // a point within this of the plane belongs to it
+  double noise_factor = 4.0;           // ... or within this many times the plane's rms
   std::uint64_t seed = 1;              // offset of the even spread
 };
 
@@ -29,7 +30,8 @@ enum class PlaneRemovalReason {
 struct PlaneRemovalResult {
   PlaneRemovalReason reason = PlaneRemovalReason::kTooFewPoints;
   pca::Plane plane;                      // the best plane found (valid() even when not removed)
-  std::size_t plane_points = 0;          // points of the full cloud within the tolerance
+  std::size_t plane_points = 0;          // points of the full cloud within the tolerance (the
+                                         // larger of distance_tolerance_mm and noise_factor rms)
   std::vector<std::uint32_t> remaining;  // indices of the points kept, ascending
   bool removed() const { return reason == PlaneRemovalReason::kRemoved; }
 };

@@ -7,6 +7,10 @@
 //   object_benchmark --tp [--seeds N]     true-positive rates over N seeds (default 100)
 //   object_benchmark --methods [--seeds N] thesis methods A-D vs ours, like table 5.5
 //   object_benchmark --noise [--seeds N]  TP rate vs noise on the three-sphere scene (fig. 5.29)
+//   object_benchmark --varied [--seeds N] [--per-factor] [--pan-tilt] [--no-sensor] [--held-out]
+//                                         TP, wrong, missed and false positives on seeded varied
+//                                         stripe scans (object_varied_report.hpp), per target
+//                                         and per factor; tuning seeds, or the held-out ones
 #include <benchmark/benchmark.h>
 
 #include <unsupported/Eigen/LevenbergMarquardt>
@@ -24,6 +28,7 @@
 
 #include "detect/object_detector.hpp"
 #include "detect/pose_fit.hpp"
+#include "test/bench/object_varied_report.hpp"
 #include "test/detect/object_scenes.hpp"
 
 namespace rangefit {
@@ -395,7 +400,8 @@ void print_noise(int seeds) {
 
 int main(int argc, char** argv) {
   int seeds = 100;
-  bool tp = false, methods = false, noise = false;
+  bool tp = false, methods = false, noise = false, varied = false;
+  bool per_factor = false, pan_tilt = false, sensor_known = true, held_out = false;
   std::vector<char*> rest = {argv[0]};
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--tp")) {
@@ -404,6 +410,16 @@ int main(int argc, char** argv) {
       methods = true;
     } else if (!std::strcmp(argv[i], "--noise")) {
       noise = true;
+    } else if (!std::strcmp(argv[i], "--varied")) {
+      varied = true;
+    } else if (!std::strcmp(argv[i], "--per-factor")) {
+      per_factor = true;
+    } else if (!std::strcmp(argv[i], "--pan-tilt")) {
+      pan_tilt = true;
+    } else if (!std::strcmp(argv[i], "--no-sensor")) {
+      sensor_known = false;
+    } else if (!std::strcmp(argv[i], "--held-out")) {
+      held_out = true;
     } else if (!std::strcmp(argv[i], "--seeds") && i + 1 < argc) {
       seeds = std::max(1, std::atoi(argv[++i]));
     } else {
@@ -413,7 +429,8 @@ int main(int argc, char** argv) {
   if (tp) rangefit::print_tp(seeds);
   if (methods) rangefit::print_methods(seeds);
   if (noise) rangefit::print_noise(seeds);
-  if (tp || methods || noise) return 0;
+  if (varied) rangefit::bench::print_varied(seeds, per_factor, pan_tilt, sensor_known, held_out);
+  if (tp || methods || noise || varied) return 0;
   int rest_argc = static_cast<int>(rest.size());
   benchmark::Initialize(&rest_argc, rest.data());
   benchmark::RunSpecifiedBenchmarks();
