@@ -75,7 +75,7 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
   const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
   std::vector<std::uint32_t> nbr;
   int facing = 0, measurable = 0, covered = 0, seen_through = 0;
-  double below = 0.0;
+  double below = 0.0, lowest = INFINITY;
   for (int i = 0; i < o.samples; ++i) {
     // Fibonacci sphere, stretched by the sizes: even in the normalised coordinates.
     const double z = 1.0 - (2.0 * i + 1.0) / o.samples;
@@ -91,6 +91,7 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
     if (o.removed_plane && o.removed_plane->valid) {
       const double h = o.removed_plane->normal.dot(p - o.removed_plane->point);
       below = std::max(below, -h);
+      lowest = std::min(lowest, h);
       if (std::abs(h) < o.plane_margin_mm + tol) continue;
     }
     Eyes eyes;
@@ -132,6 +133,7 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
   }
   SurfaceCoverage c;
   c.below_plane_mm = below;
+  c.lowest_mm = std::isfinite(lowest) ? lowest : 0.0;
   c.min_size_mm = sq.min_size();
   c.facing = facing;
   if (measurable == 0) return c;

@@ -47,6 +47,7 @@ struct SurfaceCoverage {
   double covered = 0.0;         // share of them with a scan point near them
   double seen_through = 0.0;    // share of them the sensor saw past: free space
   double below_plane_mm = 0.0;  // how far the part reaches through the removed plane
+  double lowest_mm = 0.0;       // height of its lowest point above the removed plane
   double min_size_mm = 0.0;     // the part's smallest size parameter
 };
 

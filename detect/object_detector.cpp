@@ -153,6 +153,18 @@ void run_batch(const HypothesisContext& ctx, const Superquadric& part, std::size
   for (std::thread& t : pool) t.join();
 }
 
+// The rest_on_plane check for a part, or the lowest part of an object (see
+// ObjectDetectOptions::rest_on_plane); noise_mm is the table's noise.
+std::optional<Rejection> floating(double lowest_mm, double min_size_mm, bool plane_removed,
+                                  double noise_mm, const ObjectDetectOptions& o) {
+  if (!o.rest_on_plane || !plane_removed) return std::nullopt;
+  const double limit = std::max(o.plane_margin_mm, 0.1 * min_size_mm) + 3.0 * noise_mm;
+  if (lowest_mm > limit) {
+    return Rejection{0, Check::kFloating, lowest_mm, limit, Eigen::Vector3d::Zero()};
+  }
+  return std::nullopt;
+}
+
 // The fit-quality checks in mm (see ObjectDetectOptions::max_size_deviation and
 // residual_noise_factor); noise_mm is the scan's range noise (the removed plane's rms).
 std::optional<Rejection> misfit(const HypothesisContext& ctx, const Superquadric& part,
@@ -175,15 +187,16 @@ std::optional<Rejection> misfit(const HypothesisContext& ctx, const Superquadric
   return std::nullopt;
 }
 
-// Hypotheses of one part, stopping early (single-part models) once the vote leader has been
-// found again by `confirmations` hypotheses and passes every check. A leader that fails a check
-// is set aside: its points are no longer drawn as RANSAC seeds, so in a cluttered scene the
-// later hypotheses go to the objects not yet judged instead of to the same look-alike again.
-// Batches are fixed, so the stop and the set-aside points are deterministic.
+// Hypotheses of one part. After each batch the vote leader among the places not yet set aside
+// is judged; a leader that fails a check is set aside, and so is, for a compound model, one
+// that passes and has been found again by `confirmations` hypotheses (its hypotheses stay in the
+// vote, but a look-alike of the part is not fitted again and again while the real part waits).
+// A set-aside place's points are no longer drawn as RANSAC seeds. A single-part model stops
+// once its leader passes and has been found again by `confirmations` hypotheses. Batches are
+// fixed, so the stop and the set-aside points are deterministic.
 std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Superquadric& part,
                                         std::size_t part_index, bool compound,
                                         const CoverageOptions& cover, double noise_mm) {
-  const bool allow_early_stop = !compound && base.options->early_stop;
   const ObjectDetectOptions& o = *base.options;
   const int threads = o.threads > 0
                           ? o.threads
@@ -198,7 +211,7 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Sup
     ctx.seed_excluded = set_aside;
     run_batch(ctx, part, part_index, done, end, threads, all);
     done = end;
-    if (!allow_early_stop || done >= m) continue;
+    if (!o.early_stop || done >= m) continue;
     std::vector<PartHypothesis> valid;
     for (std::size_t i = 0; i < done; ++i) {
       const bool aside = std::any_of(set_aside.begin(), set_aside.end(), [&](const PlacedPart& r) {
@@ -211,8 +224,10 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Sup
     const std::size_t lead =
         static_cast<std::size_t>(std::min_element(sums.begin(), sums.end()) - sums.begin());
     const Eigen::Isometry3d& T = valid[lead].T_world_part;
-    const bool passes = !unconfirmed(surface_coverage(part, T, ctx.points, *ctx.tree, cover), o,
-                                     cover.sensor.kind != SensorView::Kind::kUnknown) &&
+    const SurfaceCoverage seen = surface_coverage(part, T, ctx.points, *ctx.tree, cover);
+    const bool passes = !unconfirmed(seen, o, cover.sensor.kind != SensorView::Kind::kUnknown) &&
+                        (compound || !floating(seen.lowest_mm, part.min_size(),
+                                               cover.removed_plane.has_value(), noise_mm, o)) &&
                         !misfit(ctx, part, T, {}, noise_mm);
     if (!passes) {
       set_aside.push_back({part, T});
@@ -225,7 +240,9 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Sup
     const PartScores& ls = valid[lead].scores;
     const bool clean = static_cast<double>(ls.interior) <=
                        kCleanInteriorRatio * static_cast<double>(ls.interior + ls.surface);
-    if (agree >= o.confirmations && clean) break;
+    if (agree < o.confirmations || !clean) continue;
+    if (!compound) break;
+    set_aside.push_back({part, T});
   }
   all.resize(done);
   return all;
@@ -396,6 +413,8 @@ const char* to_string(Check check) {
       return "hidden";
     case Check::kBelowPlane:
       return "below plane";
+    case Check::kFloating:
+      return "floating";
   }
   return "unknown";
 }
@@ -560,10 +579,15 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
     }
     if (!single) refine_jointly(ctx, model, inst);
     std::optional<Rejection> why;
+    double lowest = INFINITY, lowest_size = 0.0;
+    std::size_t lowest_part = 0;
     for (std::size_t p = 0; p < model.parts.size() && !why; ++p) {
       DetectedPart& part = inst.parts[p];
       const SurfaceCoverage seen =
           surface_coverage(model.parts[p].shape, part.T_world_part, cloud, tree, cover);
+      if (seen.lowest_mm < lowest) {
+        lowest = seen.lowest_mm, lowest_size = model.parts[p].shape.min_size(), lowest_part = p;
+      }
       part.scores.facing = seen.facing;
       part.scores.measurable = seen.measurable;
       part.scores.coverage = seen.covered;
@@ -577,6 +601,10 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
         why = misfit(ctx, model.parts[p].shape, part.T_world_part, others, noise_mm, &part.scores);
       }
       if (why) why->part = p, why->centre = part.center();
+    }
+    if (!why) {
+      why = floating(lowest, lowest_size, cover.removed_plane.has_value(), noise_mm, options);
+      if (why) why->part = lowest_part, why->centre = inst.parts[lowest_part].center();
     }
     if (why) {
       result.rejections.push_back(*why);

@@ -33,7 +33,7 @@ enum class Selection {
 
 struct ObjectDetectOptions {
   int hypotheses = 32;           // m, at most: single-part models stop early once confirmed
-  int compound_hypotheses = 12;  // m per part of compound models (always all of them)
+  int compound_hypotheses = 24;  // m per part of compound models (always all of them)
   int trials = 10;               // n RANSAC trials per hypothesis
   int sample_points = 30;        // points of each RANSAC sample (thesis: 20-50)
   int iterations = 20;           // LM iterations of each fit
@@ -67,6 +67,10 @@ struct ObjectDetectOptions {
   // farther than max(plane_margin, 10 % of its smallest size) through the removed plane (parts
   // rest on the table, they do not sink into it).
   int min_measurable_samples = 10;
+  // Parts rest on the removed plane (the table): the lowest point of a single part, or of a
+  // compound object's parts together, is within max(plane_margin, 10 % of the smallest size)
+  // plus three times the table's noise of it. Off for scenes of stacked parts.
+  bool rest_on_plane = true;
   double min_measurable_share = 0.4;
   double plane_margin_mm = 5.0;
   // And, where its points determine it, the size the points want is the model's within this
@@ -124,6 +128,7 @@ enum class Check {
   kHidden,         // fewer measurable samples than min_measurable_samples (value: the count),
                    // or less than min_measurable_share of the facing ones (value: the share)
   kBelowPlane,     // reaches through the removed plane by more than its margin (mm)
+  kFloating,       // rest_on_plane: its lowest point is farther above the plane than the margin
 };
 
 const char* to_string(Check check);
