@@ -101,6 +101,11 @@ CylinderLsfResult fit_cylinder_lsf(std::span<const Eigen::Vector3d> pts, const C
   const Eigen::Vector3d centroid = pca::centroid(pts);
   c = recentre(centroid, c);
   double f = cost(pts, c, o.huber_delta);
+  double half_length = 0.0;  // of the data along the axis, for the step tolerance
+  if (o.step_tolerance > 0.0) {
+    for (const auto& q : pts)
+      half_length = std::max(half_length, std::abs((q - centroid).dot(c.axis)));
+  }
   double lambda = 1e-3;
   double step = 1e-4;  // steepest descent step length, adapted
   Matrix5d jtj;
@@ -138,9 +143,13 @@ CylinderLsfResult fit_cylinder_lsf(std::span<const Eigen::Vector3d> pts, const C
       break;
     }
     const double decrease = (f - f_new) / std::max(f, 1e-300);
+    const Eigen::Vector3d shift = next.point - c.point;
+    const double moved =
+        std::max({(shift - shift.dot(c.axis) * c.axis).norm(),
+                  (next.axis - c.axis).norm() * half_length, std::abs(next.radius - c.radius)});
     c = next;
     f = f_new;
-    if (decrease < o.tolerance) {
+    if (decrease < o.tolerance || moved < o.step_tolerance) {
       res.converged = true;
       ++res.iterations;
       break;
