@@ -42,6 +42,7 @@ pca::Plane robust_plane(const std::vector<Eigen::Vector3d>& pts, double sigmas) 
 
 struct Wall {
   std::vector<Eigen::Vector3d> points, normals;
+  std::vector<Eigen::Vector3d> bottom;  // points facing along the axis inside the bore
 };
 
 // Beyond the thesis: the entrance plane again from every full-resolution region point near the
@@ -64,7 +65,7 @@ pca::Plane plane_from_region(std::span<const Eigen::Vector3d> pool,
   const auto k = r.begin() + static_cast<std::ptrdiff_t>(r.size() / 50);
   std::nth_element(r.begin(), k, r.end());
   const double rho2_min = *k;
-  for (int pass = 0; pass < 2; ++pass) {
+  {
     const double limit = std::max(3.0 * plane.rms, 0.03);
     pca::Moments m;
     for (const std::uint32_t i : roi) {
@@ -188,13 +189,18 @@ CylinderLsfResult refine_on_band(std::vector<Eigen::Vector3d>& band, const Cylin
     const double limit = trim_limit(abs_res);
     std::vector<Eigen::Vector3d> inliers;
     inliers.reserve(band.size());
+    const Cylinder& c = lsf.cylinder;
+    const double r_lo = std::max(c.radius - limit, 0.0), r_hi = c.radius + limit;
     for (const auto& p : band) {
-      if (std::abs(axis_distance(lsf.cylinder, p) - lsf.cylinder.radius) <= limit) {
-        inliers.push_back(p);
-      }
+      const Eigen::Vector3d d = p - c.point;
+      const double h = d.dot(c.axis);
+      const double rho2 = d.squaredNorm() - h * h;  // squared bounds: no root per point
+      if (rho2 <= r_hi * r_hi && rho2 >= r_lo * r_lo) inliers.push_back(p);
     }
     band.swap(inliers);
     const int done = lsf.iterations;
+    // From the sample's minimum, one or two Gauss-Newton steps reach the full set's.
+    if (!sample.empty()) lo.max_iterations = std::min(lo.max_iterations, 3);
     lsf = fit_cylinder_lsf(band, lsf.cylinder, lo);
     if (lsf.iterations == 0) lsf.iterations = done;  // already at the minimum
   } else if (!sample.empty()) {
@@ -253,8 +259,15 @@ WallFit fit_wall(std::span<const Eigen::Vector3d> pool, std::span<const std::uin
     std::vector<Eigen::Vector3d> band;
     const Eigen::Vector3d up =
         plane.normal.dot(view) < 0.0 ? Eigen::Vector3d(-plane.normal) : plane.normal;
+    // Squared distances from the axis against the band's squared limits: no root per point.
+    const double band_lo = std::max(cyl.radius - o.refine_band, 0.0),
+                 band_hi = cyl.radius + o.refine_band;
+    const Eigen::Vector3d cyl_axis = cyl.axis.normalized();
     const auto near_wall = [&](const Eigen::Vector3d& p) {
-      return std::abs(axis_distance(cyl, p) - cyl.radius) <= o.refine_band;
+      const Eigen::Vector3d d = p - cyl.point;
+      const double h = d.dot(cyl_axis);
+      const double rho2 = d.squaredNorm() - h * h;
+      return rho2 <= band_hi * band_hi && rho2 >= band_lo * band_lo;
     };
     for (const auto& p : wall.points) {
       if (near_wall(p)) band.push_back(p);
@@ -270,12 +283,22 @@ WallFit fit_wall(std::span<const Eigen::Vector3d> pool, std::span<const std::uin
       std::nth_element(heights.begin(), heights.begin() + static_cast<std::ptrdiff_t>(k),
                        heights.end());
       const double top = heights[k] + o.refine_above_wall * normal_radius;
+      // And above a blind bore's bottom where one is seen: its points pass the band inside
+      // the wall.
+      double bottom = -1e300;
+      if (wall.bottom.size() >= 10) {
+        std::vector<double> b;
+        b.reserve(wall.bottom.size());
+        for (const auto& p : wall.bottom) b.push_back((p - plane.point).dot(up));
+        std::nth_element(b.begin(), b.begin() + static_cast<std::ptrdiff_t>(b.size() / 2), b.end());
+        bottom = b[b.size() / 2] + o.refine_band;
+      }
       band.clear();
       band.reserve(roi.size() / 2);
       for (const std::uint32_t i : roi) {
         const Eigen::Vector3d& p = pool[i];
         const double height = (p - plane.point).dot(up);
-        if (height <= top && height < -o.refine_plane_margin && near_wall(p)) {
+        if (height <= top && height >= bottom && height < -o.refine_plane_margin && near_wall(p)) {
           band.push_back(p);
         }
       }
@@ -395,9 +418,10 @@ BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const Bo
     SpreadSubset e = spread_subset(pool, elsewhere, prior.entrance, roi_r, o.normal_plane_budget);
     queries = std::move(w.indices);
     queries.insert(queries.end(), e.indices.begin(), e.indices.end());
-    // A dense scan: the ball that holds about normal_neighbours points at the measured density
-    // (points per occupied area away from the wall) is enough for a normal and costs O(1).
-    if (e.area > 0.0 && o.normal_neighbours > 0.0) {
+    // A dense scan (more wall points than the budget): the ball that holds about
+    // normal_neighbours points at the measured density (points per occupied area away from
+    // the wall) is enough for a normal and costs O(1); a sparse one keeps R.
+    if (w.cell > 0.0 && e.area > 0.0 && o.normal_neighbours > 0.0) {
       const double density = static_cast<double>(elsewhere.size()) / e.area;
       no.radius =
           std::min(no.radius, std::sqrt(o.normal_neighbours / (std::numbers::pi * density)));
@@ -421,12 +445,21 @@ BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const Bo
   std::vector<Eigen::Vector3d> plane_pts;
   std::vector<Wall> walls(targets.size());
   const bool oriented_view = o.view_dir || o.sensor_position;
+  const double bottom_rho = 0.8 * prior.radius;
   for (std::size_t i = 0; i < queries.size(); ++i) {
     const Eigen::Vector3d& n = normals.normals[i];
     if (n.isZero()) continue;
     const Eigen::Vector3d& p = pool[queries[i]];
     if (n.dot(n_cad) > cos_plane) {
-      plane_pts.push_back(p);
+      // Beyond the thesis: a blind bore's bottom (or a surface seen through the bore) faces
+      // the sensor like the entrance plane but lies inside the bore: not the plane.
+      const Eigen::Vector3d d = p - prior.entrance;
+      const double h = d.dot(a_cad);
+      if (d.squaredNorm() - h * h >= bottom_rho * bottom_rho) {
+        plane_pts.push_back(p);
+      } else {
+        walls.front().bottom.push_back(p);
+      }
       continue;
     }
     if (!(std::abs(n.dot(a_cad)) < sin_wall)) continue;
