@@ -367,7 +367,12 @@ BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const Bo
   // region points are split into those near an expected wall and the rest (by their distance
   // from the CAD axis and their depth below the CAD plane), each thinned to its own budget.
   // Beyond the thesis: a patch as large as a small bore's radius is too curved for eq. 4.4.
-  const double normal_r = std::min(o.normal_radius, o.normal_radius_max_share * r_min);
+  double normal_r = std::min(o.normal_radius, o.normal_radius_max_share * r_min);
+  // A pipe's end face is only as wide as its wall: a larger patch straddles an edge everywhere
+  // and eq. 4.4 would leave no plane (thesis fig. 4.33).
+  if (prior.outer_radius > prior.radius) {
+    normal_r = std::min(normal_r, 0.25 * (prior.outer_radius - prior.radius));
+  }
   const double roi_r = o.roi_radius_factor * r_max;
   const double pool_r = roi_r + normal_r;
   double rho_lo = 1e300, rho_hi = 0.0;
@@ -375,8 +380,9 @@ BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const Bo
     rho_lo = std::min(rho_lo, w.rho_lo);
     rho_hi = std::max(rho_hi, w.rho_hi);
   }
-  const double below_margin = 0.1 * r_min;
-  std::vector<std::uint32_t> roi, near_wall, elsewhere;  // indices into pool
+  // Below the CAD plane by more than the prior's offset can explain: not the entrance plane.
+  const double below_margin = std::max(0.1 * r_min, 0.5);
+  std::vector<std::uint32_t> roi, near_wall, near_plane, other;  // indices into pool
   std::vector<Eigen::Vector3d> pool;
   pool.reserve(std::min<std::size_t>(cloud.size(), 1 << 17));
   roi.reserve(pool.capacity());
@@ -396,9 +402,13 @@ BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const Bo
     if (!o.cost_bounded) continue;
     const double h = d.dot(a_cad);
     const double rho2 = d2 - h * h;
-    const bool wall_like = d.dot(n_cad) < -below_margin && rho2 <= rho_hi * rho_hi &&
-                           rho2 >= (rho_lo > 0.0 ? 0.8 * rho_lo * 0.8 * rho_lo : 0.0);
-    (wall_like ? near_wall : elsewhere).push_back(k);
+    if (!(d.dot(n_cad) < -below_margin)) {
+      near_plane.push_back(k);
+    } else if (rho2 <= rho_hi * rho_hi && rho2 >= 0.64 * rho_lo * rho_lo) {
+      near_wall.push_back(k);
+    } else {
+      other.push_back(k);  // a pipe's other wall, a neighbouring bore, a blind bore's bottom
+    }
   }
   res.counts.roi = roi.size();
   res.time_ms.roi = ms_since(t);
@@ -415,14 +425,16 @@ BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const Bo
   if (o.cost_bounded) {
     // Evenly spread by area: a small bore (fewer points than the budget) keeps every point.
     SpreadSubset w = spread_subset(pool, near_wall, prior.entrance, roi_r, o.normal_wall_budget);
-    SpreadSubset e = spread_subset(pool, elsewhere, prior.entrance, roi_r, o.normal_plane_budget);
+    SpreadSubset e = spread_subset(pool, near_plane, prior.entrance, roi_r, o.normal_plane_budget);
+    SpreadSubset x = spread_subset(pool, other, prior.entrance, roi_r, o.normal_plane_budget / 2);
     queries = std::move(w.indices);
     queries.insert(queries.end(), e.indices.begin(), e.indices.end());
+    queries.insert(queries.end(), x.indices.begin(), x.indices.end());
     // A dense scan (more wall points than the budget): the ball that holds about
-    // normal_neighbours points at the measured density (points per occupied area away from
-    // the wall) is enough for a normal and costs O(1); a sparse one keeps R.
+    // normal_neighbours points at the measured density (points per occupied area near the
+    // plane, seen head-on) is enough for a normal and costs O(1); a sparse one keeps R.
     if (w.cell > 0.0 && e.area > 0.0 && o.normal_neighbours > 0.0) {
-      const double density = static_cast<double>(elsewhere.size()) / e.area;
+      const double density = static_cast<double>(near_plane.size()) / e.area;
       no.radius =
           std::min(no.radius, std::sqrt(o.normal_neighbours / (std::numbers::pi * density)));
     }
