@@ -167,13 +167,13 @@ double trim_limit(std::vector<double> abs_res) {
 // Beyond the thesis: geometric least squares on the band points, then again without those
 // beyond 3 robust sigmas: ghosts just in front of the wall and outliers just behind it pass
 // the normal test but bias a fit even under the Huber loss. Cost-bounded: the first fit
-// iterates on a spread sample of the band (every k-th point in scan order) and the trimmed fit
-// starts from it on every full-resolution inlier, stopping once a step moves the surface by
-// less than 1e-5 mm (one or two iterations).
+// iterates on a spread sample of the band (every k-th point in scan order) until a step moves
+// the surface by less than 1e-4 mm, and the trimmed fit takes one step from there on every
+// full-resolution inlier.
 CylinderLsfResult refine_on_band(std::vector<Eigen::Vector3d>& band, const Cylinder& start,
                                  const BoreOptions& o) {
   CylinderLsfOptions lo = o.lsf;
-  if (o.cost_bounded) lo.step_tolerance = 1e-5;
+  if (o.cost_bounded) lo.step_tolerance = 1e-4;
   std::vector<Eigen::Vector3d> sample;
   std::span<const Eigen::Vector3d> first = band;
   if (o.cost_bounded && o.refine_sample > 0 && band.size() > o.refine_sample) {
@@ -199,11 +199,13 @@ CylinderLsfResult refine_on_band(std::vector<Eigen::Vector3d>& band, const Cylin
     }
     band.swap(inliers);
     const int done = lsf.iterations;
-    // From the sample's minimum, one or two Gauss-Newton steps reach the full set's.
-    if (!sample.empty()) lo.max_iterations = std::min(lo.max_iterations, 3);
+    // From the sample's minimum, one Gauss-Newton step on every inlier is the full set's
+    // estimate to first order (the one-step estimator): the sample's error is noise / sqrt(n).
+    if (!sample.empty()) lo.max_iterations = std::min(lo.max_iterations, 1);
     lsf = fit_cylinder_lsf(band, lsf.cylinder, lo);
     if (lsf.iterations == 0) lsf.iterations = done;  // already at the minimum
   } else if (!sample.empty()) {
+    lo.max_iterations = std::min(lo.max_iterations, 1);
     lsf = fit_cylinder_lsf(band, lsf.cylinder, lo);
   }
   return lsf;
