@@ -384,10 +384,11 @@ BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const Bo
   }
   // Below the CAD plane by more than the prior's offset can explain: not the entrance plane.
   const double below_margin = std::max(0.1 * r_min, 0.5);
-  std::vector<std::uint32_t> roi, near_wall, near_plane, other;  // indices into pool
-  std::vector<Eigen::Vector3d> pool;
-  pool.reserve(std::min<std::size_t>(cloud.size(), 1 << 17));
-  roi.reserve(pool.capacity());
+  const std::span<const Eigen::Vector3d> pts = cloud.points;
+  // Indices into the cloud (no copy of the points): the pool holds the normals' neighbours.
+  std::vector<std::uint32_t> pool, roi, near_wall, near_plane, other;
+  pool.reserve(cloud.size());
+  roi.reserve(cloud.size());
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const Eigen::Vector3d& p = cloud.points[i];
     if (!finite(p)) {
@@ -397,8 +398,8 @@ BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const Bo
     const Eigen::Vector3d d = p - prior.entrance;
     const double d2 = d.squaredNorm();
     if (d2 > pool_r * pool_r) continue;
-    const auto k = static_cast<std::uint32_t>(pool.size());
-    pool.push_back(p);
+    const auto k = static_cast<std::uint32_t>(i);
+    pool.push_back(k);
     if (d2 > roi_r * roi_r) continue;
     roi.push_back(k);
     if (!o.cost_bounded) continue;
@@ -426,9 +427,9 @@ BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const Bo
   std::vector<std::uint32_t> queries;
   if (o.cost_bounded) {
     // Evenly spread by area: a small bore (fewer points than the budget) keeps every point.
-    SpreadSubset w = spread_subset(pool, near_wall, prior.entrance, roi_r, o.normal_wall_budget);
-    SpreadSubset e = spread_subset(pool, near_plane, prior.entrance, roi_r, o.normal_plane_budget);
-    SpreadSubset x = spread_subset(pool, other, prior.entrance, roi_r, o.normal_plane_budget / 2);
+    SpreadSubset w = spread_subset(pts, near_wall, prior.entrance, roi_r, o.normal_wall_budget);
+    SpreadSubset e = spread_subset(pts, near_plane, prior.entrance, roi_r, o.normal_plane_budget);
+    SpreadSubset x = spread_subset(pts, other, prior.entrance, roi_r, o.normal_plane_budget / 2);
     queries = std::move(w.indices);
     queries.insert(queries.end(), e.indices.begin(), e.indices.end());
     queries.insert(queries.end(), x.indices.begin(), x.indices.end());
@@ -447,7 +448,7 @@ BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const Bo
   // Exact R-neighbourhoods from a grid binned along the view, for organised and unorganised
   // scans alike (faster than the k-d tree or the scan-grid windows, and never misses a
   // neighbour the way a fixed window can where the scan is denser than its median spacing).
-  const NormalEstimate normals = estimate_normals_binned(pool, queries, no);
+  const NormalEstimate normals = estimate_normals_binned(pts, pool, queries, no);
   res.counts.normal_queries = queries.size();
   res.counts.normals = normals.kept;
   res.time_ms.normals = ms_since(t);
@@ -463,7 +464,7 @@ BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const Bo
   for (std::size_t i = 0; i < queries.size(); ++i) {
     const Eigen::Vector3d& n = normals.normals[i];
     if (n.isZero()) continue;
-    const Eigen::Vector3d& p = pool[queries[i]];
+    const Eigen::Vector3d& p = pts[queries[i]];
     if (n.dot(n_cad) > cos_plane) {
       // Beyond the thesis: a blind bore's bottom (or a surface seen through the bore) faces
       // the sensor like the entrance plane but lies inside the bore: not the plane.
@@ -504,12 +505,12 @@ BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const Bo
     return fail(res, BoreReason::kNoPlane, start);
   }
   if (o.cost_bounded) {
-    plane = plane_from_region(pool, roi, plane_pts, plane, prior.entrance, a_cad);
+    plane = plane_from_region(pts, roi, plane_pts, plane, prior.entrance, a_cad);
   }
   res.time_ms.segmentation = ms_since(t);
 
   const auto fit = [&](std::size_t k) {
-    return fit_wall(pool, roi, walls[k], plane, view, a_cad, prior, targets[k].radius, no.radius, o,
+    return fit_wall(pts, roi, walls[k], plane, view, a_cad, prior, targets[k].radius, no.radius, o,
                     o.seed, t, res.time_ms);
   };
   const WallFit main = fit(0);

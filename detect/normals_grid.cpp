@@ -101,6 +101,23 @@ int NeighbourGrid::lanes() { return rangefit::lanes::cpu_has_avx2() ? 8 : 4; }
 
 NeighbourGrid::NeighbourGrid(std::span<const Eigen::Vector3d> points, const Eigen::Vector3d& dir,
                              double cell) {
+  build(points, nullptr, points.size(), dir, cell);
+}
+
+NeighbourGrid::NeighbourGrid(std::span<const Eigen::Vector3d> points,
+                             std::span<const std::uint32_t> subset, const Eigen::Vector3d& dir,
+                             double cell) {
+  build(points, subset.data(), subset.size(), dir, cell);
+}
+
+void NeighbourGrid::build(std::span<const Eigen::Vector3d> points, const std::uint32_t* subset,
+                          std::size_t n, const Eigen::Vector3d& dir, double cell) {
+  // The i-th point of the grid's set (an index past the cloud counts as non-finite).
+  const Eigen::Vector3d nan = Eigen::Vector3d::Constant(std::nan(""));
+  const auto point = [&](std::size_t i) -> const Eigen::Vector3d& {
+    if (!subset) return points[i];
+    return subset[i] < points.size() ? points[subset[i]] : nan;
+  };
   const Eigen::Vector3d e3 = dir.normalized(), e1 = e3.unitOrthogonal();
   basis_ << e1, e3.cross(e1), e3;
   const Eigen::Matrix3d bt = basis_.transpose();
@@ -109,7 +126,8 @@ NeighbourGrid::NeighbourGrid(std::span<const Eigen::Vector3d> points, const Eige
   // rotations computed again.
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
   std::size_t finite = 0;
-  for (const auto& p : points) {
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d& p = point(i);
     if (!p.allFinite()) continue;
     const Eigen::Vector3d l = bt * p;
     lo = lo.cwiseMin(l);
@@ -128,12 +146,12 @@ NeighbourGrid::NeighbourGrid(std::span<const Eigen::Vector3d> points, const Eige
   lo_v_ = lo.y() - centre.y();
   // Counting sort by cell, rows of u-ordered cells one after another.
   constexpr std::uint32_t kNone = 0xffffffffu;
-  std::vector<std::uint32_t> cell_of(points.size(), kNone);
+  std::vector<std::uint32_t> cell_of(n, kNone);
   start_.assign(static_cast<std::size_t>(nu_) * static_cast<std::size_t>(nv_) + 1, 0);
   const auto local = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d { return bt * p - centre; };
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    if (!points[i].allFinite()) continue;
-    const Eigen::Vector3d l = local(points[i]);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!point(i).allFinite()) continue;
+    const Eigen::Vector3d l = local(point(i));
     const int iu = std::clamp(static_cast<int>((l.x() - lo_u_) / cell_), 0, nu_ - 1);
     const int iv = std::clamp(static_cast<int>((l.y() - lo_v_) / cell_), 0, nv_ - 1);
     cell_of[i] = static_cast<std::uint32_t>(iv * nu_ + iu);
@@ -144,9 +162,9 @@ NeighbourGrid::NeighbourGrid(std::span<const Eigen::Vector3d> points, const Eige
   x_.assign(finite + 16, 1e30f);  // padding lanes are masked off, never counted
   y_.assign(finite + 16, 1e30f);
   z_.assign(finite + 16, 1e30f);
-  for (std::size_t i = 0; i < points.size(); ++i) {
+  for (std::size_t i = 0; i < n; ++i) {
     if (cell_of[i] == kNone) continue;
-    const Eigen::Vector3d l = local(points[i]);
+    const Eigen::Vector3d l = local(point(i));
     const std::uint32_t k = fill[cell_of[i]]++;
     x_[k] = static_cast<float>(l.x());
     y_[k] = static_cast<float>(l.y());
