@@ -35,7 +35,7 @@ struct BoreOptions {
   bool cost_bounded = true;
   std::size_t normal_wall_budget = 1200;  // normals near the expected wall (RSF needs ~1000)
   std::size_t normal_plane_budget = 400;  // normals elsewhere in the region (plane fit)
-  double normal_neighbours = 100.0;       // points per normal patch aimed at on dense scans
+  double normal_neighbours = 60.0;        // points per normal patch aimed at on dense scans
   std::size_t refine_sample = 2000;       // band points the refinement iterates on
   BoreWalls walls = BoreWalls::kInner;    // kOuter/kBoth: prior.outer_radius (else radius)
   // 4.1.1 region of interest and normals.
