@@ -182,7 +182,11 @@ CylinderLsfResult refine_on_band(std::vector<Eigen::Vector3d>& band, const Cylin
     for (std::size_t i = 0; i < band.size(); i += k) sample.push_back(band[i]);
     first = sample;
   }
-  CylinderLsfResult lsf = fit_cylinder_lsf(first, start, lo);
+  // The sample's own noise is ~noise / sqrt(n) ~ 1e-3 mm: iterating it further is wasted when
+  // the full set's step follows.
+  CylinderLsfOptions first_lo = lo;
+  if (!sample.empty()) first_lo.step_tolerance = 1e-3;
+  CylinderLsfResult lsf = fit_cylinder_lsf(first, start, first_lo);
   std::vector<double> abs_res;
   residuals(first, lsf.cylinder, abs_res);
   if (abs_res.size() > 10) {
@@ -201,7 +205,7 @@ CylinderLsfResult refine_on_band(std::vector<Eigen::Vector3d>& band, const Cylin
     const int done = lsf.iterations;
     // From the sample's minimum, one Gauss-Newton step on every inlier is the full set's
     // estimate to first order (the one-step estimator): the sample's error is noise / sqrt(n).
-    if (!sample.empty()) lo.max_iterations = std::min(lo.max_iterations, 1);
+    lo.single_unchecked_step = !sample.empty() && lo.method == LsfMethod::kLevenbergMarquardt;
     lsf = fit_cylinder_lsf(band, lsf.cylinder, lo);
     if (lsf.iterations == 0) lsf.iterations = done;  // already at the minimum
   } else if (!sample.empty()) {

@@ -148,6 +148,12 @@ CylinderLsfResult fit_cylinder_lsf(std::span<const Eigen::Vector3d> pts, const C
         const Vector5d d = -a.ldlt().solve(jtr);
         next = recentre(centroid, apply(c, d));
         // A Gauss-Newton step below the step tolerance: at the minimum, no cost to evaluate.
+        if (o.single_unchecked_step) {
+          res.cylinder = next;
+          res.converged = true;
+          res.iterations = 1;
+          return res;
+        }
         if (o.step_tolerance > 0.0 && tries == 0 &&
             std::max({d.head<2>().norm(), d.segment<2>(2).norm() * half_length, std::abs(d(4))}) <
                 o.step_tolerance) {

@@ -22,6 +22,10 @@ struct CylinderLsfOptions {
   // Beyond: stop when no point of the surface moves more than this (mm) in a step (axis shift,
   // tilt times the data's axial half-length, radius change); 0: off.
   double step_tolerance = 0.0;
+  // Beyond: one Levenberg-Marquardt step taken without checking the cost, and no rms: the
+  // polish of a fit that starts at the minimum of a sample of the same points (two passes
+  // over the points instead of five).
+  bool single_unchecked_step = false;
 };
 
 struct CylinderLsfResult {
