@@ -1,10 +1,18 @@
-// Bore detection speed on a ~75,000-point synthetic scan with a ~7,500-point region (5 mm bore,
-// 0.2 mm spacing): the whole pipeline, the RSF step and the LSF baselines in one run, each with
-// its accuracy against the ground truth as counters (axis_deg, radius_mm, entrance_mm); the
-// session-1 k-d tree normals as the in-run baseline of the binned normals; the thesis's
-// steepest-descent LSF both at its 200 iterations and at the iterations it needs to match the
-// RSF's accuracy (BM_LsfSteepestToRsfAccuracy), the in-run baselines of BM_Rsf.
-//   taskset -c 0 build-bore/test/bench/bore_benchmark --benchmark_repetitions=20
+// Bore detection speed. BM_Css and --css_table: the hardest realistic input, scans at the CSS's
+// real density with double coverage (bench::css_bore_cases: a 4 mm blind bore, 12 mm, 25 mm with
+// a 55,000-point region, 50 mm seen through a strip), the whole pipeline against the previous one
+// (BoreOptions::cost_bounded = false) in the same run. Dense regions are where a pipeline whose
+// cost follows the point count is slowest, and the small bore is where a budgeted subset could
+// lose the few wall points it has. The table prints median and worst thread-CPU time per case,
+// the speed-up and the errors against the ground truth:
+//   taskset -c 0 build/test/bench/bore_benchmark --benchmark_filter=BM_Css --css_table=40
+// The rest: a ~75,000-point scan with a ~7,500-point region (5 mm bore, 0.2 mm spacing): the
+// whole pipeline, the RSF step and the LSF baselines in one run, each with its accuracy against
+// the ground truth as counters (axis_deg, radius_mm, entrance_mm); the session-1 k-d tree
+// normals as the in-run baseline of the binned normals; the thesis's steepest-descent LSF both
+// at its 200 iterations and at the iterations it needs to match the RSF's accuracy
+// (BM_LsfSteepestToRsfAccuracy), the in-run baselines of BM_Rsf.
+//   taskset -c 0 build/test/bench/bore_benchmark --benchmark_repetitions=20
 //       (add --benchmark_report_aggregates_only=true for the medians alone)
 #include <benchmark/benchmark.h>
 
