@@ -128,7 +128,9 @@ CylinderLsfResult fit_cylinder_lsf(std::span<const Eigen::Vector3d> pts, const C
   // The starting cost only once a step has to be judged: a fit that starts at its minimum
   // (the polish of a converged fit) ends on the first step, under the step tolerance.
   double f = o.step_tolerance > 0.0 ? -1.0 : cost(pts, c, o.huber_delta);
-  double lambda = 1e-3;
+  // The unchecked step is a Gauss-Newton step: damping would shorten it along the poorly
+  // determined directions (a narrow arc's radius and offset), which it has to cross in one go.
+  double lambda = o.single_unchecked_step ? 1e-12 : 1e-3;
   double step = 1e-4;  // steepest descent step length, adapted
   Matrix5d jtj;
   Vector5d jtr;
