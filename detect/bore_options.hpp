@@ -16,11 +16,28 @@ struct BorePrior {
   Eigen::Vector3d entrance = Eigen::Vector3d::Zero();  // expected entrance point, mm
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();     // expected axis (either sign)
   double radius = 0.0;                                 // expected radius, mm
+  // A thick-walled pipe's outer wall radius, mm (> radius); 0: a bore, no outer wall.
+  double outer_radius = 0.0;
   // Normal of the surface around the bore; nullopt: the axis (a perpendicular bore).
   std::optional<Eigen::Vector3d> plane_normal;
 };
 
+// Which cylinder of a pipe to fit: the bore (concave, inner), the outer (convex) wall, or both.
+enum class BoreWalls { kInner, kOuter, kBoth };
+
 struct BoreOptions {
+  // Beyond the thesis: cost bounded by what the answer needs, not by the point count. Normals
+  // only on an evenly spread subset of the region (up to the budgets below; a small bore keeps
+  // every point), their radius shrunk on dense scans to hold about normal_neighbours points, and
+  // the refinement iterated on a spread sample of the band, then polished on every inlier.
+  // false: the session-1 pipeline (every region point, R as set, full-band iterations), kept as
+  // the benchmark's baseline.
+  bool cost_bounded = true;
+  std::size_t normal_wall_budget = 1200;  // normals near the expected wall (RSF needs ~1000)
+  std::size_t normal_plane_budget = 400;  // normals elsewhere in the region (plane fit)
+  double normal_neighbours = 60.0;        // points per normal patch aimed at on dense scans
+  std::size_t refine_sample = 2000;       // band points the refinement iterates on
+  BoreWalls walls = BoreWalls::kInner;    // kOuter/kBoth: prior.outer_radius (else radius)
   // 4.1.1 region of interest and normals.
   double roi_radius_factor = 2.0;  // keep points within this * radius of the expected entrance
   double normal_keep = 1.0;        // share of ROI points that get a normal (thesis: 0.2)

@@ -2,6 +2,7 @@
 // Output of the bore detection: found or why not, the pose, and counts and times per stage.
 
 #include <Eigen/Core>
+#include <optional>
 #include <string_view>
 
 namespace rangefit {
@@ -37,6 +38,17 @@ struct BoreTimes {
   double roi = 0, normals = 0, segmentation = 0, rsf = 0, refine = 0, entrance = 0, total = 0;
 };
 
+// The outer wall of a pipe when both walls were asked for (BoreWalls::kBoth).
+struct BoreWallResult {
+  bool found = false;
+  BoreReason reason = BoreReason::kFitFailed;
+  Eigen::Vector3d entrance = Eigen::Vector3d::Zero();
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  double radius = 0.0;
+  bool refined = false;
+  std::size_t wall = 0, refine_inliers = 0;
+};
+
 struct BoreResult {
   bool found = false;
   BoreReason reason = BoreReason::kFitFailed;
@@ -50,6 +62,8 @@ struct BoreResult {
   bool refined = false;     // the final least-squares refinement converged and was used
   BoreCounts counts;
   BoreTimes time_ms;
+  // walls = kBoth: the outer wall (the fields above are the inner one); otherwise empty.
+  std::optional<BoreWallResult> outer;
 };
 
 }  // namespace rangefit

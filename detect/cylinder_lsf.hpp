@@ -19,6 +19,13 @@ struct CylinderLsfOptions {
   int max_iterations = 30;    // thesis baseline: 200 steepest-descent iterations
   double huber_delta = 0.15;  // mm; residuals beyond count linearly; 0: plain least squares
   double tolerance = 1e-9;    // stop when the relative cost decrease falls below this
+  // Beyond: stop when no point of the surface moves more than this (mm) in a step (axis shift,
+  // tilt times the data's axial half-length, radius change); 0: off.
+  double step_tolerance = 0.0;
+  // Beyond: one Levenberg-Marquardt step taken without checking the cost, and no rms: the
+  // polish of a fit that starts at the minimum of a sample of the same points (two passes
+  // over the points instead of five).
+  bool single_unchecked_step = false;
 };
 
 struct CylinderLsfResult {

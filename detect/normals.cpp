@@ -51,22 +51,36 @@ NormalEstimate estimate_normals(std::span<const Eigen::Vector3d> points, const K
   return out;
 }
 
-NormalEstimate estimate_normals_binned(std::span<const Eigen::Vector3d> points,
-                                       std::span<const std::uint32_t> queries,
-                                       const NormalOptions& options) {
+namespace {
+
+// Both binned variants: the grid over every point, or over points[neighbours[i]] only.
+NormalEstimate binned(std::span<const Eigen::Vector3d> points,
+                      const std::span<const std::uint32_t>* neighbours,
+                      std::span<const std::uint32_t> queries, const NormalOptions& options) {
   NormalEstimate out;
   out.normals.assign(queries.size(), Eigen::Vector3d::Zero());
   if (queries.empty() || !(options.radius > 0.0)) return out;
   // Bin along the view (the sensor's position seen from the points' centre when given).
   Eigen::Vector3d dir = options.view_dir;
   if (options.sensor_position) {
-    const Eigen::Vector3d c = pca::centroid(points);
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    if (neighbours) {
+      std::size_t n = 0;
+      for (const std::uint32_t i : *neighbours) {
+        if (i < points.size()) c += points[i], ++n;
+      }
+      c /= static_cast<double>(std::max<std::size_t>(n, 1));
+    } else {
+      c = pca::centroid(points);
+    }
     if (c.allFinite() && (*options.sensor_position - c).norm() > 1e-9) {
       dir = *options.sensor_position - c;
     }
   }
   if (!(dir.norm() > 1e-12) || !dir.allFinite()) dir = Eigen::Vector3d::UnitZ();
-  const NeighbourGrid grid(points, dir, kCellShare * options.radius);
+  const double cell = kCellShare * options.radius;
+  const NeighbourGrid grid =
+      neighbours ? NeighbourGrid(points, *neighbours, dir, cell) : NeighbourGrid(points, dir, cell);
   for (std::size_t i = 0; i < queries.size(); ++i) {
     if (queries[i] >= points.size()) continue;
     const Eigen::Vector3d& p = points[queries[i]];
@@ -74,6 +88,21 @@ NormalEstimate estimate_normals_binned(std::span<const Eigen::Vector3d> points,
     if (!out.normals[i].isZero()) ++out.kept;
   }
   return out;
+}
+
+}  // namespace
+
+NormalEstimate estimate_normals_binned(std::span<const Eigen::Vector3d> points,
+                                       std::span<const std::uint32_t> queries,
+                                       const NormalOptions& options) {
+  return binned(points, nullptr, queries, options);
+}
+
+NormalEstimate estimate_normals_binned(std::span<const Eigen::Vector3d> points,
+                                       std::span<const std::uint32_t> neighbours,
+                                       std::span<const std::uint32_t> queries,
+                                       const NormalOptions& options) {
+  return binned(points, &neighbours, queries, options);
 }
 
 NormalEstimate estimate_normals_organised(const PointCloud& cloud,

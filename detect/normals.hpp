@@ -46,6 +46,13 @@ NormalEstimate estimate_normals_binned(std::span<const Eigen::Vector3d> points,
                                        std::span<const std::uint32_t> queries,
                                        const NormalOptions& options);
 
+// The same with neighbours only among points[neighbours[i]] (a region of a larger cloud) and
+// queries indexing `points` too.
+NormalEstimate estimate_normals_binned(std::span<const Eigen::Vector3d> points,
+                                       std::span<const std::uint32_t> neighbours,
+                                       std::span<const std::uint32_t> queries,
+                                       const NormalOptions& options);
+
 // Organised: neighbours come from a window of the scan grid around each query, sized from the
 // grid's median cell spacing, then filtered by 3-D distance. Falls back to nothing (all zero)
 // when the cloud has no grid.

@@ -101,48 +101,74 @@ int NeighbourGrid::lanes() { return rangefit::lanes::cpu_has_avx2() ? 8 : 4; }
 
 NeighbourGrid::NeighbourGrid(std::span<const Eigen::Vector3d> points, const Eigen::Vector3d& dir,
                              double cell) {
+  build(points, nullptr, points.size(), dir, cell);
+}
+
+NeighbourGrid::NeighbourGrid(std::span<const Eigen::Vector3d> points,
+                             std::span<const std::uint32_t> subset, const Eigen::Vector3d& dir,
+                             double cell) {
+  build(points, subset.data(), subset.size(), dir, cell);
+}
+
+void NeighbourGrid::build(std::span<const Eigen::Vector3d> points, const std::uint32_t* subset,
+                          std::size_t n, const Eigen::Vector3d& dir, double cell) {
+  // The i-th point of the grid's set (an index past the cloud counts as non-finite).
+  const Eigen::Vector3d nan = Eigen::Vector3d::Constant(std::nan(""));
+  const auto point = [&](std::size_t i) -> const Eigen::Vector3d& {
+    if (!subset) return points[i];
+    return subset[i] < points.size() ? points[subset[i]] : nan;
+  };
   const Eigen::Vector3d e3 = dir.normalized(), e1 = e3.unitOrthogonal();
   basis_ << e1, e3.cross(e1), e3;
-  std::vector<Eigen::Vector3d> local;
-  local.reserve(points.size());
+  const Eigen::Matrix3d bt = basis_.transpose();
+  // Three passes over the points (bounds, cells, scatter) and no copy of them in the grid's
+  // frame: on a dense region the copy's allocation and page faults cost more than the
+  // rotations computed again.
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
-  for (const auto& p : points) {
+  std::size_t finite = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d& p = point(i);
     if (!p.allFinite()) continue;
-    local.push_back(basis_.transpose() * p);
-    lo = lo.cwiseMin(local.back());
-    hi = hi.cwiseMax(local.back());
+    const Eigen::Vector3d l = bt * p;
+    lo = lo.cwiseMin(l);
+    hi = hi.cwiseMax(l);
+    ++finite;
   }
-  if (local.empty() || !(cell > 0.0)) return;
+  if (finite == 0 || !(cell > 0.0)) return;
   const Eigen::Vector3d centre = 0.5 * (lo + hi);  // centred: the float offsets stay small
   origin_ = basis_ * centre;
   // Bound the cell count by the point count (a sparse cloud spread over metres).
   const double area = std::max(hi.x() - lo.x(), 1e-9) * std::max(hi.y() - lo.y(), 1e-9);
-  cell_ =
-      std::max({cell, std::sqrt(area / (4.0 * static_cast<double>(local.size()) + 64.0)), 1e-6});
+  cell_ = std::max({cell, std::sqrt(area / (4.0 * static_cast<double>(finite) + 64.0)), 1e-6});
   nu_ = static_cast<int>((hi.x() - lo.x()) / cell_) + 1;
   nv_ = static_cast<int>((hi.y() - lo.y()) / cell_) + 1;
   lo_u_ = lo.x() - centre.x();
   lo_v_ = lo.y() - centre.y();
   // Counting sort by cell, rows of u-ordered cells one after another.
-  std::vector<std::uint32_t> cell_of(local.size());
+  constexpr std::uint32_t kNone = 0xffffffffu;
+  std::vector<std::uint32_t> cell_of(n, kNone);
   start_.assign(static_cast<std::size_t>(nu_) * static_cast<std::size_t>(nv_) + 1, 0);
-  for (std::size_t i = 0; i < local.size(); ++i) {
-    local[i] -= centre;
-    const int iu = std::clamp(static_cast<int>((local[i].x() - lo_u_) / cell_), 0, nu_ - 1);
-    const int iv = std::clamp(static_cast<int>((local[i].y() - lo_v_) / cell_), 0, nv_ - 1);
+  const auto local = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d { return bt * p - centre; };
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!point(i).allFinite()) continue;
+    const Eigen::Vector3d l = local(point(i));
+    const int iu = std::clamp(static_cast<int>((l.x() - lo_u_) / cell_), 0, nu_ - 1);
+    const int iv = std::clamp(static_cast<int>((l.y() - lo_v_) / cell_), 0, nv_ - 1);
     cell_of[i] = static_cast<std::uint32_t>(iv * nu_ + iu);
     ++start_[cell_of[i] + 1];
   }
   for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
   std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
-  x_.assign(local.size() + 16, 1e30f);  // padding lanes are masked off, never counted
-  y_.assign(local.size() + 16, 1e30f);
-  z_.assign(local.size() + 16, 1e30f);
-  for (std::size_t i = 0; i < local.size(); ++i) {
+  x_.assign(finite + 16, 1e30f);  // padding lanes are masked off, never counted
+  y_.assign(finite + 16, 1e30f);
+  z_.assign(finite + 16, 1e30f);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (cell_of[i] == kNone) continue;
+    const Eigen::Vector3d l = local(point(i));
     const std::uint32_t k = fill[cell_of[i]]++;
-    x_[k] = static_cast<float>(local[i].x());
-    y_[k] = static_cast<float>(local[i].y());
-    z_[k] = static_cast<float>(local[i].z());
+    x_[k] = static_cast<float>(l.x());
+    y_[k] = static_cast<float>(l.y());
+    z_[k] = static_cast<float>(l.z());
   }
 }
 

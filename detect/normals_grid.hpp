@@ -21,6 +21,9 @@ class NeighbourGrid {
   // `cell`: the grid cell size, mm (grown for sparse clouds so cells stay ~ points / 4).
   // Non-finite points are left out.
   NeighbourGrid(std::span<const Eigen::Vector3d> points, const Eigen::Vector3d& dir, double cell);
+  // Only points[subset[i]]: a region of a larger cloud, without copying it first.
+  NeighbourGrid(std::span<const Eigen::Vector3d> points, std::span<const std::uint32_t> subset,
+                const Eigen::Vector3d& dir, double cell);
 
   // Count, sum and sum of outer products (world frame) of the offsets x - p of every point x
   // with |x - p| <= radius. Empty moments for a non-finite p or an empty grid.
@@ -38,6 +41,9 @@ class NeighbourGrid {
   };
 
  private:
+  void build(std::span<const Eigen::Vector3d> points, const std::uint32_t* subset, std::size_t n,
+             const Eigen::Vector3d& dir, double cell);
+
   Eigen::Matrix3d basis_ = Eigen::Matrix3d::Identity();  // columns e1, e2, e3 (= dir)
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   double cell_ = 1.0;

@@ -44,10 +44,19 @@ class Part {
     return 0.0;
   }
 
-  // True where the ray travels through air: above the surface or inside a bore.
+  bool pipe() const { return o_.outer_radius > r_; }
+  double depth() const { return depth_; }
+
+  // True where the ray travels through air: above the surface or inside a bore (or, for a
+  // pipe, anywhere but between its two walls).
   bool air(const Eigen::Vector3d& p) const {
     const double below = height(p.x(), p.y()) - p.z();
     if (below < 0.0) return true;
+    if (pipe()) {
+      const double h = p.dot(axis_);
+      const double rho2 = (p - h * axis_).squaredNorm();
+      return -h > depth_ || rho2 < r_ * r_ || rho2 > o_.outer_radius * o_.outer_radius;
+    }
     if (in_bore(p, Eigen::Vector3d::Zero(), below, true)) return true;
     return o_.neighbour && in_bore(p, neighbour_, below, false);
   }
@@ -98,6 +107,7 @@ bool cast(const Part& part, const Eigen::Vector3d& origin, const Eigen::Vector3d
   // Inside a bore opening: march, then bisect the air/solid transition.
   double lo = t;
   for (double hi = t + step; hi < t_max; lo = hi, hi += step) {
+    if (part.pipe() && (origin - hi * dir).z() < -(part.depth() + 1.0)) return false;
     if (part.air(origin - hi * dir)) continue;
     for (int i = 0; i < 40; ++i) {
       const double mid = 0.5 * (lo + hi);
@@ -122,11 +132,14 @@ SyntheticBoreScan make_synthetic_bore(const SyntheticBoreOptions& o) {
   // View direction: the axis tilted toward +e1, so the wall around -e1 faces the sensor.
   const double tilt = o.view_tilt_deg * kDeg;
   const Eigen::Vector3d view = std::cos(tilt) * part.axis() + std::sin(tilt) * part.e1();
-  const Eigen::Vector3d u1 = view.cross(part.e2()).normalized();
-  const Eigen::Vector3d u2 = view.cross(u1);
-  const double lift = 2.0 * extent;  // rays start well above the part
+  const Eigen::Vector3d w1 = view.cross(part.e2()).normalized();
+  const Eigen::Vector3d w2 = view.cross(w1);
+  const double extent_v = o.extent_v > 0.0 ? o.extent_v : extent;
+  const double lift = 2.0 * std::max(extent, extent_v);  // rays start well above the part
   const int n = static_cast<int>(std::floor(2.0 * extent / spacing)) + 1;
-  const double t_max = lift + 6.0 * r + 8.0 * extent;
+  const int nv = static_cast<int>(std::floor(2.0 * extent_v / spacing)) + 1;
+  const int passes = std::max(1, o.passes);
+  const double t_max = lift + 6.0 * r + 8.0 * std::max(extent, extent_v);
 
   std::mt19937_64 rng(o.seed);
   std::uniform_real_distribution<double> uni(0.0, 1.0);
@@ -135,30 +148,38 @@ SyntheticBoreScan make_synthetic_bore(const SyntheticBoreOptions& o) {
   PointCloud& cloud = scan.cloud;
   cloud.frame_id = "world";
   if (o.organised) {
-    cloud.grid.rows = n;
-    cloud.grid.cols = n;
-    cloud.grid.index.assign(static_cast<std::size_t>(n) * n, -1);
+    cloud.grid.rows = passes * n;
+    cloud.grid.cols = nv;
+    cloud.grid.index.assign(static_cast<std::size_t>(passes) * n * nv, -1);
   }
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) {
-      const Eigen::Vector3d origin =
-          (i * spacing - extent) * u1 + (j * spacing - extent) * u2 + lift * view;
-      Eigen::Vector3d p;
-      if (!cast(part, origin, view, t_max, 0.02, p)) continue;
-      // Only the square around the bore counts as scanned (rays are tilted against the part).
-      const double roll = uni(rng);
-      if (roll < o.ghost_fraction) {
-        p += (0.5 + 4.5 * uni(rng)) * view;  // reflection ghost in front of the surface
-      } else if (roll < o.ghost_fraction + o.outlier_fraction) {
-        p += (2.0 * uni(rng) - 1.0) * o.outlier_amplitude * view;
-      } else {
-        p += noise(rng) * view;
+  for (int pass = 0; pass < passes; ++pass) {
+    // Later passes: the grid turned about the view and shifted by a fraction of a ray spacing,
+    // so their rays fall between the first pass's, as the CSS's overlapping scan circles do.
+    const double turn = 7.0 * kDeg * pass;
+    const Eigen::Vector3d u1 = std::cos(turn) * w1 + std::sin(turn) * w2;
+    const Eigen::Vector3d u2 = std::cos(turn) * w2 - std::sin(turn) * w1;
+    const double shift = pass == 0 ? 0.0 : 0.37 * spacing;
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < nv; ++j) {
+        const Eigen::Vector3d origin = (i * spacing - extent + shift) * u1 +
+                                       (j * spacing - extent_v + 1.6 * shift) * u2 + lift * view;
+        Eigen::Vector3d p;
+        if (!cast(part, origin, view, t_max, o.march_step, p)) continue;
+        // Only the square around the bore counts as scanned (rays are tilted against the part).
+        const double roll = uni(rng);
+        if (roll < o.ghost_fraction) {
+          p += (0.5 + 4.5 * uni(rng)) * view;  // reflection ghost in front of the surface
+        } else if (roll < o.ghost_fraction + o.outlier_fraction) {
+          p += (2.0 * uni(rng) - 1.0) * o.outlier_amplitude * view;
+        } else {
+          p += noise(rng) * view;
+        }
+        if (o.organised) {
+          cloud.grid.index[(static_cast<std::size_t>(pass) * n + i) * nv + j] =
+              static_cast<std::int32_t>(cloud.points.size());
+        }
+        cloud.points.push_back(o.T_world_part * p);
       }
-      if (o.organised) {
-        cloud.grid.index[static_cast<std::size_t>(i) * n + j] =
-            static_cast<std::int32_t>(cloud.points.size());
-      }
-      cloud.points.push_back(o.T_world_part * p);
     }
   }
 
@@ -176,6 +197,7 @@ SyntheticBoreScan make_synthetic_bore(const SyntheticBoreOptions& o) {
   scan.truth.entrance = o.T_world_part * entrance;
   scan.truth.axis = o.T_world_part.linear() * part.axis();
   scan.truth.radius = r;
+  scan.truth.outer_radius = part.pipe() ? o.outer_radius : 0.0;
   scan.truth.plane_normal = o.T_world_part.linear() * Eigen::Vector3d::UnitZ();
   scan.truth.view_dir = o.T_world_part.linear() * view;
   return scan;

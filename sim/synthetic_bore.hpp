@@ -4,6 +4,9 @@
 // rounded entrance; optional axial notches) and an optional neighbouring bore, seen from one view
 // direction, with sensor noise along the view direction, salt-and-pepper outliers and ghost points.
 // It returns the ground truth. Not a sensor model: the CSS simulator lives in sim/css_*.
+// Dense real scans are approximated by several passes of the ray grid (the CSS's scan circles
+// pass every spot twice), and a thick-walled pipe (inner and outer wall, no plate) by
+// outer_radius.
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -38,7 +41,11 @@ struct SyntheticBoreOptions {
   double outlier_fraction = 0.05;       // salt-and-pepper outliers along the view direction
   double outlier_amplitude = 10.0;      // outliers move up to +- this, mm
   double ghost_fraction = 0.01;         // points floating in front of the true surface
-  bool organised = false;               // fill cloud.grid (rows x cols of rays)
+  bool organised = false;               // fill cloud.grid (rows x cols of rays, passes stacked)
+  double extent_v = 0.0;                // half-size across the first scan axis, mm; 0: extent
+  int passes = 1;  // ray grids over the square, each turned 7 deg and shifted (double coverage)
+  double outer_radius = 0.0;  // > radius: a pipe of this outer radius and length depth, no plate
+  double march_step = 0.02;   // ray-marching step inside openings, mm (bisection refines)
   Eigen::Isometry3d T_world_part = Eigen::Isometry3d::Identity();
   std::uint64_t seed = 1;
 };
@@ -47,6 +54,7 @@ struct SyntheticBoreTruth {
   Eigen::Vector3d entrance;      // axis meets the top surface's mean plane around the bore, mm
   Eigen::Vector3d axis;          // unit, out of the bore toward the sensor side
   double radius = 0.0;           // mm
+  double outer_radius = 0.0;     // the pipe's outer wall, mm; 0: a bore in a plate
   Eigen::Vector3d plane_normal;  // unit top-surface normal at the bore
   Eigen::Vector3d view_dir;      // unit, from the surface toward the sensor
 };

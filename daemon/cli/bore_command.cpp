@@ -22,6 +22,8 @@ struct BoreArgs {
   std::string cloud;
   std::string entrance, axis, plane_normal, view_dir, sensor_position;
   double radius = 0.0;
+  double outer_radius = 0.0;
+  std::string walls = "inner";
   double normal_keep = 1.0;
   std::uint64_t seed = 1;
   bool json = false;
@@ -60,6 +62,20 @@ nlohmann::json to_json(const BoreResult& r) {
   } else {
     j["reason"] = std::string(to_string(r.reason));
   }
+  if (r.outer) {
+    nlohmann::json o;
+    o["found"] = r.outer->found;
+    if (r.outer->found) {
+      o["entrance"] = json_vec(r.outer->entrance);
+      o["axis"] = json_vec(r.outer->axis);
+      o["radius"] = r.outer->radius;
+      o["refined"] = r.outer->refined;
+    } else {
+      o["reason"] = std::string(to_string(r.outer->reason));
+    }
+    o["wall_points"] = r.outer->wall;
+    j["outer"] = o;
+  }
   const BoreCounts& c = r.counts;
   j["points"] = {{"input", c.input},
                  {"non_finite", c.non_finite},
@@ -96,6 +112,16 @@ void print_text(const BoreResult& r) {
             << "  points    " << r.counts.roi << " in region, " << r.counts.plane << " plane, "
             << r.counts.wall << " wall" << (r.second_fit ? " (notch re-fit ran)" : "") << "\n"
             << std::setprecision(2) << "  time      " << r.time_ms.total << " ms\n";
+  if (r.outer) {
+    if (r.outer->found) {
+      std::cout << std::setprecision(4) << "outer wall found\n"
+                << "  entrance  " << v(r.outer->entrance) << " mm\n"
+                << "  axis      " << v(r.outer->axis) << "\n"
+                << "  radius    " << r.outer->radius << " mm\n";
+    } else {
+      std::cout << "outer wall not found: " << to_string(r.outer->reason) << "\n";
+    }
+  }
 }
 
 int run(const BoreArgs& a) {
@@ -114,7 +140,14 @@ int run(const BoreArgs& a) {
   prior.entrance = *entrance;
   prior.axis = *axis;
   prior.radius = a.radius;
+  prior.outer_radius = a.outer_radius;
   BoreOptions options;
+  if (a.walls == "outer") options.walls = BoreWalls::kOuter;
+  if (a.walls == "both") options.walls = BoreWalls::kBoth;
+  if (a.walls == "both" && !(a.outer_radius > a.radius)) {
+    std::cerr << "rangefit bore: --walls both needs --cad-outer-radius larger than --cad-radius\n";
+    return kExitBadInput;
+  }
   options.seed = a.seed;
   options.normal_keep = a.normal_keep;
   const std::pair<const std::string*, const char*> optional_vectors[] = {
@@ -166,6 +199,13 @@ void add_bore_command(CLI::App& app, int* exit_code) {
   cmd->add_option("--cad-axis", args->axis, "Expected bore axis X,Y,Z (any length, either sign)")
       ->required();
   cmd->add_option("--cad-radius", args->radius, "Expected bore radius, mm")->required();
+  cmd->add_option("--cad-outer-radius", args->outer_radius,
+                  "A thick-walled pipe's outer wall radius, mm (the bore is its inner wall)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--walls", args->walls,
+                  "Which wall of a pipe to fit: inner (the bore, default), outer "
+                  "(--cad-outer-radius, else --cad-radius) or both (the outer one as \"outer\")")
+      ->check(CLI::IsMember({"inner", "outer", "both"}));
   cmd->add_option("--cad-plane-normal", args->plane_normal,
                   "Normal X,Y,Z of the surface around the bore (default: the axis)");
   cmd->add_option("--view-dir", args->view_dir,

@@ -1,14 +1,26 @@
-// Bore detection speed on a ~75,000-point synthetic scan with a ~7,500-point region (5 mm bore,
-// 0.2 mm spacing): the whole pipeline, the RSF step and the LSF baselines in one run, each with
-// its accuracy against the ground truth as counters (axis_deg, radius_mm, entrance_mm); the
-// session-1 k-d tree normals as the in-run baseline of the binned normals; the thesis's
-// steepest-descent LSF both at its 200 iterations and at the iterations it needs to match the
-// RSF's accuracy (BM_LsfSteepestToRsfAccuracy), the in-run baselines of BM_Rsf.
-//   taskset -c 0 build-bore/test/bench/bore_benchmark --benchmark_repetitions=20
+// Bore detection speed. BM_Css and --css_table: the hardest realistic input, scans at the CSS's
+// real density with double coverage (bench::css_bore_cases: a 4 mm blind bore, 12 mm, 25 mm with
+// a 55,000-point region, 50 mm seen through a strip), the whole pipeline against the previous one
+// (BoreOptions::cost_bounded = false) in the same run. Dense regions are where a pipeline whose
+// cost follows the point count is slowest, and the small bore is where a budgeted subset could
+// lose the few wall points it has. The table prints median and worst thread-CPU time per case,
+// the speed-up and the errors against the ground truth:
+//   taskset -c 0 build/test/bench/bore_benchmark --benchmark_filter=BM_Css --css_table=40
+// The rest: a ~75,000-point scan with a ~7,500-point region (5 mm bore, 0.2 mm spacing): the
+// whole pipeline, the RSF step and the LSF baselines in one run, each with its accuracy against
+// the ground truth as counters (axis_deg, radius_mm, entrance_mm); the session-1 k-d tree
+// normals as the in-run baseline of the binned normals; the thesis's steepest-descent LSF both
+// at its 200 iterations and at the iterations it needs to match the RSF's accuracy
+// (BM_LsfSteepestToRsfAccuracy), the in-run baselines of BM_Rsf.
+//   taskset -c 0 build/test/bench/bore_benchmark --benchmark_repetitions=20
 //       (add --benchmark_report_aggregates_only=true for the medians alone)
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
 #include <numbers>
 
 #include "detect/bore_detector.hpp"
@@ -188,6 +200,65 @@ void BM_LsfLevenbergMarquardtFromCad(benchmark::State& s) {
   run_lsf(s, LsfMethod::kLevenbergMarquardt, 100, false);
 }
 
+// The CSS-density cases of bench::css_bore_cases() (see there why they are the hardest
+// realistic input): the whole pipeline per case, cost-bounded (mode 0, the default) and the
+// session-1 pipeline (mode 1, BoreOptions::cost_bounded = false) as the in-run baseline, with
+// the accuracy counters. --css_table prints median, worst and the ratios per case after the run.
+struct CssFixture {
+  std::string name;
+  sim::SyntheticBoreScan scan;
+  BorePrior prior;
+};
+
+const std::vector<CssFixture>& css_fixtures() {
+  static const std::vector<CssFixture> f = [] {
+    std::vector<CssFixture> out;
+    for (const auto& c : bench::css_bore_cases()) {
+      CssFixture x{c.name, sim::make_synthetic_bore(c.scan), {}};
+      x.prior = bench::css_prior(x.scan.truth);
+      out.push_back(std::move(x));
+    }
+    return out;
+  }();
+  return f;
+}
+
+BoreResult css_run(const CssFixture& f, bool baseline) {
+  BoreOptions opt;
+  opt.view_dir = f.scan.truth.view_dir;
+  opt.cost_bounded = !baseline;
+  return detect_bore(f.scan.cloud, f.prior, opt);
+}
+
+void BM_Css(benchmark::State& state) {
+  const CssFixture& f = css_fixtures()[static_cast<std::size_t>(state.range(0))];
+  const bool baseline = state.range(1) != 0;
+  state.SetLabel(f.name + (baseline ? " baseline" : ""));
+  BoreResult r;
+  for (auto _ : state) {
+    r = css_run(f, baseline);
+    benchmark::DoNotOptimize(r);
+  }
+  const auto& t = f.scan.truth;
+  state.counters["found"] = r.found;
+  state.counters["entrance_mm"] = (r.entrance - t.entrance).norm();
+  state.counters["axis_deg"] =
+      std::acos(std::min(1.0, std::abs(r.axis.dot(t.axis)))) * 180.0 / std::numbers::pi;
+  state.counters["radius_mm"] = r.radius - t.radius;
+  state.counters["points"] = static_cast<double>(r.counts.input);
+  state.counters["roi"] = static_cast<double>(r.counts.roi);
+  state.counters["queries"] = static_cast<double>(r.counts.normal_queries);
+  state.counters["wall"] = static_cast<double>(r.counts.wall);
+  state.counters["normals_ms"] = r.time_ms.normals;
+  state.counters["refine_ms"] = r.time_ms.refine;
+}
+BENCHMARK(BM_Css)
+    ->ArgsProduct({{0, 1, 2, 3}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->ComputeStatistics("max", [](const std::vector<double>& v) {
+      return *std::max_element(v.begin(), v.end());
+    });
+
 BENCHMARK(BM_Pipeline)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PipelineKeep20)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PipelineWallOnlyRefine)->Unit(benchmark::kMillisecond);
@@ -201,7 +272,68 @@ BENCHMARK(BM_LsfSteepestFromCad)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LsfSteepestFromPca)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LsfLevenbergMarquardtFromCad)->Unit(benchmark::kMillisecond);
 
+// Per CSS case: median and worst whole-pipeline time over `runs` calls of each pipeline, and the
+// baseline's over the cost-bounded's (the speed-up).
+// Thread CPU time, ms: the machine the figures come from may be shared, and wall time then
+// measures the neighbours.
+double cpu_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
+}
+
+void css_table(int runs) {
+  std::printf("\nCSS density, whole pipeline, %d runs each (thread CPU ms)\n", runs);
+  std::printf("%-9s %6s %6s %7s %7s %9s %9s %7s %7s %7s %7s\n", "case", "points", "roi", "median",
+              "worst", "base med", "base wst", "x med", "x worst", "err mm", "err deg");
+  for (const auto& f : css_fixtures()) {
+    double ms[2][2];
+    BoreResult r;
+    for (int mode = 0; mode < 2; ++mode) {
+      std::vector<double> t;
+      const int n = mode == 0 ? runs : std::max(3, runs / 4);
+      for (int i = 0; i < n; ++i) {
+        const double t0 = cpu_ms();
+        const BoreResult x = css_run(f, mode == 1);
+        t.push_back(cpu_ms() - t0);
+        if (mode == 0) r = x;
+      }
+      std::sort(t.begin(), t.end());
+      ms[mode][0] = t[t.size() / 2];
+      ms[mode][1] = t.back();
+    }
+    std::printf("%-9s %6zu %6zu %7.3f %7.3f %9.2f %9.2f %7.1f %7.1f %7.4f %7.4f\n", f.name.c_str(),
+                r.counts.input, r.counts.roi, ms[0][0], ms[0][1], ms[1][0], ms[1][1],
+                ms[1][0] / ms[0][0], ms[1][1] / ms[0][1],
+                (r.entrance - f.scan.truth.entrance).norm(),
+                std::acos(std::min(1.0, std::abs(r.axis.dot(f.scan.truth.axis)))) * 180.0 /
+                    std::numbers::pi);
+    const BoreTimes& s = r.time_ms;
+    std::printf(
+        "          stages (wall ms, last run): roi %.3f normals %.3f segmentation %.3f "
+        "rsf %.3f refine %.3f; %zu queries, %zu wall, %zu refine points\n",
+        s.roi, s.normals, s.segmentation, s.rsf, s.refine, r.counts.normal_queries, r.counts.wall,
+        r.counts.refine_inliers);
+  }
+}
+
 }  // namespace
 }  // namespace rangefit
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  int table_runs = 0;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strncmp(argv[i], "--css_table", 11) == 0) {
+      table_runs = argv[i][11] == '=' ? std::atoi(argv[i] + 12) : 40;
+      for (int j = i; j + 1 < argc; ++j) argv[j] = argv[j + 1];
+      --argc;
+      --i;
+    }
+  }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  if (table_runs > 0) rangefit::css_table(table_runs);
+  benchmark::Shutdown();
+  return 0;
+}

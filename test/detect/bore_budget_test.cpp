@@ -1,0 +1,78 @@
+// The cost-bounded bore pipeline on scans at the CSS's real density (two interleaved passes,
+// ~90 points per mm^2): normals only on an evenly spread subset within the budgets, yet a small
+// bore keeps every wall point and a dense one stays as accurate as the full pipeline.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "detect/bore_detector.hpp"
+#include "sim/synthetic_bore.hpp"
+#include "test/detect/bore_test_cases.hpp"
+
+namespace rangefit {
+namespace {
+
+sim::SyntheticBoreScan dense_scan(double radius, double extent, double depth, std::uint64_t seed) {
+  sim::SyntheticBoreOptions o;
+  o.radius = radius;
+  o.extent = extent;
+  o.depth = depth;
+  o.spacing = 0.15;
+  o.passes = 2;
+  o.march_step = 0.1;
+  o.seed = seed;
+  o.T_world_part = test::random_pose(seed);
+  return sim::make_synthetic_bore(o);
+}
+
+double axis_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::acos(std::min(1.0, std::abs(a.dot(b)))) * 180.0 / std::numbers::pi;
+}
+
+TEST(BoreBudget, SmallDenseBoreKeepsEveryWallPoint) {
+  const auto scan = dense_scan(2.0, 0.0, 4.0, 31);  // a 4 mm blind bore
+  BoreOptions o;
+  o.view_dir = scan.truth.view_dir;
+  const BorePrior prior = test::perturbed_prior(scan.truth, 31);
+  const BoreResult fast = detect_bore(scan.cloud, prior, o);
+  o.cost_bounded = false;
+  const BoreResult full = detect_bore(scan.cloud, prior, o);
+  ASSERT_TRUE(fast.found) << to_string(fast.reason);
+  ASSERT_TRUE(full.found) << to_string(full.reason);
+  EXPECT_GT(fast.counts.roi, fast.counts.normal_queries);  // the plane was thinned out ...
+  EXPECT_EQ(fast.counts.wall, full.counts.wall);           // ... the wall not at all
+  EXPECT_LT((fast.entrance - scan.truth.entrance).norm(), 0.05);
+  EXPECT_LT(axis_deg(fast.axis, scan.truth.axis), 0.5);
+  EXPECT_NEAR(fast.radius, 2.0, 0.05);
+}
+
+TEST(BoreBudget, DenseRegionWithinBudgetAndAsAccurateAsEveryPoint) {
+  const auto scan = dense_scan(6.0, 12.0, 0.0, 32);
+  BoreOptions o;
+  o.view_dir = scan.truth.view_dir;
+  const BorePrior prior = test::perturbed_prior(scan.truth, 32);
+  const BoreResult fast = detect_bore(scan.cloud, prior, o);
+  o.cost_bounded = false;
+  const BoreResult full = detect_bore(scan.cloud, prior, o);
+  ASSERT_TRUE(fast.found) << to_string(fast.reason);
+  ASSERT_TRUE(full.found) << to_string(full.reason);
+  const auto& t = scan.truth;
+  std::printf(
+      "roi %zu queries %zu | entrance %.4f / %.4f mm  axis %.4f / %.4f deg  radius "
+      "%+.4f / %+.4f mm (cost-bounded / every point)\n",
+      fast.counts.roi, fast.counts.normal_queries, (fast.entrance - t.entrance).norm(),
+      (full.entrance - t.entrance).norm(), axis_deg(fast.axis, t.axis), axis_deg(full.axis, t.axis),
+      fast.radius - t.radius, full.radius - t.radius);
+  EXPECT_GT(fast.counts.roi, 20000u);
+  EXPECT_LE(fast.counts.normal_queries, o.normal_wall_budget + o.normal_plane_budget * 2);
+  EXPECT_LT((fast.entrance - t.entrance).norm(), 0.02);
+  EXPECT_LT(axis_deg(fast.axis, t.axis), 0.05);
+  EXPECT_LT(std::abs(fast.radius - t.radius), 0.01);
+  EXPECT_LT((fast.entrance - t.entrance).norm(), (full.entrance - t.entrance).norm() + 0.005);
+  EXPECT_LT(axis_deg(fast.axis, t.axis), axis_deg(full.axis, t.axis) + 0.02);
+}
+
+}  // namespace
+}  // namespace rangefit
