@@ -68,6 +68,7 @@ std::string read_all_stdin() {
 
 PointCloud read_stdin(CloudReadReport* report) {
   std::string bytes = read_all_stdin();
+  if (bytes.empty()) throw IoError("stdin", "empty, no PLY or PCD data (nothing piped in?)");
   MemoryFile file("stdin");
   try {
     detail::save_file(file.path(), bytes);
