@@ -3,7 +3,8 @@
 # any prefix: /usr/local (the default; config in /usr/local/etc/rangefitd) and /usr (a package;
 # config in /etc/rangefitd, because GNUInstallDirs maps the /usr prefix's sysconfdir to /etc).
 #
-#   cmake -S . -B build -DCMAKE_INSTALL_PREFIX=/usr && cmake --build build -j2
+#   cmake -S . -B build -DCMAKE_INSTALL_PREFIX=/usr
+#   cmake --build build -j2 --target rangefit rangefitd
 #   cd build && cpack -G DEB        # rangefit_<version>_amd64.deb
 #
 # Install components: the programs and the message definitions (share/rangefit/idl and
@@ -61,6 +62,9 @@ set(CPACK_PACKAGE_DESCRIPTION
     "objects in the fused point clouds and publishes the poses over ROS 2-compatible DDS;\n"
     "rangefit runs the same detectors offline on PLY/PCD files, simulates and replays scans.")
 set(CPACK_PACKAGING_INSTALL_PREFIX ${CMAKE_INSTALL_PREFIX})
+# The package holds two programs: build them (or everything) first, and cpack (and the install
+# target) package what is built instead of building the whole test suite and benchmarks first.
+set(CMAKE_SKIP_INSTALL_ALL_DEPENDENCY ON)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # rangefit_<version>_<arch>.deb
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_HOMEPAGE "file://${RANGEFIT_DOC_FILE}")
