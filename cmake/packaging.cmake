@@ -57,10 +57,10 @@ set(CPACK_PACKAGE_VENDOR "rangefit")
 set(CPACK_PACKAGE_CONTACT "rangefit maintainers <rangefit@localhost>")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
     "part detection by fitting geometric models to laser range scans (rangefitd + rangefit)")
-set(CPACK_PACKAGE_DESCRIPTION
-    "rangefitd runs a robot cell's range sensors as a systemd service, detects bore holes and\n"
-    "objects in the fused point clouds and publishes the poses over ROS 2-compatible DDS;\n"
-    "rangefit runs the same detectors offline on PLY/PCD files, simulates and replays scans.")
+string(CONCAT CPACK_PACKAGE_DESCRIPTION
+       "rangefitd runs a robot cell's range sensors as a systemd service, detects bore holes and\n"
+       "objects in the fused point clouds and publishes the poses over ROS 2-compatible DDS;\n"
+       "rangefit runs the same detectors offline on PLY/PCD files, simulates and replays scans.")
 set(CPACK_PACKAGING_INSTALL_PREFIX ${CMAKE_INSTALL_PREFIX})
 # The package holds two programs: build them (or everything) first, and cpack (and the install
 # target) package what is built instead of building the whole test suite and benchmarks first.
