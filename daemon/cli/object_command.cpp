@@ -141,8 +141,9 @@ void add_object_command(CLI::App& app, int* exit_code) {
   cmd->add_option("--instances", args->instances, "K: instances to report, best first")
       ->check(CLI::Range(1, 1000));
   cmd->add_option("--seed", args->seed, "random seed (the result depends only on it)");
-  add_vector_option(cmd, "--viewpoint", args->viewpoint,
-                    "sensor position X,Y,Z (or X Y Z), mm (optional; enables the free-space check)");
+  add_vector_option(
+      cmd, "--viewpoint", args->viewpoint,
+      "sensor position X,Y,Z (or X Y Z), mm (optional; enables the free-space check)");
   cmd->add_flag("--json", args->json, "print the result as JSON");
   cmd->callback([args, exit_code] { *exit_code = run(*args); });
 }
