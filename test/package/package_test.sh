@@ -3,8 +3,8 @@
 # what was installed: ExecStart is the installed rangefitd, --config, CYCLONEDDS_URI and
 # Documentation= name installed files, the configuration's scenes exist. Three roots:
 #   1. DESTDIR install of BUILD_DIR (its own prefix, the programs included);
-#   2. the Debian package `cpack -G DEB` makes from BUILD_DIR, unpacked with dpkg-deb
-#      (skipped, with a message, when dpkg-deb or dpkg-shlibdeps is missing);
+#   2. the Debian package `cpack -G DEB` makes from BUILD_DIR, installed by dpkg into a fresh
+#      root (and purged again); skipped, with a message, when dpkg-dev is missing;
 #   3. a configure-only tree with prefix /usr, installing the non-program files: the unit must
 #      run /usr/sbin/rangefitd and read /etc/rangefitd.
 # The unit is checked with `systemd-analyze verify` when it is available. rangefitd is never
@@ -107,8 +107,30 @@ if command -v dpkg-deb >/dev/null && command -v dpkg-shlibdeps >/dev/null; then
     for f in rangefitd.toml cyclonedds.xml; do
       grep -qx "$(confdir_of "$prefix")/$f" "$work/control/conffiles" || fail "$f is not a conffile"
     done
-    dpkg-deb --extract "$deb" "$work/deb-root"
-    check_root "$work/deb-root" "$prefix" yes
+    # Every dependency is a Debian package this host has installed, or one an installed package
+    # provides (libspdlog1.10 provides libspdlog1.10-fmt9): the host runs the binaries just built.
+    installed=$(dpkg-query -W -f='${db:Status-Abbrev} ${Package} ${Provides}\n' |
+      sed -n 's/^ii  //p' | sed 's/([^)]*)//g; s/:[a-z0-9]*//g' | tr ', ' '\n\n' | sed '/^$/d')
+    for dep in $(tr ',' '\n' <<<"$depends" | sed 's/ *(.*//; s/^ *//'); do
+      grep -qx -- "$dep" <<<"$installed" || fail "dependency $dep is not an installed Debian package"
+    done
+    # Installed by dpkg into a fresh root (an empty dpkg database; the dependencies are the
+    # host's, hence --force-depends): dpkg records the conffiles, and purge removes every file.
+    fresh=$work/fresh-root
+    mkdir -p "$fresh/var/lib/dpkg/info" "$fresh/var/lib/dpkg/updates"
+    touch "$fresh/var/lib/dpkg/status"
+    dpkg --root="$fresh" --log=/dev/null --force-depends -i "$deb" >"$work/dpkg.log" 2>&1 ||
+      { cat "$work/dpkg.log"; fail "dpkg -i into a fresh root failed"; }
+    status=$(dpkg-query --admindir="$fresh/var/lib/dpkg" -W -f='${Status}' rangefit)
+    [[ $status == "install ok installed" ]] || fail "dpkg status in the fresh root: $status"
+    dpkg-query --admindir="$fresh/var/lib/dpkg" -W -f='${Conffiles}\n' rangefit |
+      grep -q "$(confdir_of "$prefix")/rangefitd.toml" || fail "dpkg records no conffile"
+    check_root "$fresh" "$prefix" yes
+    dpkg --root="$fresh" --log=/dev/null --purge rangefit >>"$work/dpkg.log" 2>&1 ||
+      fail "dpkg --purge failed"
+    left=$(find "$fresh" -type f ! -path "$fresh/var/lib/dpkg/*" | head -n 5)
+    [[ -z $left ]] || fail "purge left files: $left"
+    echo "   dpkg -i into a fresh root, then --purge: clean"
   else
     fail "cpack made no $deb: $(ls "$work/deb")"
   fi
