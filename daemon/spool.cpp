@@ -94,7 +94,9 @@ bool Spool::write(const ScanRequest& request, const PointCloud& cloud, Detection
   std::error_code ec;
   try {
     fs::create_directories(tmp);
-    io::write_ply(tmp / "cloud.ply", cloud);
+    // Doubles: a replay must see the very cloud the detectors saw.
+    io::write_ply(tmp / "cloud.ply", cloud, io::PlyEncoding::kBinaryLittleEndian,
+                  io::Precision::kFloat64);
     if (!write_text(tmp / "request.json", to_json(request).dump(2)) ||
         !write_text(tmp / "result.json", to_json(result).dump(2))) {
       throw std::runtime_error("cannot write json");

@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "io/bounded_reader.hpp"
 #include "io/io_error.hpp"
@@ -117,6 +118,24 @@ std::vector<std::int32_t> checked_cells(const std::filesystem::path& file,
     cells[static_cast<std::size_t>(point)] = static_cast<std::int32_t>(cell);
   }
   return cells;
+}
+
+void check_precision(const std::filesystem::path& file, const PointCloud& cloud,
+                     Precision precision) {
+  if (precision != Precision::kFloat32) return;
+  constexpr double kMax = std::numeric_limits<float>::max();
+  auto check = [&](const std::vector<Eigen::Vector3d>& values, const char* what) {
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      for (int a = 0; a < 3; ++a) {
+        const double v = values[i][a];
+        if (!std::isfinite(v) || std::abs(v) <= kMax) continue;  // NaN and Inf convert exactly
+        throw IoError(file, "cannot write " + std::string(what) + " " + std::to_string(i) +
+                                " as float32: beyond its range (write float64)");
+      }
+    }
+  };
+  check(cloud.points, "point");
+  check(cloud.normals, "normal of point");
 }
 
 std::size_t max_grid_cells(std::size_t file_bytes) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "detect/point_cloud.hpp"
+#include "io/cloud_precision.hpp"
 
 namespace rangefit::io::detail {
 
@@ -31,6 +32,11 @@ std::optional<std::chrono::nanoseconds> join_stamp(double hi, double lo);
 // cells within range and each point in at most one cell); throws IoError naming `file` otherwise.
 // Returns the cell of each point (-1 when it is in none), empty for an unorganised cloud.
 std::vector<std::int32_t> checked_cells(const std::filesystem::path& file, const PointCloud& cloud);
+
+// Throws IoError naming `file` when `precision` is kFloat32 and a finite coordinate or normal
+// component is beyond float's range (converting it would be undefined, not infinite).
+void check_precision(const std::filesystem::path& file, const PointCloud& cloud,
+                     Precision precision);
 
 // Largest grid a file of `file_bytes` may declare: the index is allocated before the points are
 // read, so it is bounded by the file size (with a floor for sparse scans in small files).

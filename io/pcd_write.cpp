@@ -1,4 +1,4 @@
-// PCD writer: F 8 positions and normals, stamp words, organised layout as WIDTH x HEIGHT.
+// PCD writer: F 4 (or F 8) positions and normals, stamp words, organised layout as WIDTH x HEIGHT.
 
 #include <limits>
 #include <string>
@@ -11,8 +11,10 @@
 
 namespace rangefit::io {
 
-void write_pcd(const std::filesystem::path& path, const PointCloud& cloud, PcdEncoding encoding) {
+void write_pcd(const std::filesystem::path& path, const PointCloud& cloud, PcdEncoding encoding,
+               Precision precision) {
   const std::vector<std::int32_t> cells = detail::checked_cells(path, cloud);
+  detail::check_precision(path, cloud, precision);
   if (!cloud.frame_id.empty() && !detail::is_safe_frame_id(cloud.frame_id)) {
     throw IoError(path, "cannot write: frame_id " + detail::printable(cloud.frame_id) +
                             " is not one printable word");
@@ -29,10 +31,12 @@ void write_pcd(const std::filesystem::path& path, const PointCloud& cloud, PcdEn
   const std::size_t width = organised ? static_cast<std::size_t>(cloud.grid.cols) : cloud.size();
   const std::size_t height = organised ? static_cast<std::size_t>(cloud.grid.rows) : 1;
 
-  std::string fields = "x y z", sizes = "8 8 8", types = "F F F", counts = "1 1 1";
+  const bool f32 = precision == Precision::kFloat32;
+  const std::string real_sizes = f32 ? "4 4 4" : "8 8 8";
+  std::string fields = "x y z", sizes = real_sizes, types = "F F F", counts = "1 1 1";
   if (normals) {
     fields += " normal_x normal_y normal_z";
-    sizes += " 8 8 8";
+    sizes += " " + real_sizes;
     types += " F F F";
     counts += " 1 1 1";
   }
@@ -57,8 +61,14 @@ void write_pcd(const std::filesystem::path& path, const PointCloud& cloud, PcdEn
   out.reserve(out.size() + total * (ascii ? 80 : 56));
   const double nan = std::numeric_limits<double>::quiet_NaN();
   auto put = [&](double value) {
-    if (!ascii) return detail::append_raw(out, value, false);
-    detail::append_number(out, value);  // "nan" for empty cells, as PCL writes them
+    if (f32) {
+      const auto single = static_cast<float>(value);  // in range: check_precision
+      if (!ascii) return detail::append_raw(out, single, false);
+      detail::append_number(out, single);  // "nan" for empty cells, as PCL writes them
+    } else {
+      if (!ascii) return detail::append_raw(out, value, false);
+      detail::append_number(out, value);
+    }
     out += ' ';
   };
   for (std::size_t k = 0; k < total; ++k) {

@@ -13,11 +13,14 @@
 //   property int rangefit_cell          row * cols + col of each point, -1 for none
 //   property int rangefit_stamp_hi      per-point CLOCK_MONOTONIC stamp in ns, upper 32 bits
 //   property uint rangefit_stamp_lo     ... and lower 32 bits
-// Points are written as double (exact round trip); normals as double too.
+// Positions and normals are written as float by default (what PCL's point types and most viewers
+// hold; see cloud_precision.hpp), as double on request (exact round trip). Normals are nx ny nz,
+// the Stanford/Open3D/CloudCompare/MeshLab names.
 
 #include <filesystem>
 
 #include "detect/point_cloud.hpp"
+#include "io/cloud_precision.hpp"
 #include "io/cloud_read_report.hpp"
 #include "io/io_error.hpp"
 
@@ -28,8 +31,10 @@ enum class PlyEncoding { kAscii, kBinaryLittleEndian, kBinaryBigEndian };
 // Throws IoError when the file cannot be read or is malformed, truncated or hostile.
 PointCloud read_ply(const std::filesystem::path& path, CloudReadReport* report = nullptr);
 
-// Throws IoError when the cloud is inconsistent (see detail::checked_cells) or on write failure.
+// Throws IoError when the cloud is inconsistent (see detail::checked_cells), holds a value float
+// cannot (kFloat32) or on write failure.
 void write_ply(const std::filesystem::path& path, const PointCloud& cloud,
-               PlyEncoding encoding = PlyEncoding::kBinaryLittleEndian);
+               PlyEncoding encoding = PlyEncoding::kBinaryLittleEndian,
+               Precision precision = Precision::kFloat32);
 
 }  // namespace rangefit::io

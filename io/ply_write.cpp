@@ -1,5 +1,4 @@
-// PLY writer: double positions and normals (exact round trip), rangefit extras as documented in
-// ply.hpp.
+// PLY writer: float (or double) positions and normals, rangefit extras as documented in ply.hpp.
 
 #include <string>
 
@@ -11,8 +10,10 @@
 
 namespace rangefit::io {
 
-void write_ply(const std::filesystem::path& path, const PointCloud& cloud, PlyEncoding encoding) {
+void write_ply(const std::filesystem::path& path, const PointCloud& cloud, PlyEncoding encoding,
+               Precision precision) {
   const std::vector<std::int32_t> cells = detail::checked_cells(path, cloud);
+  detail::check_precision(path, cloud, precision);
   if (!cloud.frame_id.empty() && !detail::is_safe_frame_id(cloud.frame_id)) {
     throw IoError(path, "cannot write: frame_id " + detail::printable(cloud.frame_id) +
                             " is not one printable word");
@@ -35,8 +36,10 @@ void write_ply(const std::filesystem::path& path, const PointCloud& cloud, PlyEn
            std::to_string(cloud.grid.cols) + "\n";
   }
   out += "element vertex " + std::to_string(cloud.size()) + "\n";
-  out += "property double x\nproperty double y\nproperty double z\n";
-  if (normals) out += "property double nx\nproperty double ny\nproperty double nz\n";
+  const bool f32 = precision == Precision::kFloat32;
+  const std::string real = f32 ? "property float " : "property double ";
+  out += real + "x\n" + real + "y\n" + real + "z\n";
+  if (normals) out += real + "nx\n" + real + "ny\n" + real + "nz\n";
   if (stamps) {
     out += "property int " + std::string(detail::kStampHi) + "\nproperty uint " +
            std::string(detail::kStampLo) + "\n";
@@ -48,8 +51,14 @@ void write_ply(const std::filesystem::path& path, const PointCloud& cloud, PlyEn
   const bool big = encoding == PlyEncoding::kBinaryBigEndian;
   out.reserve(out.size() + cloud.size() * (ascii ? 80 : 60));
   auto put_double = [&](double value, bool last) {
-    if (!ascii) return detail::append_raw(out, value, big);
-    detail::append_number(out, value);
+    if (f32) {
+      const auto single = static_cast<float>(value);  // in range: check_precision
+      if (!ascii) return detail::append_raw(out, single, big);
+      detail::append_number(out, single);
+    } else {
+      if (!ascii) return detail::append_raw(out, value, big);
+      detail::append_number(out, value);
+    }
     out += last ? '\n' : ' ';
   };
   auto put_int = [&](std::int64_t value, bool last) {

@@ -1,5 +1,6 @@
 #pragma once
-// Shortest text that reads back to the same double (std::to_chars), for the ASCII writers.
+// Shortest text that reads back to the same double or float (std::to_chars), for the ASCII
+// writers.
 
 #include <charconv>
 #include <cstdint>
@@ -8,6 +9,12 @@
 namespace rangefit::io::detail {
 
 inline void append_number(std::string& out, double value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  out.append(buffer, result.ptr);
+}
+
+inline void append_number(std::string& out, float value) {
   char buffer[32];
   const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
   out.append(buffer, result.ptr);

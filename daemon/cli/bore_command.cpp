@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "daemon/cli/cli_options.hpp"
 #include "daemon/cli/commands.hpp"
 #include "daemon/cli/json_util.hpp"
 #include "detect/bore_detector.hpp"
@@ -190,9 +191,9 @@ void add_bore_command(CLI::App& app, int* exit_code) {
       "bore",
       "Find a bore hole in a scan from its CAD prior (thesis ch. 4) and print entrance, axis "
       "and radius. Units: mm. Exit 0 found, 2 not found, 1 bad input.");
-  cmd->add_option("--cloud", args->cloud, "Scan file, .ply or .pcd (points in mm)")
+  cmd->add_option("--cloud", args->cloud, "Scan file, .ply or .pcd (points in mm); - reads stdin")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(cloud_input());
   cmd->add_option("--cad-entrance", args->entrance,
                   "Expected bore entrance X,Y,Z in the scan's frame, mm")
       ->required();

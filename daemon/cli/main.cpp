@@ -9,6 +9,7 @@ int main(int argc, char** argv) {
       "rangefit - find bore holes and objects in range scans by fitting geometric models.\n"
       "Units: millimetres and radians. Exit codes: 0 found, 2 not found, 1 bad input."};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("rangefit ") + RANGEFIT_VERSION);
   int exit_code = rangefit::cli::kExitOk;
   // Subcommands (one file each in daemon/cli/):
   rangefit::cli::add_bore_command(app, &exit_code);

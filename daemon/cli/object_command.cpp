@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "daemon/cli/cli_options.hpp"
 #include "daemon/cli/commands.hpp"
 #include "detect/object_detector.hpp"
 #include "io/cloud_io.hpp"
@@ -146,9 +147,9 @@ void add_object_command(CLI::App& app, int* exit_code) {
   auto args = std::make_shared<ObjectArgs>();
   CLI::App* cmd = app.add_subcommand(
       "object", "Find a superquadric object model in a single-view scan (thesis ch. 5).");
-  cmd->add_option("--cloud", args->cloud, "scene point cloud (PLY or PCD), mm")
+  cmd->add_option("--cloud", args->cloud, "scene point cloud (PLY or PCD), mm; - reads stdin")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(cloud_input());
   cmd->add_option("--model", args->model, "object model file (TOML, see data/models)")
       ->required()
       ->check(CLI::ExistingFile);
@@ -161,9 +162,9 @@ void add_object_command(CLI::App& app, int* exit_code) {
   cmd->add_option("--instances", args->instances, "K: instances to report, best first")
       ->check(CLI::Range(1, 1000));
   cmd->add_option("--seed", args->seed, "random seed (the result depends only on it)");
-  cmd->add_option("--viewpoint", args->viewpoint,
-                  "sensor position x y z, mm (optional; enables the free-space check)")
-      ->expected(3);
+  add_vector_option(
+      cmd, "--viewpoint", args->viewpoint,
+      "sensor position X,Y,Z (or X Y Z), mm (optional; enables the free-space check)");
   cmd->add_flag("--json", args->json, "print the result as JSON");
   cmd->callback([args, exit_code] { *exit_code = run(*args); });
 }

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,9 +26,10 @@ namespace {
 using std::chrono::milliseconds;
 
 struct SimulateArgs {
-  std::string scene, sensor, out, truth;
+  std::string scene, sensor, out, truth, format;
   std::uint64_t seed = 1;
   bool exact = false;
+  bool double_precision = false;
 };
 
 nlohmann::json pose_json(const Eigen::Isometry3d& T) {
@@ -155,7 +157,17 @@ int run(const SimulateArgs& a) {
   // Fusion works in the sensor's own world frame; the cloud is written in the scene's.
   for (auto& p : scan.cloud.points) p = T_scene_world * p;
   for (auto& n : scan.cloud.normals) n = T_scene_world.linear() * n;
-  io::write_cloud(a.out, scan.cloud);
+  const auto precision = a.double_precision ? io::Precision::kFloat64 : io::Precision::kFloat32;
+  std::optional<io::CloudFormat> format;
+  if (!a.format.empty()) format = a.format == "pcd" ? io::CloudFormat::kPcd : io::CloudFormat::kPly;
+  io::write_cloud(a.out, scan.cloud, precision, format);
+  // With the cloud on stdout, the summary goes to stderr; and no truth file unless asked for.
+  const bool piped = io::is_stdio(a.out);
+  std::ostream& summary = piped ? std::cerr : std::cout;
+  if (a.truth.empty()) {
+    summary << "wrote " << scan.cloud.size() << " points to " << (piped ? "stdout" : a.out) << "\n";
+    return kExitOk;
+  }
 
   nlohmann::json truth;
   truth["scene"] = a.scene;
@@ -188,8 +200,8 @@ int run(const SimulateArgs& a) {
     std::cerr << "rangefit simulate: cannot write " << a.truth << "\n";
     return kExitBadInput;
   }
-  std::cout << "wrote " << scan.cloud.size() << " points to " << a.out << ", ground truth to "
-            << a.truth << "\n";
+  summary << "wrote " << scan.cloud.size() << " points to " << (piped ? "stdout" : a.out)
+          << ", ground truth to " << a.truth << "\n";
   return kExitOk;
 }
 
@@ -208,11 +220,18 @@ void add_simulate_command(CLI::App& app, int* exit_code) {
       ->required()
       ->check(CLI::IsMember({"css", "stripe", "pantilt"}));
   cmd->add_option("--seed", args->seed, "seed of all noise and faults");
-  cmd->add_option("--out", args->out, "cloud file to write (.ply, .pcd, ...)")->required();
-  cmd->add_option("--truth", args->truth, "ground-truth JSON to write");
+  cmd->add_option("--out", args->out,
+                  "cloud file to write (.ply or .pcd; - writes binary PLY to stdout)")
+      ->required();
+  cmd->add_option("--format", args->format, "ply | pcd: overrides the extension (with --out -)")
+      ->check(CLI::IsMember({"ply", "pcd"}));
+  cmd->add_flag("--double", args->double_precision,
+                "write x y z and normals as float64 (default float32, what PCL and viewers read)");
+  cmd->add_option("--truth", args->truth,
+                  "ground-truth JSON to write (default OUT.truth.json; none with --out -)");
   cmd->add_flag("--exact", args->exact, "no noise and no chip quantisation");
   cmd->callback([args, exit_code] {
-    if (args->truth.empty()) args->truth = args->out + ".truth.json";
+    if (args->truth.empty() && !io::is_stdio(args->out)) args->truth = args->out + ".truth.json";
     try {
       *exit_code = run(*args);
     } catch (const std::exception& e) {

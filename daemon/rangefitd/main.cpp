@@ -37,27 +37,65 @@ void setup_logging(const std::string& level) {
   spdlog::set_level(spdlog::level::from_str(level));
 }
 
-int usage() {
-  std::cerr << "usage: rangefitd --config FILE\n"
-               "  Runs the rangefit cell service (see systemd/rangefitd.toml for the config).\n";
-  return 2;
+void usage(std::ostream& out) {
+  out << "usage: rangefitd --config FILE\n"
+         "       rangefitd --help | --version\n"
+         "  Runs the rangefit cell service: scans on request, detects bore holes and objects and\n"
+         "  publishes the results over DDS. FILE is its TOML configuration (installed sample:\n"
+         "  " RANGEFITD_CONFIG
+         "; every field is documented there).\n"
+         "  -c, --config FILE  configuration to run with (re-read on SIGHUP)\n"
+         "  -h, --help         print this text and exit\n"
+         "  -V, --version      print the version and exit\n"
+         "Exit codes: 0 stopped by SIGTERM/SIGINT, 1 bad configuration or start-up failure,\n"
+         "2 bad command line.\n";
+}
+
+// Command-line outcome: run with config_path, or exit with `exit_code` right away.
+struct CommandLine {
+  std::string config_path;
+  int exit_code = -1;  // >= 0: exit with it
+};
+
+CommandLine parse_command_line(int argc, char** argv) {
+  CommandLine cl;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") {
+      usage(std::cout);
+      return {"", 0};
+    }
+    if (arg == "--version" || arg == "-V") {
+      std::cout << "rangefitd " RANGEFIT_VERSION "\n";
+      return {"", 0};
+    }
+    if (arg == "--config" || arg == "-c") {
+      if (i + 1 == argc) {
+        std::cerr << "rangefitd: " << arg << " needs a FILE\n";
+        return {"", 2};
+      }
+      cl.config_path = argv[++i];
+    } else if (arg.starts_with("--config=")) {
+      cl.config_path = arg.substr(9);
+    } else {
+      std::cerr << "rangefitd: unexpected argument '" << arg << "'\n";
+      cl.config_path.clear();
+      break;
+    }
+  }
+  if (cl.config_path.empty()) {
+    usage(std::cerr);
+    cl.exit_code = 2;
+  }
+  return cl;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string config_path;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if ((arg == "--config" || arg == "-c") && i + 1 < argc) {
-      config_path = argv[++i];
-    } else if (arg.starts_with("--config=")) {
-      config_path = arg.substr(9);
-    } else {
-      return usage();
-    }
-  }
-  if (config_path.empty()) return usage();
+  const CommandLine command_line = parse_command_line(argc, argv);
+  if (command_line.exit_code >= 0) return command_line.exit_code;
+  const std::string& config_path = command_line.config_path;
 
   // Block before any thread exists so every thread inherits the mask.
   sigset_t signals;

@@ -18,7 +18,7 @@ TEST(CloudIo, DispatchesOnExtensionIgnoringCase) {
   const PointCloud cloud = test::organised_cloud();
   for (const char* name : {"a.ply", "b.PLY", "c.pcd", "d.Pcd"}) {
     const auto file = dir.path(name);
-    write_cloud(file, cloud);
+    write_cloud(file, cloud, Precision::kFloat64);
     CloudReadReport report;
     const PointCloud back = read_cloud(file, &report);
     EXPECT_EQ(back.points, cloud.points) << name;

@@ -53,7 +53,7 @@ TEST_P(PcdRoundTrip, KeepsPointsNormalsStampsGridAndFrame) {
   TempDir dir;
   const PointCloud cloud = test::organised_cloud();
   const auto file = dir.path("scan.pcd");
-  write_pcd(file, cloud, GetParam());
+  write_pcd(file, cloud, GetParam(), Precision::kFloat64);
   CloudReadReport report;
   const PointCloud back = read_pcd(file, &report);
   EXPECT_EQ(back.points, cloud.points);
@@ -82,7 +82,7 @@ TEST_P(PcdRoundTrip, UnorganisedCloudStaysUnorganised) {
   PointCloud cloud;
   cloud.points = {{1, 2, 3}, {-4.25, 5e-7, 6e8}, {0, 0, -0.0}};
   const auto file = dir.path("plain.pcd");
-  write_pcd(file, cloud, GetParam());
+  write_pcd(file, cloud, GetParam(), Precision::kFloat64);
   const PointCloud back = read_pcd(file);
   EXPECT_EQ(back.points, cloud.points);
   EXPECT_FALSE(back.organised());

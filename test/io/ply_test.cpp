@@ -32,7 +32,7 @@ TEST_P(PlyRoundTrip, KeepsPointsNormalsStampsGridAndFrame) {
   TempDir dir;
   const PointCloud cloud = test::organised_cloud();
   const auto file = dir.path("scan.ply");
-  write_ply(file, cloud, GetParam());
+  write_ply(file, cloud, GetParam(), Precision::kFloat64);
   CloudReadReport report;
   const PointCloud back = read_ply(file, &report);
   EXPECT_EQ(back.points, cloud.points);
@@ -62,7 +62,7 @@ TEST_P(PlyRoundTrip, PlainCloudHasNoExtras) {
   PointCloud cloud;
   cloud.points = {{1, 2, 3}, {-4.25, 5e-7, 6e8}};
   const auto file = dir.path("plain.ply");
-  write_ply(file, cloud, GetParam());
+  write_ply(file, cloud, GetParam(), Precision::kFloat64);
   const PointCloud back = read_ply(file);
   EXPECT_EQ(back.points, cloud.points);
   EXPECT_FALSE(back.has_normals());

@@ -1,0 +1,81 @@
+# Installation layout and the Debian package. Everything a running rangefitd reads is generated
+# from GNUInstallDirs, so the unit, the sample configuration and the files they name agree for
+# any prefix: /usr/local (the default; config in /usr/local/etc/rangefitd) and /usr (a package;
+# config in /etc/rangefitd, because GNUInstallDirs maps the /usr prefix's sysconfdir to /etc).
+#
+#   cmake -S . -B build -DCMAKE_INSTALL_PREFIX=/usr
+#   cmake --build build -j2 --target rangefit rangefitd
+#   cd build && cpack -G DEB        # rangefit_<version>_amd64.deb
+#
+# Install components: the programs and the message definitions (share/rangefit/idl and
+# share/rangefit/rangefit_msgs, daemon/CMakeLists.txt) are "Unspecified" (CMake's default); unit,
+# configuration, data and documents are "files", which installs without a build (the packaging
+# test checks a /usr layout that way).
+
+set(RANGEFITD_EXE ${CMAKE_INSTALL_FULL_SBINDIR}/rangefitd)
+set(RANGEFITD_CONFDIR ${CMAKE_INSTALL_FULL_SYSCONFDIR}/rangefitd)
+set(RANGEFITD_CONFIG ${RANGEFITD_CONFDIR}/rangefitd.toml)
+set(RANGEFIT_SHARE_DIR ${CMAKE_INSTALL_DATADIR}/rangefit)
+set(RANGEFIT_SCENES_DIR ${CMAKE_INSTALL_FULL_DATADIR}/rangefit/scenes)
+set(RANGEFIT_DOC_FILE ${CMAKE_INSTALL_FULL_DOCDIR}/README.md)
+# systemd reads units from <prefix>/lib/systemd/system for both /usr and /usr/local (not libdir,
+# which is lib/x86_64-linux-gnu on Debian).
+set(RANGEFIT_SYSTEMD_UNIT_DIR lib/systemd/system CACHE STRING
+    "Directory of the systemd unit, relative to the prefix or absolute")
+
+# What the programs print: the version, and where the installed sample configuration is.
+foreach(program rangefit rangefitd)
+  if(TARGET ${program})
+    target_compile_definitions(${program} PRIVATE RANGEFIT_VERSION="${PROJECT_VERSION}"
+                                                  RANGEFITD_CONFIG="${RANGEFITD_CONFIG}")
+  endif()
+endforeach()
+
+set(generated ${PROJECT_BINARY_DIR}/systemd)
+configure_file(${PROJECT_SOURCE_DIR}/systemd/rangefitd.service.in ${generated}/rangefitd.service
+               @ONLY)
+configure_file(${PROJECT_SOURCE_DIR}/systemd/rangefitd.toml ${generated}/rangefitd.toml @ONLY)
+
+install(FILES ${generated}/rangefitd.service DESTINATION ${RANGEFIT_SYSTEMD_UNIT_DIR}
+        COMPONENT files)
+install(FILES ${generated}/rangefitd.toml ${PROJECT_SOURCE_DIR}/systemd/cyclonedds.xml
+        DESTINATION ${RANGEFITD_CONFDIR} COMPONENT files)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/data/scenes/ DESTINATION ${RANGEFIT_SHARE_DIR}/scenes
+        COMPONENT files)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/data/models/ DESTINATION ${RANGEFIT_SHARE_DIR}/models
+        COMPONENT files)
+install(FILES ${PROJECT_SOURCE_DIR}/README.md ${PROJECT_SOURCE_DIR}/CONTRIBUTING.md
+        DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT files)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs
+        COMPONENT files)
+
+# The Debian package: `cpack -G DEB` in the build directory. It installs to the configured
+# prefix, so the package holds exactly what the unit names.
+set(CPACK_PACKAGE_NAME rangefit)
+set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
+set(CPACK_PACKAGE_VENDOR "rangefit")
+set(CPACK_PACKAGE_CONTACT "rangefit maintainers <rangefit@localhost>")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
+    "part detection by fitting geometric models to laser range scans (rangefitd + rangefit)")
+string(CONCAT CPACK_PACKAGE_DESCRIPTION
+       "rangefitd runs a robot cell's range sensors as a systemd service, detects bore holes and\n"
+       "objects in the fused point clouds and publishes the poses over ROS 2-compatible DDS;\n"
+       "rangefit runs the same detectors offline on PLY/PCD files, simulates and replays scans.")
+set(CPACK_PACKAGING_INSTALL_PREFIX ${CMAKE_INSTALL_PREFIX})
+# The package holds two programs: build them (or everything) first, and cpack (and the install
+# target) package what is built instead of building the whole test suite and benchmarks first.
+set(CMAKE_SKIP_INSTALL_ALL_DEPENDENCY ON)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # rangefit_<version>_<arch>.deb
+set(CPACK_DEBIAN_PACKAGE_SECTION science)
+set(CPACK_DEBIAN_PACKAGE_HOMEPAGE "file://${RANGEFIT_DOC_FILE}")
+# Run-time dependencies from the binaries' shared libraries (dpkg-shlibdeps: Debian packages).
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+# dpkg keeps an administrator's edits of these on upgrade and removes them only on purge.
+set(conffiles ${PROJECT_BINARY_DIR}/debian/conffiles)
+file(WRITE ${conffiles} "${RANGEFITD_CONFIG}\n${RANGEFITD_CONFDIR}/cyclonedds.xml\n")
+set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA ${conffiles})
+if(NOT CMAKE_INSTALL_PREFIX STREQUAL "/usr")
+  message(STATUS "rangefit: install prefix ${CMAKE_INSTALL_PREFIX}; a Debian package normally "
+                 "uses -DCMAKE_INSTALL_PREFIX=/usr (configuration in /etc/rangefitd)")
+endif()
+include(CPack)
