@@ -10,6 +10,7 @@ packages=(
   python3-pymodbus python3-serial-asyncio mbpoll  # independent Modbus peers for the drivers tests
   openssl  # scripts/make_dds_security.sh: the DDS Security test's CA and signed documents
   dpkg-dev file  # cpack -G DEB: dpkg-shlibdeps (and file) fill the package's Depends
+  ccache  # .ci/run: compile results kept outside the clone
 )
 
 missing=()
