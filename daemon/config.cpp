@@ -5,13 +5,13 @@
 
 #include <toml++/toml.h>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 
 #include "daemon/driver_configs.hpp"
+#include "io/toml_file.hpp"
 
 namespace rangefit::daemon {
 namespace {
@@ -446,12 +446,10 @@ ConfigResult parse_config(std::string_view toml_text, std::string_view source_na
                           const std::filesystem::path& base_dir) {
   ConfigResult result;
   try {
-    const toml::table root = toml::parse(toml_text, source_name);
+    const toml::table root = io::parse_toml(toml_text, source_name);
     result.config = read_root(root, source_name, base_dir);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream s;
-    s << source_name << ":" << e.source().begin.line << ": " << e.description();
-    result.error = s.str();
+  } catch (const io::TomlError& e) {
+    result.error = e.what();
   } catch (const FieldError& e) {
     result.error = std::string(source_name) +
                    (e.line > 0 ? ":" + std::to_string(e.line) : std::string()) + ": " + e.what();
@@ -462,11 +460,13 @@ ConfigResult parse_config(std::string_view toml_text, std::string_view source_na
 }
 
 ConfigResult load_config(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return {std::nullopt, path.string() + ": cannot open"};
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_config(text.str(), path.string(), path.parent_path());
+  std::string text;
+  try {
+    text = io::read_toml_file(path);
+  } catch (const io::TomlError& e) {
+    return {std::nullopt, e.what()};
+  }
+  return parse_config(text, path.string(), path.parent_path());
 }
 
 }  // namespace rangefit::daemon

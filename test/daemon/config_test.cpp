@@ -193,6 +193,22 @@ TEST(DaemonConfig, SameNodeOnAnotherInterfaceOrOnASimulatedDeviceIsFine) {
   EXPECT_TRUE(simulated.config) << simulated.error;
 }
 
+TEST(DaemonConfig, HostileFilesAreErrorsNotCrashes) {
+  // Each used to crash rangefitd at start-up or on SIGHUP: stack overflow in toml++ on a key of
+  // 40,000 dotted segments, bad_alloc reading /dev/zero; a directory started it with defaults.
+  std::string key = "a";
+  for (int i = 1; i < 40000; ++i) key += ".a";
+  EXPECT_EQ(parse_config(key + " = 1\n", "t.toml").error,
+            "t.toml:1: more than 32 dotted key segments");
+  EXPECT_EQ(load_config("/dev/zero").error,
+            "/dev/zero: is not a regular file (a device, FIFO or socket)");
+  const auto dir = load_config(RANGEFIT_SOURCE_DIR);
+  EXPECT_FALSE(dir.config);
+  EXPECT_NE(dir.error.find("is a directory"), std::string::npos) << dir.error;
+  EXPECT_EQ(parse_config("\xc7\xb6 ", "t.toml").error,
+            "t.toml:1: non-ASCII character outside a string or comment");
+}
+
 TEST(DaemonConfig, MissingFileIsReportedWithItsPath) {
   const auto r = load_config("/nonexistent/rangefitd.toml");
   EXPECT_FALSE(r.config);
