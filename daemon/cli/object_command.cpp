@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "daemon/cli/commands.hpp"
+#include "daemon/cli/option_checks.hpp"
 #include "detect/object_detector.hpp"
 #include "io/cloud_io.hpp"
 #include "io/object_model_file.hpp"
@@ -142,7 +143,8 @@ void add_object_command(CLI::App& app, int* exit_code) {
   cmd->add_option("--seed", args->seed, "random seed (the result depends only on it)");
   cmd->add_option("--viewpoint", args->viewpoint,
                   "sensor position x y z, mm (optional; enables the free-space check)")
-      ->expected(3);
+      ->expected(3)
+      ->check(finite_range(-kMaxCoordinateMm, kMaxCoordinateMm));
   cmd->add_flag("--json", args->json, "print the result as JSON");
   cmd->callback([args, exit_code] { *exit_code = run(*args); });
 }
