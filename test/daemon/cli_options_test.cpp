@@ -64,6 +64,14 @@ TEST(CliOptions, ObjectRejectsANonFiniteOrAbsurdViewpoint) {
     EXPECT_NE(r.output.find("--viewpoint: value"), std::string::npos) << v << "\n" << r.output;
   }
 }
+TEST(CliOptions, WatchRejectsANonFiniteDuration) {
+  // Before, seconds * 1000 went through an undefined double-to-long conversion.
+  for (const std::string v : {"nan", "1e300", "-1"}) {
+    const CliRun r = run_cli("watch --seconds " + v);
+    EXPECT_EQ(r.exit_code, 1) << v << "\n" << r.output;
+    EXPECT_NE(r.output.find("--seconds: value " + v), std::string::npos) << r.output;
+  }
+}
 #endif
 
 }  // namespace
