@@ -75,33 +75,72 @@ class PreScan {
       if (c == '\n') {
         ++line_;
         chain_ = 1;
+        prev_ = '\n';
         ++pos_;
-      } else if (c == '#') {
+        continue;
+      }
+      if (c == ' ' || c == '\t') {
+        ++pos_;
+        continue;
+      }
+      if (c == '#') {
         while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
-      } else if (c == '"' || c == '\'') {
+        continue;
+      }
+      if ((c == '"' || c == '\'') && starts_token()) {
         skip_string(c);  // a quoted key segment keeps the dotted chain going
-      } else if (c == '.') {
+        prev_ = c;
+        continue;
+      }
+      // Anything else, including a quote inside a bare word: toml++ scans up to ~127 characters
+      // of a bare value before it decides what it is, testing each for whitespace.
+      if (c == '.') {
         if (++chain_ > kMaxTomlKeySegments) {
           fail("more than " + std::to_string(kMaxTomlKeySegments) + " dotted key segments");
         }
-        ++pos_;
       } else if (c == '[' || c == '{') {
         if (++depth_ > kMaxTomlDepth) {
           fail("nested deeper than " + std::to_string(kMaxTomlDepth) + " brackets or braces");
         }
         chain_ = 1;
-        ++pos_;
       } else if (c == ']' || c == '}') {
         if (depth_ > 0) --depth_;  // unbalanced input is toml++'s to report
         chain_ = 1;
-        ++pos_;
       } else if (static_cast<unsigned char>(c) >= 0x80) {
         fail("non-ASCII character outside a string or comment");
-      } else {
-        if (!bare_key_char(c) && c != ' ' && c != '\t') chain_ = 1;
-        ++pos_;
+      } else if (!bare_key_char(c) && c != '"' && c != '\'') {
+        chain_ = 1;
       }
+      prev_ = c;
+      ++pos_;
     }
+  }
+
+  // Where a TOML string may begin: after '=', '[', '{', ',' or '.' (a quoted key segment), or
+  // first on a line. Elsewhere a quote is part of a (malformed) bare value.
+  bool starts_token() const {
+    return prev_ == '\n' || prev_ == '=' || prev_ == '[' || prev_ == '{' || prev_ == ',' ||
+           prev_ == '.';
+  }
+
+  // toml++ 3.3 tests the character after a backslash, and after a line-ending backslash the
+  // first one past the whitespace, with is_whitespace(), whose table reaches TOML_UNREACHABLE
+  // for most code points in U+00A1..U+0499 and U+FC06..U+FEFE. None of them may stand there.
+  void check_after_backslash(bool multi) {
+    std::size_t i = pos_ + 1;
+    if (i < text_.size() && static_cast<unsigned char>(text_[i]) >= 0x80)
+      fail("non-ASCII character after a backslash in a string");
+    if (!multi) return;
+    while (i < text_.size() && (text_[i] == ' ' || text_[i] == '\t')) ++i;
+    if (i >= text_.size() || (text_[i] != '\n' && text_[i] != '\r')) return;
+    while (i < text_.size() &&
+           (text_[i] == ' ' || text_[i] == '\t' || text_[i] == '\n' || text_[i] == '\r')) {
+      if (text_[i] == '\n') ++line_;
+      ++i;
+    }
+    if (i < text_.size() && static_cast<unsigned char>(text_[i]) >= 0x80)
+      fail("non-ASCII character after a line-ending backslash in a string");
+    pos_ = i;
   }
 
   // From an opening quote to past the closing one; basic strings know backslash escapes.
@@ -111,8 +150,12 @@ class PreScan {
     while (pos_ < text_.size()) {
       const char c = text_[pos_];
       if (c == '\\' && quote == '"') {
-        if (pos_ + 1 < text_.size() && text_[pos_ + 1] == '\n') ++line_;
-        pos_ += 2;
+        const std::size_t before = pos_;
+        check_after_backslash(multi);
+        if (pos_ == before) {  // an ordinary escape: skip the backslash and the next byte
+          if (pos_ + 1 < text_.size() && text_[pos_ + 1] == '\n') ++line_;
+          pos_ += 2;
+        }
       } else if (c == '\n') {
         if (!multi) return;  // unterminated: toml++ reports it
         ++line_;
@@ -137,6 +180,7 @@ class PreScan {
   std::uint32_t line_ = 1;
   std::size_t depth_ = 0;
   std::size_t chain_ = 1;  // segments of the dotted key (or number) being read
+  char prev_ = '\n';       // last character outside strings that is not a space or tab
 };
 
 }  // namespace

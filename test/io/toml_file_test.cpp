@@ -71,6 +71,21 @@ TEST(TomlFile, RefusesInvalidUtf8AndNonAsciiOutsideStrings) {
   EXPECT_EQ(error_of("x = \"\xc7\xb6 \" # \xe2\x82\xac\n"), "");
 }
 
+TEST(TomlFile, RefusesNonAsciiWhereTomlPlusPlusTestsItForWhitespace) {
+  // toml++ scans a bare value up to ~127 characters, quotes included, testing each for
+  // whitespace: U+FEF5 there reached TOML_UNREACHABLE (found by test/fuzz/toml_fuzz).
+  EXPECT_EQ(error_of("x = ++fm'''\xef\xbb\xb5'''\n"),
+            "f.toml:1: non-ASCII character outside a string or comment");
+  EXPECT_EQ(error_of("x = \"a\\\xc3\xa4\"\n"),
+            "f.toml:1: non-ASCII character after a backslash in a string");
+  EXPECT_EQ(error_of("x = \"\"\"a\\  \n\n   \xc3\xa4\"\"\"\n"),
+            "f.toml:3: non-ASCII character after a line-ending backslash in a string");
+  // Everywhere else in strings and comments non-ASCII text is fine.
+  EXPECT_EQ(error_of("\"k\xc3\xa4\" = [\"\xc3\xa4\", '\xc3\xb6']  # \xc3\xbc\n"
+                     "y = \"\"\"\n\xc3\xa4\\n\"\"\"\n[a.\"\xc3\xa4\"]\n"),
+            "");
+}
+
 TEST(TomlFile, ReportsTomlPlusPlusErrorsWithFileAndLine) {
   const std::string e = error_of("x = 1\ny = \n");
   EXPECT_EQ(e.rfind("f.toml:2: ", 0), 0u) << e;
