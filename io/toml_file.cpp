@@ -76,6 +76,7 @@ class PreScan {
         ++line_;
         chain_ = 1;
         prev_ = '\n';
+        if (open_.empty()) expect_key_ = true;  // a new statement (arrays may span lines)
         ++pos_;
         continue;
       }
@@ -99,12 +100,25 @@ class PreScan {
           fail("more than " + std::to_string(kMaxTomlKeySegments) + " dotted key segments");
         }
       } else if (c == '[' || c == '{') {
-        if (++depth_ > kMaxTomlDepth) {
+        if (open_.size() >= kMaxTomlDepth) {
           fail("nested deeper than " + std::to_string(kMaxTomlDepth) + " brackets or braces");
         }
+        // A table header ([a] or [[a]]) holds a key; an array holds values; an inline table
+        // holds keys again.
+        const bool header =
+            c == '[' && expect_key_ && (open_.empty() || (prev_ == '[' && open_.back() == 'h'));
+        open_.push_back(c == '{' ? '{' : header ? 'h' : '[');
+        expect_key_ = c == '{' || header;
         chain_ = 1;
       } else if (c == ']' || c == '}') {
-        if (depth_ > 0) --depth_;  // unbalanced input is toml++'s to report
+        if (!open_.empty()) open_.pop_back();  // unbalanced input is toml++'s to report
+        expect_key_ = false;
+        chain_ = 1;
+      } else if (c == '=') {
+        expect_key_ = false;
+        chain_ = 1;
+      } else if (c == ',') {
+        expect_key_ = !open_.empty() && open_.back() == '{';
         chain_ = 1;
       } else if (static_cast<unsigned char>(c) >= 0x80) {
         fail("non-ASCII character outside a string or comment");
@@ -116,11 +130,11 @@ class PreScan {
     }
   }
 
-  // Where a TOML string may begin: after '=', '[', '{', ',' or '.' (a quoted key segment), or
-  // first on a line. Elsewhere a quote is part of a (malformed) bare value.
+  // Where a TOML string may begin: after '=', '[', '{' or ',', first on a line, or after the '.'
+  // of a dotted key. Elsewhere (0.'x' in a value) a quote is part of a malformed bare value.
   bool starts_token() const {
     return prev_ == '\n' || prev_ == '=' || prev_ == '[' || prev_ == '{' || prev_ == ',' ||
-           prev_ == '.';
+           (prev_ == '.' && expect_key_);
   }
 
   // toml++ 3.3 tests the character after a backslash, and after a line-ending backslash the
@@ -178,9 +192,10 @@ class PreScan {
   std::string_view text_;
   std::size_t pos_ = 0;
   std::uint32_t line_ = 1;
-  std::size_t depth_ = 0;
-  std::size_t chain_ = 1;  // segments of the dotted key (or number) being read
-  char prev_ = '\n';       // last character outside strings that is not a space or tab
+  std::string open_;        // the open '[' (array), 'h' (table header) and '{', innermost last
+  bool expect_key_ = true;  // a key may come next, not a value
+  std::size_t chain_ = 1;   // segments of the dotted key (or number) being read
+  char prev_ = '\n';        // last character outside strings that is not a space or tab
 };
 
 }  // namespace

@@ -76,6 +76,10 @@ TEST(TomlFile, RefusesNonAsciiWhereTomlPlusPlusTestsItForWhitespace) {
   // whitespace: U+FEF5 there reached TOML_UNREACHABLE (found by test/fuzz/toml_fuzz).
   EXPECT_EQ(error_of("x = ++fm'''\xef\xbb\xb5'''\n"),
             "f.toml:1: non-ASCII character outside a string or comment");
+  EXPECT_EQ(error_of("taper = [0.0, 0.'\xc7\xb6 0]\n"),
+            "f.toml:1: non-ASCII character outside a string or comment");
+  EXPECT_EQ(error_of("taper = [\n  0.0,\n  0.'\xc7\xb6 0]\n"),
+            "f.toml:3: non-ASCII character outside a string or comment");
   EXPECT_EQ(error_of("x = \"a\\\xc3\xa4\"\n"),
             "f.toml:1: non-ASCII character after a backslash in a string");
   EXPECT_EQ(error_of("x = \"\"\"a\\  \n\n   \xc3\xa4\"\"\"\n"),
