@@ -72,6 +72,11 @@ class PreScan {
   void scan() {
     while (pos_ < text_.size()) {
       const char c = text_[pos_];
+      // toml++ scans a bare value (a number, a date, true, or garbage) up to the first of these,
+      // testing each character for whitespace; quotes and '=' inside it are no tokens.
+      const bool terminator =
+          c == ' ' || c == '\t' || c == '\n' || c == ']' || c == '}' || c == ',' || c == '#';
+      if (terminator) in_bare_ = false;
       if (c == '\n') {
         ++line_;
         chain_ = 1;
@@ -88,7 +93,7 @@ class PreScan {
         while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
         continue;
       }
-      if ((c == '"' || c == '\'') && starts_token()) {
+      if ((c == '"' || c == '\'') && !in_bare_ && starts_token()) {
         skip_string(c);  // a quoted key segment keeps the dotted chain going
         prev_ = c;
         continue;
@@ -125,6 +130,7 @@ class PreScan {
       } else if (!bare_key_char(c) && c != '"' && c != '\'') {
         chain_ = 1;
       }
+      if (!expect_key_ && !terminator && c != '[' && c != '{') in_bare_ = true;
       prev_ = c;
       ++pos_;
     }
@@ -146,6 +152,8 @@ class PreScan {
       fail("non-ASCII character after a backslash in a string");
     if (!multi) return;
     while (i < text_.size() && (text_[i] == ' ' || text_[i] == '\t')) ++i;
+    if (i < text_.size() && static_cast<unsigned char>(text_[i]) >= 0x80)
+      fail("non-ASCII character after a line-ending backslash in a string");
     if (i >= text_.size() || (text_[i] != '\n' && text_[i] != '\r')) return;
     while (i < text_.size() &&
            (text_[i] == ' ' || text_[i] == '\t' || text_[i] == '\n' || text_[i] == '\r')) {
@@ -194,6 +202,7 @@ class PreScan {
   std::uint32_t line_ = 1;
   std::string open_;        // the open '[' (array), 'h' (table header) and '{', innermost last
   bool expect_key_ = true;  // a key may come next, not a value
+  bool in_bare_ = false;    // inside a bare value
   std::size_t chain_ = 1;   // segments of the dotted key (or number) being read
   char prev_ = '\n';        // last character outside strings that is not a space or tab
 };

@@ -80,10 +80,16 @@ TEST(TomlFile, RefusesNonAsciiWhereTomlPlusPlusTestsItForWhitespace) {
             "f.toml:1: non-ASCII character outside a string or comment");
   EXPECT_EQ(error_of("taper = [\n  0.0,\n  0.'\xc7\xb6 0]\n"),
             "f.toml:3: non-ASCII character outside a string or comment");
+  EXPECT_EQ(error_of(std::string("x = 1X\0=\"cy\xef\xba\xbfr\"\n", 16)),
+            "f.toml:1: non-ASCII character outside a string or comment");
+  EXPECT_EQ(error_of("d = 1979-05-27 '\xc3\xa4'\n"),
+            "f.toml:1: non-ASCII character outside a string or comment");
   EXPECT_EQ(error_of("x = \"a\\\xc3\xa4\"\n"),
             "f.toml:1: non-ASCII character after a backslash in a string");
   EXPECT_EQ(error_of("x = \"\"\"a\\  \n\n   \xc3\xa4\"\"\"\n"),
             "f.toml:3: non-ASCII character after a line-ending backslash in a string");
+  EXPECT_EQ(error_of("\"\"\"s\\\t\t\xcd\x8b\"\"\" = 1\n"),
+            "f.toml:1: non-ASCII character after a line-ending backslash in a string");
   // Everywhere else in strings and comments non-ASCII text is fine.
   EXPECT_EQ(error_of("\"k\xc3\xa4\" = [\"\xc3\xa4\", '\xc3\xb6']  # \xc3\xbc\n"
                      "y = \"\"\"\n\xc3\xa4\\n\"\"\"\n[a.\"\xc3\xa4\"]\n"),
