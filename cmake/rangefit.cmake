@@ -2,6 +2,7 @@
 # the language level and sanitizers are set in one place (no global include_directories).
 
 option(RANGEFIT_SANITIZE "Build with AddressSanitizer and UndefinedBehaviorSanitizer" OFF)
+option(RANGEFIT_FUZZ "Build the libFuzzer harnesses of test/fuzz (clang; implies ASan + UBSan)" OFF)
 
 function(rangefit_compile_options target)
   target_compile_features(${target} PUBLIC cxx_std_20)
@@ -12,6 +13,13 @@ function(rangefit_compile_options target)
   if(RANGEFIT_SANITIZE)
     target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer
                                              -fno-sanitize-recover=all)
+    target_link_options(${target} PUBLIC -fsanitize=address,undefined)
+  endif()
+  if(RANGEFIT_FUZZ)
+    # -Wno-error: clang warns about things GCC does not; -Werror is the GCC build's gate.
+    target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link,address,undefined
+                                             -fno-omit-frame-pointer -fno-sanitize-recover=all
+                                             -Wno-error)
     target_link_options(${target} PUBLIC -fsanitize=address,undefined)
   endif()
 endfunction()

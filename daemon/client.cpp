@@ -2,6 +2,8 @@
 
 #include <thread>
 
+#include "daemon/cloud_msg_guard.hpp"
+
 namespace rangefit::daemon {
 
 DdsClient::DdsClient(std::uint32_t domain_id)
@@ -61,7 +63,7 @@ void DdsClient::poll(std::chrono::milliseconds timeout, const Callbacks& cb) {
     if (cb.diagnostics) cb.diagnostics(from_msg(m));
   });
   clouds_.take_each([&](const sensor_msgs_msg_dds__PointCloud2_& m) {
-    if (cb.cloud) cb.cloud(from_msg(m));
+    if (cb.cloud) cb.cloud(cloud_from_wire(m));
   });
   states_.take_each([&](const rangefit_msgs_msg_dds__State_& m) {
     if (cb.state) {

@@ -5,13 +5,14 @@
 
 #include <toml++/toml.h>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 
 #include "daemon/driver_configs.hpp"
+#include "daemon/scan_types.hpp"
+#include "io/toml_file.hpp"
 
 namespace rangefit::daemon {
 namespace {
@@ -120,7 +121,8 @@ class FieldReader {
   std::set<std::string> used_;
 };
 
-constexpr double kMaxDouble = std::numeric_limits<double>::max();
+constexpr double kMaxRotarySweepRad = 6.283185307179586;  // one turn
+constexpr double kMaxLinearSweepMm = 1e4;
 constexpr double kPi = 3.14159265358979323846;
 
 void read_service(FieldReader& r, ServiceConfig& s) {
@@ -301,9 +303,13 @@ void read_device(FieldReader& r, DeviceConfig& d) {
   }
   r.read("xyz_mm", d.xyz_mm, -1e5, 1e5);
   r.read("rpy_rad", d.rpy_rad, -2 * kPi, 2 * kPi);
-  r.read("sweep_start", d.sweep_start, -kMaxDouble, kMaxDouble);
-  r.read("sweep_end", d.sweep_end, -kMaxDouble, kMaxDouble);
-  r.read("sweep_speed", d.sweep_speed, 0.0, kMaxDouble);
+  // The sweep decides how many points a scan produces (sensor rate x sweep time): a CSS sweep of
+  // +-30 rad fused 3.6 M points. Rotary sweeps stay within one turn each way, linear ones within
+  // 10 m; a slow speed is bounded by scan_timeout_s.
+  const double sweep_limit = sweep_is_linear(d.kind) ? kMaxLinearSweepMm : kMaxRotarySweepRad;
+  r.read("sweep_start", d.sweep_start, -sweep_limit, sweep_limit);
+  r.read("sweep_end", d.sweep_end, -sweep_limit, sweep_limit);
+  r.read("sweep_speed", d.sweep_speed, 0.0, sweep_is_linear(d.kind) ? 1e5 : 100.0);
   r.read("motion", d.motion);
   read_bus_addresses(r, d);
   std::string scene;
@@ -446,12 +452,10 @@ ConfigResult parse_config(std::string_view toml_text, std::string_view source_na
                           const std::filesystem::path& base_dir) {
   ConfigResult result;
   try {
-    const toml::table root = toml::parse(toml_text, source_name);
+    const toml::table root = io::parse_toml(toml_text, source_name);
     result.config = read_root(root, source_name, base_dir);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream s;
-    s << source_name << ":" << e.source().begin.line << ": " << e.description();
-    result.error = s.str();
+  } catch (const io::TomlError& e) {
+    result.error = e.what();
   } catch (const FieldError& e) {
     result.error = std::string(source_name) +
                    (e.line > 0 ? ":" + std::to_string(e.line) : std::string()) + ": " + e.what();
@@ -462,11 +466,13 @@ ConfigResult parse_config(std::string_view toml_text, std::string_view source_na
 }
 
 ConfigResult load_config(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return {std::nullopt, path.string() + ": cannot open"};
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_config(text.str(), path.string(), path.parent_path());
+  std::string text;
+  try {
+    text = io::read_toml_file(path);
+  } catch (const io::TomlError& e) {
+    return {std::nullopt, e.what()};
+  }
+  return parse_config(text, path.string(), path.parent_path());
 }
 
 }  // namespace rangefit::daemon

@@ -6,9 +6,31 @@
 
 namespace rangefit::daemon {
 
+std::string check_name(std::string_view text, std::string_view what, std::size_t max_length) {
+  if (text.empty()) return std::string(what) + " is empty";
+  if (text.size() > max_length) {
+    return std::string(what) + " longer than " + std::to_string(max_length) + " characters (" +
+           std::to_string(text.size()) + ")";
+  }
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c < 0x20 || c > 0x7e) {
+      return std::string(what) + " has a non-printable character at " + std::to_string(i) +
+             " (only printable ASCII)";
+    }
+  }
+  return "";
+}
+
 std::string validate_request(ScanRequest& request, const DaemonConfig& config) {
-  if (request.id.empty()) return "request_id is empty";
-  if (request.id.size() > 256) return "request_id longer than 256 characters";
+  if (auto why = check_name(request.id, "request_id", kMaxRequestIdLength); !why.empty())
+    return why;
+  if (request.kind == DetectKind::kObject) {
+    if (auto why = check_name(request.model, "model", kMaxNameLength); !why.empty()) return why;
+  }
+  if (!request.sensor.empty()) {  // empty: the configured default
+    if (auto why = check_name(request.sensor, "sensor", kMaxNameLength); !why.empty()) return why;
+  }
   if (request.kind == DetectKind::kBore) {
     if (!(request.bore.radius_mm > 0.0)) return "bore_radius must be > 0";
     if (!(request.bore.axis.norm() > 1e-9)) return "bore_axis must not be zero";

@@ -3,18 +3,22 @@
 #include "fusion/config.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <numbers>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 
+#include "io/toml_file.hpp"
+
 namespace rangefit::fusion {
 namespace {
 
+// line: where the field (or, when it is missing, its table) stands in the file; 0 = unknown.
 struct FieldError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+  FieldError(const std::string& what, std::uint32_t at_line)
+      : std::runtime_error(what), line(at_line) {}
+  std::uint32_t line;
 };
 
 constexpr double kBig = 1e9;
@@ -25,7 +29,11 @@ class Fields {
   Fields(const toml::table* table, std::string path) : table_(table), path_(std::move(path)) {}
 
   [[noreturn]] void fail(std::string_view key, const std::string& why) const {
-    throw FieldError(path_ + "." + std::string(key) + ": " + why);
+    const toml::node* n = table_ == nullptr ? nullptr : table_->get(key);
+    const std::uint32_t line = n != nullptr        ? n->source().begin.line
+                               : table_ != nullptr ? table_->source().begin.line
+                                                   : 0;
+    throw FieldError(path_ + "." + std::string(key) + ": " + why, line);
   }
   void read(std::string_view key, double& out, double lo, double hi) {
     const toml::node* n = find(key);
@@ -214,7 +222,8 @@ FusionConfigResult parse_fusion_config(const toml::table& fusion_table,
   try {
     result.config = read_fusion(fusion_table);
   } catch (const FieldError& e) {
-    result.error = std::string(source_name) + ": " + e.what();
+    result.error = std::string(source_name) +
+                   (e.line > 0 ? ":" + std::to_string(e.line) : std::string()) + ": " + e.what();
   }
   return result;
 }
@@ -222,11 +231,9 @@ FusionConfigResult parse_fusion_config(const toml::table& fusion_table,
 FusionConfigResult parse_fusion_config(std::string_view toml_text, std::string_view source_name) {
   toml::table root;
   try {
-    root = toml::parse(toml_text, source_name);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream s;
-    s << source_name << ":" << e.source().begin.line << ": " << e.description();
-    return {std::nullopt, s.str()};
+    root = io::parse_toml(toml_text, source_name);
+  } catch (const io::TomlError& e) {
+    return {std::nullopt, e.what()};
   }
   const toml::node* fusion = root.get("fusion");
   if (fusion == nullptr) return {FusionConfig{}, {}};
@@ -236,11 +243,11 @@ FusionConfigResult parse_fusion_config(std::string_view toml_text, std::string_v
 }
 
 FusionConfigResult load_fusion_config(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return {std::nullopt, path.string() + ": cannot open"};
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_fusion_config(text.str(), path.string());
+  try {
+    return parse_fusion_config(io::read_toml_file(path), path.string());
+  } catch (const io::TomlError& e) {
+    return {std::nullopt, e.what()};
+  }
 }
 
 }  // namespace rangefit::fusion

@@ -1,6 +1,12 @@
 #include "io/bounded_reader.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <charconv>
+#include <cstring>
 #include <fstream>
 #include <system_error>
 
@@ -8,22 +14,44 @@
 
 namespace rangefit::io::detail {
 
-std::string load_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw IoError(path, "is a directory, not a file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(path, "cannot open for reading");
+std::string load_file(const std::filesystem::path& path, std::size_t max_bytes,
+                      bool allow_special) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0) throw IoError(path, std::string("cannot open for reading: ") + std::strerror(errno));
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) throw IoError(path, "cannot stat");
+  if (S_ISDIR(st.st_mode)) throw IoError(path, "is a directory, not a file");
+  const bool regular = S_ISREG(st.st_mode);
+  if (!regular && !allow_special) {
+    throw IoError(path, "is not a regular file (a device, FIFO or socket)");
+  }
+  if (regular && static_cast<std::uint64_t>(st.st_size) > max_bytes) {
+    throw IoError(path, "is " + std::to_string(st.st_size) + " bytes, more than the limit of " +
+                            std::to_string(max_bytes));
+  }
+  if (!regular) {
+    // A pipe or device read on purpose: blocking reads from here on, stopped at the cap.
+    const int flags = ::fcntl(fd, F_GETFL);
+    if (flags >= 0) ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
+  }
   std::string bytes;
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  in.seekg(0, std::ios::beg);
-  if (size > 0) {
-    bytes.resize(static_cast<std::size_t>(size));
-    in.read(bytes.data(), size);
-    if (in.gcount() != size) throw IoError(path, "read failed (file changed while reading?)");
-  } else {
-    // Size unknown (pipe, /proc file): read what there is.
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  if (regular) bytes.reserve(static_cast<std::size_t>(st.st_size));
+  char buf[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw IoError(path, std::string("read failed: ") + std::strerror(errno));
+    }
+    if (n == 0) break;
+    if (static_cast<std::size_t>(n) > max_bytes - bytes.size()) {
+      throw IoError(path, "more than the limit of " + std::to_string(max_bytes) + " bytes");
+    }
+    bytes.append(buf, static_cast<std::size_t>(n));
   }
   return bytes;
 }

@@ -16,8 +16,16 @@ namespace rangefit::io::detail {
 inline constexpr std::size_t kMaxHeaderLine = 64 * 1024;  // bytes; longer header lines are hostile
 inline constexpr std::size_t kMaxToken = 128;             // bytes; no number needs more
 
-// Reads the whole file; throws IoError when it cannot be opened or read.
-std::string load_file(const std::filesystem::path& path);
+// Clouds and meshes larger than this are refused: 2 GiB is ~100 M points, far more than any
+// scan, and a bound on what a hostile path (a huge sparse file) can make us allocate.
+inline constexpr std::size_t kMaxFileBytes = std::size_t{2} << 30;
+
+// Reads the whole file; throws IoError when it cannot be opened or read, is a directory, is
+// larger than max_bytes or is not a regular file. The file is opened with O_NONBLOCK, so a FIFO
+// without a writer cannot block us; devices and pipes (/dev/zero, a FIFO) are refused unless
+// allow_special, and then read only up to max_bytes.
+std::string load_file(const std::filesystem::path& path, std::size_t max_bytes = kMaxFileBytes,
+                      bool allow_special = false);
 // Writes bytes to the file (replacing it); throws IoError on failure.
 void save_file(const std::filesystem::path& path, std::string_view bytes);
 

@@ -2,11 +2,11 @@
 
 #include <toml++/toml.h>
 #include <cmath>
-#include <fstream>
 #include <numbers>
 #include <sstream>
 
 #include "io/io_error.hpp"
+#include "io/toml_file.hpp"
 
 namespace rangefit::io {
 namespace {
@@ -14,11 +14,20 @@ namespace {
 constexpr std::size_t kMaxFileBytes = 1 << 20;  // model files are tiny; refuse anything huge
 constexpr std::size_t kMaxParts = 16;
 
+// "<file>:<line>: field '<field>': <problem>", the format of every TOML loader.
 [[noreturn]] void fail(const std::filesystem::path& file, const toml::source_region& where,
                        const std::string& field, const std::string& problem) {
-  std::ostringstream msg;
-  msg << "line " << where.begin.line << ": field '" << field << "': " << problem;
-  throw IoError(file, msg.str());
+  throw TomlError(file.string(), where.begin.line, "field '" + field + "': " + problem);
+}
+
+// Keys this version reads; anything else is a typo that must not fall back to a default.
+void reject_unknown(const std::filesystem::path& file, const toml::table& table,
+                    const std::string& prefix, std::initializer_list<std::string_view> known) {
+  for (const auto& [key, node] : table) {
+    bool found = false;
+    for (std::string_view k : known) found = found || key.str() == k;
+    if (!found) fail(file, node.source(), prefix + std::string(key.str()), "unknown field");
+  }
 }
 
 double number(const std::filesystem::path& file, const toml::node& node, const std::string& field) {
@@ -56,6 +65,7 @@ std::string text(const std::filesystem::path& file, const toml::node& node,
 
 ModelPart parse_part(const std::filesystem::path& file, const toml::table& t, std::size_t i) {
   const std::string f = "part[" + std::to_string(i) + "]";
+  reject_unknown(file, t, f + ".", {"name", "size", "shape", "taper"});
   ModelPart part;
   part.name = text(file, required(file, t, "name", f + ".name"), f + ".name");
   const toml::node& size_node = required(file, t, "size", f + ".size");
@@ -84,6 +94,7 @@ ModelPart parse_part(const std::filesystem::path& file, const toml::table& t, st
 PartLink parse_link(const std::filesystem::path& file, const toml::table& t, std::size_t i,
                     const std::vector<ModelPart>& parts) {
   const std::string f = "link[" + std::to_string(i) + "]";
+  reject_unknown(file, t, f + ".", {"parts", "angle_deg", "distance"});
   const toml::node& names_node = required(file, t, "parts", f + ".parts");
   const toml::array* names = names_node.as_array();
   if (names == nullptr || names->size() != 2) {
@@ -124,14 +135,8 @@ const toml::array* table_array(const std::filesystem::path& file, const toml::ta
 }  // namespace
 
 ObjectModel parse_object_model(std::string_view source_text, const std::filesystem::path& file) {
-  toml::table root;
-  try {
-    root = toml::parse(source_text, file.string());
-  } catch (const toml::parse_error& e) {
-    std::ostringstream msg;
-    msg << "line " << e.source().begin.line << ": " << e.description();
-    throw IoError(file, msg.str());
-  }
+  const toml::table root = parse_toml(source_text, file.string());
+  reject_unknown(file, root, "", {"name", "part", "link"});
   ObjectModel model;
   model.name = text(file, required(file, root, "name", "name"), "name");
   const toml::array* parts = table_array(file, root, "part");
@@ -156,15 +161,7 @@ ObjectModel parse_object_model(std::string_view source_text, const std::filesyst
 }
 
 ObjectModel read_object_model(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(path, "cannot open");
-  std::string content;
-  char buf[4096];
-  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
-    content.append(buf, static_cast<std::size_t>(in.gcount()));
-    if (content.size() > kMaxFileBytes) throw IoError(path, "larger than 1 MiB: not a model file");
-  }
-  return parse_object_model(content, path);
+  return parse_object_model(read_toml_file(path, kMaxFileBytes), path);
 }
 
 std::string format_object_model(const ObjectModel& model) {

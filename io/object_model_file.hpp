@@ -12,7 +12,8 @@
 //   angle_deg = 90.0            # angle between the two z-axes
 //   distance = 170.0            # distance between the two centres, mm
 //
-// Every problem throws io::IoError naming the file, the line and the field.
+// Every problem throws io::IoError ("<file>:<line>: field '<field>': <problem>"); unknown keys
+// are errors.
 
 #include <filesystem>
 #include <string>

@@ -20,6 +20,9 @@ using detail::BoundedReader;
 using detail::printable;
 using detail::Scalar;
 
+// binary_compressed data may expand by LZF's worst case (88x), so a 3 MB file could make us
+// allocate 270 MB; no scan comes near this absolute bound (16 M points of x y z floats).
+constexpr std::uint64_t kMaxUncompressedBytes = std::uint64_t{256} << 20;
 constexpr std::uint64_t kMaxFieldCount = 1u << 16;  // PCL's widest descriptors have a few hundred
 
 enum class Data { kAscii, kBinary, kBinaryCompressed };
@@ -229,6 +232,11 @@ class Values {
       r_.fail("header: POINTS " + std::to_string(h_.points) + " of " + std::to_string(h_.stride) +
               " bytes do not match the " + std::to_string(uncompressed) +
               " uncompressed bytes declared");
+    }
+    if (uncompressed > kMaxUncompressedBytes) {
+      r_.fail("compressed data: " + std::to_string(uncompressed) +
+              " uncompressed bytes declared, more than the limit of " +
+              std::to_string(kMaxUncompressedBytes));
     }
     if (compressed > r_.remaining() ||
         uncompressed > std::uint64_t{compressed} * detail::kLzfMaxRatio) {

@@ -11,6 +11,7 @@ packages=(
   openssl  # scripts/make_dds_security.sh: the DDS Security test's CA and signed documents
   dpkg-dev file  # cpack -G DEB: dpkg-shlibdeps (and file) fill the package's Depends
   ccache  # .ci/run: compile results kept outside the clone
+  clang libclang-rt-14-dev  # RANGEFIT_FUZZ=ON: the libFuzzer harnesses of test/fuzz
 )
 
 missing=()

@@ -13,6 +13,7 @@
 #include "daemon/cli/cli_options.hpp"
 #include "daemon/cli/commands.hpp"
 #include "daemon/cli/json_util.hpp"
+#include "daemon/cli/option_checks.hpp"
 #include "detect/bore_detector.hpp"
 #include "io/cloud_io.hpp"
 
@@ -30,7 +31,8 @@ struct BoreArgs {
   bool json = false;
 };
 
-// "X,Y,Z" -> vector; nullopt on anything else (wrong count, not a number, NaN/Inf).
+// "X,Y,Z" -> vector; nullopt on anything else (wrong count, not a number, NaN/Inf, beyond
+// kMaxCoordinateMm).
 std::optional<Eigen::Vector3d> parse_vec(const std::string& text) {
   std::vector<double> v;
   std::stringstream ss(text);
@@ -39,7 +41,8 @@ std::optional<Eigen::Vector3d> parse_vec(const std::string& text) {
     try {
       std::size_t used = 0;
       const double x = std::stod(item, &used);
-      if (used != item.size() || !std::isfinite(x)) return std::nullopt;
+      if (used != item.size() || !std::isfinite(x) || std::abs(x) > kMaxCoordinateMm)
+        return std::nullopt;
       v.push_back(x);
     } catch (const std::exception&) {
       return std::nullopt;
@@ -131,7 +134,7 @@ int run(const BoreArgs& a) {
   const auto axis = parse_vec(a.axis);
   if (!entrance || !axis || axis->norm() == 0.0) {
     std::cerr << "rangefit bore: --cad-entrance and --cad-axis need three finite numbers X,Y,Z "
-                 "(axis non-zero)\n";
+                 "within +-1e6 (axis non-zero)\n";
     return kExitBadInput;
   }
   if (!std::isfinite(a.radius) || a.radius <= 0.0) {
@@ -159,7 +162,7 @@ int run(const BoreArgs& a) {
     if (text->empty()) continue;
     const auto v = parse_vec(*text);
     if (!v || (text != &a.sensor_position && v->norm() == 0.0)) {
-      std::cerr << "rangefit bore: " << name << " needs three finite numbers X,Y,Z\n";
+      std::cerr << "rangefit bore: " << name << " needs three finite numbers X,Y,Z within +-1e6\n";
       return kExitBadInput;
     }
     if (text == &a.plane_normal) prior.plane_normal = *v;
@@ -199,10 +202,12 @@ void add_bore_command(CLI::App& app, int* exit_code) {
       ->required();
   cmd->add_option("--cad-axis", args->axis, "Expected bore axis X,Y,Z (any length, either sign)")
       ->required();
-  cmd->add_option("--cad-radius", args->radius, "Expected bore radius, mm")->required();
+  cmd->add_option("--cad-radius", args->radius, "Expected bore radius, mm")
+      ->required()
+      ->check(finite_range(1e-3, 1e5));
   cmd->add_option("--cad-outer-radius", args->outer_radius,
                   "A thick-walled pipe's outer wall radius, mm (the bore is its inner wall)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_range(1e-3, 1e5));
   cmd->add_option("--walls", args->walls,
                   "Which wall of a pipe to fit: inner (the bore, default), outer "
                   "(--cad-outer-radius, else --cad-radius) or both (the outer one as \"outer\")")
@@ -215,7 +220,7 @@ void add_bore_command(CLI::App& app, int* exit_code) {
                   "Sensor position X,Y,Z in mm, instead of --view-dir");
   cmd->add_option("--normal-keep", args->normal_keep,
                   "Share (0..1] of region points that get a normal (thesis: 0.2)")
-      ->check(CLI::Range(0.001, 1.0));
+      ->check(finite_range(0.001, 1.0));
   cmd->add_option("--seed", args->seed, "Seed of the random sampling (same seed, same result)");
   cmd->add_flag("--json", args->json,
                 "Print one JSON object: found, entrance, axis, radius, reason, points, time_ms");

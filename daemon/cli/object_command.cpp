@@ -9,6 +9,7 @@
 
 #include "daemon/cli/cli_options.hpp"
 #include "daemon/cli/commands.hpp"
+#include "daemon/cli/option_checks.hpp"
 #include "detect/object_detector.hpp"
 #include "io/cloud_io.hpp"
 #include "io/object_model_file.hpp"
@@ -164,7 +165,8 @@ void add_object_command(CLI::App& app, int* exit_code) {
   cmd->add_option("--seed", args->seed, "random seed (the result depends only on it)");
   add_vector_option(
       cmd, "--viewpoint", args->viewpoint,
-      "sensor position X,Y,Z (or X Y Z), mm (optional; enables the free-space check)");
+      "sensor position X,Y,Z (or X Y Z), mm (optional; enables the free-space check)")
+      ->check(finite_range(-kMaxCoordinateMm, kMaxCoordinateMm));
   cmd->add_flag("--json", args->json, "print the result as JSON");
   cmd->callback([args, exit_code] { *exit_code = run(*args); });
 }

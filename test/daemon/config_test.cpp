@@ -56,6 +56,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"[[devices]]\nname = \"a\"\nkind = \"css\"\ndriver = \"magic\"\n",
                 "devices[0].driver"},
         BadCase{"[[devices]]\nname = \"a\"\nkind = \"laser\"\n", "devices[0].kind"},
+        BadCase{"[[devices]]\nname = \"a\"\nkind = \"css\"\nsweep_end = 30.0\n",
+                "t.toml:4: devices[0].sweep_end: must be in [-6.28319, 6.28319], got 30"},
+        BadCase{"[[devices]]\nname = \"a\"\nkind = \"css\"\nsweep_start = -1e15\n",
+                "devices[0].sweep_start: must be in"},
+        BadCase{"[[devices]]\nname = \"a\"\nkind = \"stripe\"\nsweep_end = 1e7\n",
+                "devices[0].sweep_end: must be in [-10000, 10000]"},
         BadCase{"[[devices]]\nname = \"a\"\nkind = \"css\"\ndriver = \"real\"\n",
                 "devices[0].transport"},
         BadCase{"[[devices]]\nname = \"a\"\nkind = \"css\"\ndriver = \"replay\"\n",
@@ -191,6 +197,22 @@ TEST(DaemonConfig, SameNodeOnAnotherInterfaceOrOnASimulatedDeviceIsFine) {
                                       "[[devices]]\nname = \"head\"\nkind = \"pan_tilt\"\n"
                                       "scene = \"s.toml\"\ntransport = \"can0\"\n");
   EXPECT_TRUE(simulated.config) << simulated.error;
+}
+
+TEST(DaemonConfig, HostileFilesAreErrorsNotCrashes) {
+  // Each used to crash rangefitd at start-up or on SIGHUP: stack overflow in toml++ on a key of
+  // 40,000 dotted segments, bad_alloc reading /dev/zero; a directory started it with defaults.
+  std::string key = "a";
+  for (int i = 1; i < 40000; ++i) key += ".a";
+  EXPECT_EQ(parse_config(key + " = 1\n", "t.toml").error,
+            "t.toml:1: more than 32 dotted key segments");
+  EXPECT_EQ(load_config("/dev/zero").error,
+            "/dev/zero: is not a regular file (a device, FIFO or socket)");
+  const auto dir = load_config(RANGEFIT_SOURCE_DIR);
+  EXPECT_FALSE(dir.config);
+  EXPECT_NE(dir.error.find("is a directory"), std::string::npos) << dir.error;
+  EXPECT_EQ(parse_config("\xc7\xb6 ", "t.toml").error,
+            "t.toml:1: non-ASCII character outside a string or comment");
 }
 
 TEST(DaemonConfig, MissingFileIsReportedWithItsPath) {

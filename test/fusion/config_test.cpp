@@ -101,6 +101,17 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"fusion = 1\n", "fusion: must be a table"},
         BadCase{"[fusion.css\n", "cell.toml:1"}));
 
+TEST(FusionConfig, ErrorsNameTheLineAndCrashInputsAreRefused) {
+  EXPECT_EQ(
+      parse_fusion_config(std::string_view("[fusion.css]\n\nstandof_mm = 88\n"), "c.toml").error,
+      "c.toml:3: fusion.css.standof_mm: unknown field");
+  std::string key = "fusion";
+  for (int i = 1; i < 40000; ++i) key += ".a";
+  EXPECT_EQ(parse_fusion_config(std::string_view("[" + key + "]\n"), "c.toml").error,
+            "c.toml:1: more than 32 dotted key segments");
+  EXPECT_NE(load_fusion_config("/dev/zero").error.find("not a regular file"), std::string::npos);
+}
+
 TEST(FusionConfig, MissingFileIsAnErrorNamingIt) {
   const FusionConfigResult r = load_fusion_config("/nonexistent/fusion.toml");
   EXPECT_FALSE(r.config);

@@ -55,8 +55,7 @@ TEST(ObjectModelFile, ErrorsNameTheLineAndTheField) {
   const std::string bad_size =
       "name = \"x\"\n[[part]]\nname = \"p\"\nsize = [1, 2]\nshape = [1, 1]\n";
   const std::string e1 = error_of(bad_size);
-  EXPECT_NE(e1.find("model.toml"), std::string::npos) << e1;
-  EXPECT_NE(e1.find("line 4"), std::string::npos) << e1;
+  EXPECT_EQ(e1.rfind("model.toml:4: ", 0), 0u) << e1;
   EXPECT_NE(e1.find("part[0].size"), std::string::npos) << e1;
 
   const std::string bad_shape =
@@ -68,11 +67,21 @@ TEST(ObjectModelFile, ErrorsNameTheLineAndTheField) {
       "[[link]]\nparts = [\"p\", \"q\"]\nangle_deg = 90\ndistance = 10\n";
   const std::string e3 = error_of(bad_link);
   EXPECT_NE(e3.find("link[0].parts"), std::string::npos) << e3;
-  EXPECT_NE(e3.find("line 7"), std::string::npos) << e3;
+  EXPECT_EQ(e3.rfind("model.toml:7: ", 0), 0u) << e3;
 
   EXPECT_NE(error_of("name = \"x\"\n").find("part"), std::string::npos);
   EXPECT_NE(error_of("[[part]]\nname = \"p\"\n").find("'name'"), std::string::npos);
-  EXPECT_NE(error_of("name = \"x\"\nsize = [1, 2\n").find("line 2"), std::string::npos);
+  EXPECT_EQ(error_of("name = \"x\"\nsize = [1, 2\n").rfind("model.toml:2: ", 0), 0u);
+}
+
+TEST(ObjectModelFile, UnknownKeysAreErrorsNamingTheLine) {
+  const std::string part = "[[part]]\nname = \"p\"\nsize = [1, 2, 3]\nshape = [1, 1]\n";
+  EXPECT_EQ(error_of("name = \"x\"\nnmae = \"y\"\n" + part),
+            "model.toml:2: field 'nmae': unknown field");
+  EXPECT_EQ(error_of("name = \"x\"\n" + part + "tapper = [0, 0]\n"),
+            "model.toml:6: field 'part[0].tapper': unknown field");
+  EXPECT_EQ(error_of("name = \"x\"\n" + part + "[[link]]\nparts = [\"p\", \"p\"]\nangle = 9\n"),
+            "model.toml:8: field 'link[0].angle': unknown field");
 }
 
 TEST(ObjectModelFile, EmptyOrMissingFileIsAnError) {

@@ -2,6 +2,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <limits>
 #include <string>
@@ -220,6 +221,30 @@ TEST(PcdRead, DataProblemsAreNamed) {
   wrong_size += "abc";
   EXPECT_THAT(error_of(dir.write("d.pcd", wrong_size)),
               HasSubstr("do not match the 4000000000 uncompressed bytes declared"));
+}
+
+TEST(PcdRead, DecompressedSizeHasAnAbsoluteCap) {
+  // 12 bytes a point: just over 256 MiB of points declared by a ~3 MB file (88x, LZF's worst
+  // case, so the relative bound alone lets it through); refused before allocating.
+  TempDir dir;
+  const std::uint32_t points = (256u << 20) / 12u + 1u;
+  std::string big = header("x y z", "4 4 4", "F F F", points, 1, "binary_compressed");
+  const std::uint32_t compressed = (points * 12u) / 88u + 1u;
+  append_le(big, compressed);
+  append_le(big, std::uint32_t{points * 12u});
+  big += std::string(compressed, '\0');
+  EXPECT_THAT(error_of(dir.write("big.pcd", big)),
+              HasSubstr("big.pcd: compressed data: 268435464 uncompressed bytes declared, more "
+                        "than the limit of 268435456"));
+}
+
+TEST(PcdRead, SpecialFilesAreRefusedWithoutBlocking) {
+  TempDir dir;
+  EXPECT_THAT(error_of("/dev/zero"), HasSubstr("/dev/zero: is not a regular file"));
+  const auto fifo = dir.path("cloud.pcd");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_THAT(error_of(fifo), HasSubstr("cloud.pcd: is not a regular file"));
+  EXPECT_THAT(error_of(dir.path("")), HasSubstr("is a directory"));
 }
 
 TEST(PcdWrite, RejectsPointOutsideTheGrid) {

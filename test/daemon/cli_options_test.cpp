@@ -1,0 +1,77 @@
+// Numeric command-line options of `rangefit bore` and `rangefit object` are checked before any
+// work: NaN, infinities and absurd magnitudes are bad input (exit 1) with a message naming the
+// option, not a detector run on garbage or a length_error from deep inside it.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <cstdio>
+#include <string>
+
+namespace {
+
+#ifdef RANGEFIT_CLI_PATH
+struct CliRun {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr
+};
+
+CliRun run_cli(const std::string& args) {
+  CliRun r;
+  const std::string command = std::string(RANGEFIT_CLI_PATH) + " " + args + " 2>&1";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) return r;
+  char buf[4096];
+  std::size_t n = 0;
+  while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) r.output.append(buf, n);
+  const int status = ::pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+// Any existing file passes --cloud's existence check; the options are refused before it is read.
+const std::string kCloud = std::string(" --cloud ") + RANGEFIT_SOURCE_DIR + "/data/models/box.toml";
+const std::string kBore = "bore" + kCloud + " --cad-entrance 0,0,0 --cad-axis 0,0,1";
+
+TEST(CliOptions, BoreRejectsNonFiniteAndAbsurdNumbers) {
+  const std::pair<std::string, std::string> cases[] = {
+      {" --cad-radius 5 --normal-keep nan", "--normal-keep: value nan is not a finite number"},
+      {" --cad-radius 5 --normal-keep inf", "--normal-keep"},
+      {" --cad-radius nan", "--cad-radius: value nan is not a finite number"},
+      {" --cad-radius 1e300", "--cad-radius: value 1e300 is not a finite number"},
+      {" --cad-radius 5 --sensor-position 1e308,0,0",
+       "--sensor-position needs three finite numbers X,Y,Z within +-1e6"},
+      {" --cad-radius 5 --view-dir 0,0,1e300", "--view-dir needs three finite numbers"},
+  };
+  for (const auto& [args, message] : cases) {
+    const CliRun r = run_cli(kBore + args);
+    EXPECT_EQ(r.exit_code, 1) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
+  }
+  const CliRun entrance = run_cli("bore" + kCloud +
+                                  " --cad-entrance 1e308,0,0 --cad-axis 0,0,1 "
+                                  "--cad-radius 5");
+  EXPECT_NE(entrance.output.find("--cad-entrance and --cad-axis need three finite numbers"),
+            std::string::npos)
+      << entrance.output;
+}
+
+TEST(CliOptions, ObjectRejectsANonFiniteOrAbsurdViewpoint) {
+  const std::string object =
+      "object" + kCloud + " --model " + RANGEFIT_SOURCE_DIR + "/data/models/box.toml --viewpoint ";
+  for (const std::string v : {"nan 0 0", "0 inf 0", "0 0 1e308"}) {
+    const CliRun r = run_cli(object + v);
+    EXPECT_EQ(r.exit_code, 1) << v << "\n" << r.output;
+    EXPECT_NE(r.output.find("--viewpoint: value"), std::string::npos) << v << "\n" << r.output;
+  }
+}
+TEST(CliOptions, WatchRejectsANonFiniteDuration) {
+  // Before, seconds * 1000 went through an undefined double-to-long conversion.
+  for (const std::string v : {"nan", "1e300", "-1"}) {
+    const CliRun r = run_cli("watch --seconds " + v);
+    EXPECT_EQ(r.exit_code, 1) << v << "\n" << r.output;
+    EXPECT_NE(r.output.find("--seconds: value " + v), std::string::npos) << r.output;
+  }
+}
+#endif
+
+}  // namespace

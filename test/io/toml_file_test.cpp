@@ -1,0 +1,134 @@
+#include "io/toml_file.hpp"
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <string>
+
+#include "io/object_model_file.hpp"
+#include "temp_dir.hpp"
+
+namespace rangefit::io {
+namespace {
+
+std::string error_of(std::string_view text) {
+  try {
+    parse_toml(text, "f.toml");
+  } catch (const TomlError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string dotted_key(std::size_t segments) {
+  std::string key = "a";
+  for (std::size_t i = 1; i < segments; ++i) key += ".a";
+  return key;
+}
+
+TEST(TomlFile, ParsesOrdinaryTomlIncludingDotsInStringsNumbersAndComments) {
+  const toml::table t = parse_toml(R"(
+name = "a.b.c.d.e.f.g.h.i.j.k.l.m.n.o.p.q.r.s.t.u.v.w.x.y.z.a.b.c.d.e.f.g.h" # x.x.x.x
+v = [1.5, 2.5e+3, -0.25]
+lit = 'C:\dir\[x]{'
+multi = """
+  "[[[{{{"" """
+when = 1979-05-27T07:32:00.999
+[server."10.0.0.5".port]
+nested = [[1, [2, [3]]], { a.b = 1 }]
+)",
+                                   "f.toml");
+  EXPECT_EQ(t["name"].value<std::string>()->size(), 67u);
+  EXPECT_EQ(t["server"]["10.0.0.5"]["port"]["nested"][1]["a"]["b"].value<int>(), 1);
+  EXPECT_EQ(t["multi"].value<std::string>(), "  \"[[[{{{\"\" ");
+}
+
+TEST(TomlFile, RefusesAKeyOfFortyThousandSegmentsBeforeTomlPlusPlusOverflowsTheStack) {
+  const std::string key = dotted_key(40000);
+  EXPECT_EQ(error_of(key + " = 1\n"), "f.toml:1: more than 32 dotted key segments");
+  EXPECT_EQ(error_of("x = 1\n[" + key + "]\n"), "f.toml:2: more than 32 dotted key segments");
+  EXPECT_EQ(error_of("x = { " + key + " = 1 }\n"), "f.toml:1: more than 32 dotted key segments");
+  // Quoted segments count too, and a string that ends with extra quotes hides nothing.
+  EXPECT_NE(error_of("\"a\"." + key + " = 1\n").find("dotted key segments"), std::string::npos);
+  EXPECT_NE(error_of("x = { a = \"\"\"q\"\"\"\", " + key + " = 1 }\n").find("dotted key"),
+            std::string::npos);
+  EXPECT_EQ(error_of(dotted_key(32) + " = 1\n"), "");
+}
+
+TEST(TomlFile, RefusesDeepNesting) {
+  EXPECT_EQ(error_of("x = " + std::string(100000, '[') + "\n"),
+            "f.toml:1: nested deeper than 32 brackets or braces");
+  EXPECT_NE(error_of("x = " + std::string(5000, '{')).find("nested deeper"), std::string::npos);
+  EXPECT_EQ(error_of("x = " + std::string(30, '[') + std::string(30, ']') + "\n"), "");
+}
+
+TEST(TomlFile, RefusesInvalidUtf8AndNonAsciiOutsideStrings) {
+  // c7 b6 20 as a whole file reached TOML_UNREACHABLE inside toml++ 3.3.
+  EXPECT_EQ(error_of("\xc7\xb6 "), "f.toml:1: non-ASCII character outside a string or comment");
+  EXPECT_EQ(error_of("x = 1\n\xff\n"), "f.toml:2: not valid UTF-8 (byte 6)");
+  EXPECT_NE(error_of("x = \"\xed\xa0\x80\"").find("not valid UTF-8"), std::string::npos);
+  EXPECT_NE(error_of("x = \"\xc0\xaf\"").find("not valid UTF-8"), std::string::npos);
+  EXPECT_EQ(error_of("x = \"\xc7\xb6 \" # \xe2\x82\xac\n"), "");
+}
+
+TEST(TomlFile, RefusesNonAsciiWhereTomlPlusPlusTestsItForWhitespace) {
+  // toml++ scans a bare value up to ~127 characters, quotes included, testing each for
+  // whitespace: U+FEF5 there reached TOML_UNREACHABLE (found by test/fuzz/toml_fuzz).
+  EXPECT_EQ(error_of("x = ++fm'''\xef\xbb\xb5'''\n"),
+            "f.toml:1: non-ASCII character outside a string or comment");
+  EXPECT_EQ(error_of("taper = [0.0, 0.'\xc7\xb6 0]\n"),
+            "f.toml:1: non-ASCII character outside a string or comment");
+  EXPECT_EQ(error_of("taper = [\n  0.0,\n  0.'\xc7\xb6 0]\n"),
+            "f.toml:3: non-ASCII character outside a string or comment");
+  EXPECT_EQ(error_of(std::string("x = 1X\0=\"cy\xef\xba\xbfr\"\n", 16)),
+            "f.toml:1: non-ASCII character outside a string or comment");
+  EXPECT_EQ(error_of("d = 1979-05-27 '\xc3\xa4'\n"),
+            "f.toml:1: non-ASCII character outside a string or comment");
+  EXPECT_EQ(error_of("x = \"a\\\xc3\xa4\"\n"),
+            "f.toml:1: non-ASCII character after a backslash in a string");
+  EXPECT_EQ(error_of("x = \"\"\"a\\  \n\n   \xc3\xa4\"\"\"\n"),
+            "f.toml:3: non-ASCII character after a line-ending backslash in a string");
+  EXPECT_EQ(error_of("\"\"\"s\\\t\t\xcd\x8b\"\"\" = 1\n"),
+            "f.toml:1: non-ASCII character after a line-ending backslash in a string");
+  // Everywhere else in strings and comments non-ASCII text is fine.
+  EXPECT_EQ(error_of("\"k\xc3\xa4\" = [\"\xc3\xa4\", '\xc3\xb6']  # \xc3\xbc\n"
+                     "y = \"\"\"\n\xc3\xa4\\n\"\"\"\n[a.\"\xc3\xa4\"]\n"),
+            "");
+}
+
+TEST(TomlFile, ReportsTomlPlusPlusErrorsWithFileAndLine) {
+  const std::string e = error_of("x = 1\ny = \n");
+  EXPECT_EQ(e.rfind("f.toml:2: ", 0), 0u) << e;
+}
+
+TEST(TomlFile, ReadsOnlyRegularFilesOfBoundedSize) {
+  test::TempDir dir;
+  auto error_reading = [](const std::filesystem::path& p, std::size_t cap = kMaxTomlBytes) {
+    try {
+      read_toml_file(p, cap);
+    } catch (const IoError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(error_reading("/dev/zero"),
+            "/dev/zero: is not a regular file (a device, FIFO or socket)");
+  EXPECT_EQ(error_reading(dir.path("")), dir.path("").string() + ": is a directory, not a file");
+  const auto fifo = dir.path("fifo");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_NE(error_reading(fifo).find("not a regular file"), std::string::npos);  // no hang
+  const auto big = dir.write("big.toml", std::string(101, '#'));
+  EXPECT_EQ(error_reading(big, 100), big.string() + ": is 101 bytes, more than the limit of 100");
+  EXPECT_EQ(read_toml_file(dir.write("ok.toml", "x = 1\n")), "x = 1\n");
+}
+
+TEST(TomlFile, ObjectModelsGoThroughTheGuard) {
+  test::TempDir dir;
+  const auto crash = dir.write("crash.toml", dotted_key(40000) + " = 1\n");
+  EXPECT_THROW(read_object_model(crash), IoError);
+  EXPECT_THROW(read_object_model(dir.write("ub.toml", "\xc7\xb6 ")), IoError);
+  EXPECT_THROW(read_object_model("/dev/zero"), IoError);
+}
+
+}  // namespace
+}  // namespace rangefit::io
