@@ -9,6 +9,7 @@ packages=(
   cyclonedds-dev cyclonedds-tools libmodbus-dev libusb-1.0-0-dev
   python3-pymodbus python3-serial-asyncio mbpoll  # independent Modbus peers for the drivers tests
   openssl  # scripts/make_dds_security.sh: the DDS Security test's CA and signed documents
+  libcairo2-dev fonts-dejavu-core  # render/: pictures of scans and detections, legend font
 )
 
 missing=()
