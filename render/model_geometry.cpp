@@ -40,10 +40,10 @@ std::vector<Polyline> bore_wireframe(const DrawnBore& bore, double depth) {
   for (int k = 0; k < kGenerators; ++k) {
     const double w = 2.0 * kPi * k / kGenerators;
     const Eigen::Vector3d off = bore.radius * (std::cos(w) * u + std::sin(w) * v);
-    lines.push_back({LineRole::kModel, {bore.entrance + off, bore.entrance - depth * a + off}});
+    lines.push_back({LineRole::kModel, {bore.entrance + off, bore.entrance - depth * a + off}, {}});
   }
   lines.push_back(
-      {LineRole::kAxis, {bore.entrance - depth * a, bore.entrance + 1.5 * bore.radius * a}});
+      {LineRole::kAxis, {bore.entrance - depth * a, bore.entrance + 1.5 * bore.radius * a}, {}});
   return lines;
 }
 
@@ -53,28 +53,31 @@ std::vector<Polyline> part_wireframe(const DrawnPart& part) {
   std::vector<Polyline> lines;
   constexpr int kSegments = 64;
   constexpr int kParallels = 7;  // latitudes strictly between the poles, the equator among them
+  const auto add = [&](Polyline& line, double eta, double omega) {
+    const Eigen::Vector3d p = surface_point(sq, eta, omega);
+    Eigen::Vector3d gradient;
+    metric_and_gradient(sq, p, gradient);
+    line.points.push_back(T * p);
+    line.normals.push_back(T.linear() * gradient.normalized());
+  };
   for (int i = 1; i <= kParallels; ++i) {
     const double eta = -0.5 * kPi + kPi * i / (kParallels + 1);
     Polyline line;
-    for (int k = 0; k <= kSegments; ++k) {
-      line.points.push_back(T * surface_point(sq, eta, -kPi + 2.0 * kPi * k / kSegments));
-    }
+    for (int k = 0; k <= kSegments; ++k) add(line, eta, -kPi + 2.0 * kPi * k / kSegments);
     lines.push_back(std::move(line));
   }
   constexpr int kMeridians = 12;
   for (int j = 0; j < kMeridians; ++j) {
     const double omega = -kPi + 2.0 * kPi * j / kMeridians;
     Polyline line;
-    for (int k = 0; k <= kSegments; ++k) {
-      line.points.push_back(T * surface_point(sq, -0.5 * kPi + kPi * k / kSegments, omega));
-    }
+    for (int k = 0; k <= kSegments; ++k) add(line, -0.5 * kPi + kPi * k / kSegments, omega);
     lines.push_back(std::move(line));
   }
   const Eigen::Vector3d c = T.translation();
   const double sizes[3] = {sq.a1, sq.a2, sq.a3};
   const LineRole roles[3] = {LineRole::kAxisX, LineRole::kAxisY, LineRole::kAxisZ};
   for (int i = 0; i < 3; ++i) {
-    lines.push_back({roles[i], {c, c + 1.3 * sizes[i] * T.linear().col(i)}});
+    lines.push_back({roles[i], {c, c + 1.3 * sizes[i] * T.linear().col(i)}, {}});
   }
   return lines;
 }

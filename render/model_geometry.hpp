@@ -21,14 +21,17 @@ enum class LineRole {
 struct Polyline {
   LineRole role = LineRole::kModel;
   std::vector<Eigen::Vector3d> points;  // world, mm
+  // Outward surface normals at the points of a closed model (superquadric parts): the renderer
+  // dims what faces away from the viewer. Empty: the scan's depth decides what is hidden.
+  std::vector<Eigen::Vector3d> normals;
 };
 
 // Rings at the entrance and at `depth` into the part (and one between), 12 generators, the
 // axis from the bottom to one radius outside the entrance.
 std::vector<Polyline> bore_wireframe(const DrawnBore& bore, double depth);
 
-// Parallels and meridians of the tapered superquadric (eq. 2.14, 2.19-2.21) and its x, y, z
-// axes, each 1.3 half sizes long.
+// Parallels and meridians of the tapered superquadric (eq. 2.14, 2.19-2.21) with their normals,
+// and its x, y, z axes, each 1.3 half sizes long.
 std::vector<Polyline> part_wireframe(const DrawnPart& part);
 
 // How deep the scan shows the bore's wall: the 98th percentile of how far points within 10% of

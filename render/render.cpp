@@ -36,8 +36,8 @@ std::string format(const char* fmt, auto... args) {
 // The models as lines, their entrances, and the point set a framing view should show.
 struct Models {
   std::vector<Polyline> lines;
-  std::vector<Eigen::Vector3d> entrances;
-  std::vector<Eigen::Vector3d> extent;  // every wireframe point
+  std::vector<std::pair<Eigen::Vector3d, double>> entrances;  // and the bore radius
+  std::vector<Eigen::Vector3d> extent;                        // every wireframe point
   double smallest_size = std::numeric_limits<double>::infinity();
 };
 
@@ -46,7 +46,7 @@ Models build_models(const PointCloud& cloud, const Drawing& drawing) {
   for (const DrawnBore& b : drawing.bores) {
     auto lines = bore_wireframe(b, bore_depth(b, cloud.points));
     m.lines.insert(m.lines.end(), lines.begin(), lines.end());
-    m.entrances.push_back(b.entrance);
+    m.entrances.emplace_back(b.entrance, b.radius);
     m.smallest_size = std::min(m.smallest_size, b.radius);
   }
   for (const DrawnPart& p : drawing.parts) {
@@ -98,7 +98,7 @@ void frame(Panel& panel, const PointCloud& cloud, const Models& models, const Re
     v.px_per_mm = o.px_per_mm;
   } else if (o.zoom_to_models && !models.extent.empty()) {
     fit_to(v, models.extent, o.panel_width, o.panel_height, 0.0);
-    v.px_per_mm *= 0.5;  // the model fills half the panel, its surroundings the rest
+    v.px_per_mm *= 0.45;  // the model fills half the panel, its surroundings the rest
   } else {
     fit_to(v, cloud.points, o.panel_width, o.panel_height, 0.04, 0.002);
   }
@@ -147,7 +147,7 @@ int splat_size(const OrthoView& v, std::span<const Eigen::Vector3d> points) {
     nearest.push_back(best[2]);
   }
   std::nth_element(nearest.begin(), nearest.begin() + nearest.size() / 2, nearest.end());
-  return std::clamp(static_cast<int>(std::ceil(1.1 * nearest[nearest.size() / 2])), 1, 12);
+  return std::clamp(static_cast<int>(std::ceil(1.3 * nearest[nearest.size() / 2])), 1, 12);
 }
 
 // Point splats with a depth buffer (nearest point wins); returns the buffer for the lines'
@@ -195,6 +195,33 @@ Rgb role_colour(LineRole role) {
   return kModelColour;
 }
 
+// A closed model's own far side: its normal points away from the viewer (the silhouette, where
+// it is perpendicular, stays bright; a degenerate normal counts as facing the viewer).
+bool faces_away(const OrthoView& v, const Eigen::Vector3d& normal) {
+  return normal.dot(v.toward) < -0.02 * normal.norm();
+}
+
+// Behind the scan: nearer points cover most of the pixels around, so gaps in the scan do not
+// make a line under the surface bright.
+bool buried(const OrthoView& v, const std::vector<float>& zbuf, const Eigen::Vector3d& p,
+            double tolerance) {
+  const Eigen::Vector2d m = v.project(p);
+  if (!m.allFinite()) return false;
+  const int mx = static_cast<int>(std::floor(m.x())), my = static_cast<int>(std::floor(m.y()));
+  const auto limit = static_cast<float>(v.depth(p) + tolerance);
+  int covered = 0, total = 0;
+  for (int y = my - 3; y <= my + 3; ++y) {
+    for (int x = mx - 3; x <= mx + 3; ++x) {
+      ++total;
+      if (x >= 0 && y >= 0 && x < v.width && y < v.height &&
+          zbuf[static_cast<std::size_t>(y) * v.width + x] > limit) {
+        ++covered;
+      }
+    }
+  }
+  return 4 * covered > 3 * total;
+}
+
 // Segments behind the scanned surface (the far side of a part, the bore below the plate) are
 // drawn faint, so the picture reads like the object and not like a tangle.
 void draw_lines(cairo_t* cr, const Panel& panel, const std::vector<Polyline>& lines,
@@ -207,20 +234,9 @@ void draw_lines(cairo_t* cr, const Panel& panel, const std::vector<Polyline>& li
     cairo_set_line_width(cr, axis ? 2.2 : 1.5);
     for (std::size_t k = 1; k < line.points.size(); ++k) {
       const Eigen::Vector3d mid = 0.5 * (line.points[k - 1] + line.points[k]);
-      const Eigen::Vector2d m = v.project(mid);
-      // Hidden only when every pixel around is covered by nearer points: a line on the
-      // silhouette (the outline the test engineer looks for) stays bright.
-      bool hidden = true;
-      const int mx = static_cast<int>(std::floor(m.x())), my = static_cast<int>(std::floor(m.y()));
-      const auto limit = static_cast<float>(v.depth(mid) + tolerance);
-      for (int y = my - 3; y <= my + 3 && hidden; ++y) {
-        for (int x = mx - 3; x <= mx + 3 && hidden; ++x) {
-          if (x < 0 || y < 0 || x >= v.width || y >= v.height ||
-              zbuf[static_cast<std::size_t>(y) * v.width + x] <= limit) {
-            hidden = false;
-          }
-        }
-      }
+      const bool hidden = line.normals.size() == line.points.size()
+                              ? faces_away(v, line.normals[k - 1] + line.normals[k])
+                              : buried(v, zbuf, mid, tolerance);
       set_colour(cr, role_colour(line.role), hidden ? 0.35 : 1.0);
       const Eigen::Vector2d a = panel.pixel(line.points[k - 1]), b = panel.pixel(line.points[k]);
       cairo_move_to(cr, a.x(), a.y());
@@ -230,7 +246,21 @@ void draw_lines(cairo_t* cr, const Panel& panel, const std::vector<Polyline>& li
   }
 }
 
-void draw_entrance(cairo_t* cr, const Panel& panel, const Eigen::Vector3d& entrance) {
+// Text on a dark box, readable over any points.
+void label(cairo_t* cr, double x, double y, const std::string& text, Rgb colour = kTextColour) {
+  cairo_text_extents_t e;
+  cairo_text_extents(cr, text.c_str(), &e);
+  set_colour(cr, kBackground, 0.7);
+  cairo_rectangle(cr, x + e.x_bearing - 3.0, y + e.y_bearing - 2.0, e.width + 6.0, e.height + 4.0);
+  cairo_fill(cr);
+  set_colour(cr, colour);
+  cairo_move_to(cr, x, y);
+  cairo_show_text(cr, text.c_str());
+}
+
+// A ring and cross at the entrance, labelled beside the bore's rim (radius mm).
+void draw_entrance(cairo_t* cr, const Panel& panel, const Eigen::Vector3d& entrance,
+                   double radius) {
   const Eigen::Vector2d c = panel.pixel(entrance);
   set_colour(cr, kEntranceColour);
   cairo_set_line_width(cr, 2.0);
@@ -241,8 +271,8 @@ void draw_entrance(cairo_t* cr, const Panel& panel, const Eigen::Vector3d& entra
   cairo_move_to(cr, c.x(), c.y() - 11.0);
   cairo_line_to(cr, c.x(), c.y() + 11.0);
   cairo_stroke(cr);
-  cairo_move_to(cr, c.x() + 9.0, c.y() - 9.0);
-  cairo_show_text(cr, "entrance");
+  label(cr, c.x() + std::max(12.0, radius * panel.view.px_per_mm + 8.0), c.y() + 4.0, "entrance",
+        kEntranceColour);
 }
 
 // 1, 2 or 5 times a power of ten, near a fifth of the panel.
@@ -257,17 +287,18 @@ double scale_bar_mm(const OrthoView& v) {
 
 void draw_panel_frame(cairo_t* cr, const Panel& panel) {
   const OrthoView& v = panel.view;
-  set_colour(cr, kTextColour);
-  cairo_move_to(cr, panel.x0 + 8.0, panel.y0 + 18.0);
-  cairo_show_text(cr, panel.title.c_str());
+  label(cr, panel.x0 + 8.0, panel.y0 + 18.0, panel.title);
   const double mm = scale_bar_mm(v);
   const double x = panel.x0 + 12.0, y = panel.y0 + v.height - 14.0;
+  set_colour(cr, kBackground, 0.7);
+  cairo_rectangle(cr, x - 3.0, y - 3.0, mm * v.px_per_mm + 6.0, 6.0);
+  cairo_fill(cr);
+  set_colour(cr, kTextColour);
   cairo_set_line_width(cr, 2.0);
   cairo_move_to(cr, x, y);
   cairo_line_to(cr, x + mm * v.px_per_mm, y);
   cairo_stroke(cr);
-  cairo_move_to(cr, x, y - 6.0);
-  cairo_show_text(cr, format("%g mm", mm).c_str());
+  label(cr, x, y - 6.0, format("%g mm", mm));
   // Separator between the panels.
   set_colour(cr, {70, 72, 80});
   cairo_set_line_width(cr, 1.0);
@@ -387,7 +418,7 @@ Rendering render_scan(const PointCloud& cloud, const Drawing& drawing,
       cairo_rectangle(cr.get(), panel->x0, panel->y0, panel->view.width, panel->view.height);
       cairo_clip(cr.get());
       draw_lines(cr.get(), *panel, models.lines, *zbuf);
-      for (const Eigen::Vector3d& e : models.entrances) draw_entrance(cr.get(), *panel, e);
+      for (const auto& [e, radius] : models.entrances) draw_entrance(cr.get(), *panel, e, radius);
       draw_panel_frame(cr.get(), *panel);
       cairo_restore(cr.get());
     }
