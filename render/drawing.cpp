@@ -41,9 +41,10 @@ Drawing bore_drawing(const BoreResult& r) {
 
 Drawing object_drawing(const ObjectModel& model, const ObjectDetectResult& r) {
   Drawing d;
-  d.legend.push_back(model.name + (r.found() ? ": found" : ": not found") + " (" +
-                     to_string(r.reason) + ")" +
-                     format(", %d hypotheses, %.1f ms", r.hypotheses_evaluated, r.time.total_ms));
+  d.legend.push_back(
+      model.name +
+      (r.found() ? ": found" : ": not found (" + std::string(to_string(r.reason)) + ")") +
+      format(", %d hypotheses, %.1f ms", r.hypotheses_evaluated, r.time.total_ms));
   for (std::size_t i = 0; i < r.instances.size(); ++i) {
     for (const DetectedPart& p : r.instances[i].parts) {
       Superquadric shape;

@@ -19,7 +19,7 @@ struct DrawnBore {
   Eigen::Vector3d entrance = Eigen::Vector3d::Zero();  // mm
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();     // unit, out of the bore toward the sensor
   double radius = 0.0;                                 // mm
-  Eigen::Vector3d plane_normal = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d plane_normal = Eigen::Vector3d::UnitZ();  // zero: estimated from the scan
   double depth = 0.0;  // drawn length into the part, mm; 0: as deep as the scan shows the wall
 };
 

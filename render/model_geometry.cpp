@@ -1,5 +1,6 @@
 #include "render/model_geometry.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -52,7 +53,7 @@ std::vector<Polyline> part_wireframe(const DrawnPart& part) {
   const Eigen::Isometry3d& T = part.T_world_part;
   std::vector<Polyline> lines;
   constexpr int kSegments = 64;
-  constexpr int kParallels = 7;  // latitudes strictly between the poles, the equator among them
+  constexpr int kParallels = 7;  // between the poles, the equator among them
   const auto add = [&](Polyline& line, double eta, double omega) {
     const Eigen::Vector3d p = surface_point(sq, eta, omega);
     Eigen::Vector3d gradient;
@@ -61,7 +62,10 @@ std::vector<Polyline> part_wireframe(const DrawnPart& part) {
     line.normals.push_back(T.linear() * gradient.normalized());
   };
   for (int i = 1; i <= kParallels; ++i) {
-    const double eta = -0.5 * kPi + kPi * i / (kParallels + 1);
+    // Evenly spaced along z (z = a3 sin^eps1 eta): for a small eps1 (a cylinder) even steps of
+    // eta would crowd every parallel at the caps.
+    const double f = -1.0 + 2.0 * i / (kParallels + 1);
+    const double eta = std::copysign(std::asin(std::pow(std::abs(f), 1.0 / sq.eps1)), f);
     Polyline line;
     for (int k = 0; k <= kSegments; ++k) add(line, eta, -kPi + 2.0 * kPi * k / kSegments);
     lines.push_back(std::move(line));
@@ -97,6 +101,28 @@ double bore_depth(const DrawnBore& bore, std::span<const Eigen::Vector3d> points
   const auto k = static_cast<std::ptrdiff_t>(0.98 * static_cast<double>(behind.size() - 1));
   std::nth_element(behind.begin(), behind.begin() + k, behind.end());
   return std::max(behind[static_cast<std::size_t>(k)], 0.2 * bore.radius);
+}
+
+Eigen::Vector3d entrance_plane_normal(const DrawnBore& bore,
+                                      std::span<const Eigen::Vector3d> points) {
+  const Eigen::Vector3d a = bore.axis.normalized();
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
+  std::size_t n = 0;
+  for (const Eigen::Vector3d& p : points) {
+    const Eigen::Vector3d d = p - bore.entrance;
+    const double along = d.dot(a), across = (d - along * a).norm();
+    if (!d.allFinite() || across < 1.1 * bore.radius || d.norm() > 2.0 * bore.radius) continue;
+    sum += d;
+    outer += d * d.transpose();
+    ++n;
+  }
+  if (n < 10) return a;
+  const Eigen::Vector3d mean = sum / static_cast<double>(n);
+  const Eigen::Matrix3d cov = outer / static_cast<double>(n) - mean * mean.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  const Eigen::Vector3d normal = eig.eigenvectors().col(0);  // smallest eigenvalue first
+  return normal.dot(a) < 0.0 ? Eigen::Vector3d(-normal) : normal;
 }
 
 double model_distance(const Drawing& drawing, const Eigen::Vector3d& p) {

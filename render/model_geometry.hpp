@@ -39,6 +39,12 @@ std::vector<Polyline> part_wireframe(const DrawnPart& part);
 // shows no wall.
 double bore_depth(const DrawnBore& bore, std::span<const Eigen::Vector3d> points);
 
+// The entrance plane's normal when the drawing does not give one (a zero plane_normal, as in the
+// service's results): the least-variance direction of the scan within two radii of the
+// entrance, outside the hole, signed like the axis; the axis when fewer than 10 points are there.
+Eigen::Vector3d entrance_plane_normal(const DrawnBore& bore,
+                                      std::span<const Eigen::Vector3d> points);
+
 // Distance of p to the nearest model, mm: for a bore, to its wall or its entrance plane,
 // whichever is nearer; for a part, along the ray from its centre (the radial Euclidean distance
 // of the superquadric literature). Infinity without models.

@@ -375,11 +375,14 @@ ColourKey colour_points(const PointCloud& cloud, const Drawing& drawing, const M
 
 }  // namespace
 
-Rendering render_scan(const PointCloud& cloud, const Drawing& drawing,
-                      const RenderOptions& options) {
+Rendering render_scan(const PointCloud& cloud, const Drawing& input, const RenderOptions& options) {
   RenderOptions o = options;
   o.panel_width = std::clamp(o.panel_width, 64, 4096);
   o.panel_height = std::clamp(o.panel_height, 64, 4096);
+  Drawing drawing = input;
+  for (DrawnBore& b : drawing.bores) {
+    if (b.plane_normal.norm() == 0.0) b.plane_normal = entrance_plane_normal(b, cloud.points);
+  }
   const Models models = build_models(cloud, drawing);
 
   Rendering out;

@@ -82,8 +82,9 @@ render::Drawing bore_json(const nlohmann::json& j) {
 render::Drawing object_json(const nlohmann::json& j, const std::optional<ObjectModel>& model) {
   render::Drawing d;
   d.legend.push_back(j.at("object").get<std::string>() +
-                     (j.at("found").get<bool>() ? ": found" : ": not found") + " (" +
-                     j.value("reason", std::string()) + ")" +
+                     (j.at("found").get<bool>()
+                          ? ": found"
+                          : ": not found (" + j.value("reason", std::string()) + ")") +
                      format(", %d hypotheses, %.1f ms", j.value("hypotheses_evaluated", 0),
                             j.value("time_ms", nlohmann::json::object()).value("total", 0.0)));
   const nlohmann::json instances = j.value("instances", nlohmann::json::array());
@@ -124,7 +125,8 @@ render::Drawing spool_json(const nlohmann::json& j, const std::optional<ObjectMo
   for (const daemon::PartPose& p : r.parts) {
     const Eigen::Vector3d c = p.T_world_part.translation(), z = p.T_world_part.linear().col(2);
     if (r.kind == daemon::DetectKind::kBore) {
-      d.bores.push_back({c, z, r.bore_radius_mm, z, 0.0});
+      // The service's result has no entrance plane: the renderer estimates it from the scan.
+      d.bores.push_back({c, z, r.bore_radius_mm, Eigen::Vector3d::Zero(), 0.0});
       d.legend.push_back("entrance  " + text(c) + " mm");
       d.legend.push_back("axis      " + text(z) + " (out of the bore)");
       d.legend.push_back(format("radius    %.3f mm, score %.3f", r.bore_radius_mm, p.score));
@@ -134,8 +136,7 @@ render::Drawing spool_json(const nlohmann::json& j, const std::optional<ObjectMo
                          format(", score %.3f", p.score));
     }
   }
-  d.legend.push_back(format("%zu points, scan %.2f s, detection %.3f s", r.num_points,
-                            r.scan_seconds, r.detect_seconds));
+  d.legend.push_back(format("scan %.2f s, detection %.3f s", r.scan_seconds, r.detect_seconds));
   return d;
 }
 

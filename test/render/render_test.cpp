@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "render/colour_map.hpp"
+#include "render/model_geometry.hpp"
 #include "render/render.hpp"
 #include "sim/superquadric_raycast.hpp"
 #include "sim/synthetic_bore.hpp"
@@ -152,6 +153,19 @@ TEST(Render, ModelWithoutScanLeavesTheRestBackground) {
   EXPECT_EQ(pixel(r.image, c + Eigen::Vector2d(60.0 * std::cos(0.4), 60.0 * std::sin(0.4))),
             kBackground);
   EXPECT_EQ(pixel(r.image, c + Eigen::Vector2d(-70.0, 45.0)), kBackground);
+}
+
+TEST(Render, EntrancePlaneOfASlantedBoreFromTheScan) {
+  sim::SyntheticBoreOptions o;
+  o.radius = 5.0;
+  o.slant_deg = 30.0;
+  o.spacing = 0.3;
+  const sim::SyntheticBoreScan scan = sim::make_synthetic_bore(o);
+  const DrawnBore bore{scan.truth.entrance, scan.truth.axis, 5.0, Eigen::Vector3d::Zero(), 0.0};
+  const Eigen::Vector3d n = entrance_plane_normal(bore, scan.cloud.points);
+  EXPECT_GT(n.dot(scan.truth.plane_normal), std::cos(2.0 * kPi / 180.0));
+  // The wall is as deep as the scan shows it, not the drawing's default of two radii.
+  EXPECT_GT(bore_depth(bore, scan.cloud.points), 2.5 * o.radius);
 }
 
 TEST(Render, WritesAPngFile) {
