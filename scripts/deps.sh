@@ -10,6 +10,7 @@ packages=(
   python3-pymodbus python3-serial-asyncio mbpoll  # independent Modbus peers for the drivers tests
   openssl  # scripts/make_dds_security.sh: the DDS Security test's CA and signed documents
   libcairo2-dev fonts-dejavu-core  # render/: pictures of scans and detections, legend font
+  libcpp-httplib-dev  # api/: the HTTP/JSON interface for robot controllers
 )
 
 missing=()
