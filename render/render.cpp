@@ -1,6 +1,7 @@
 #include "render/render.hpp"
 
 #include <cairo.h>
+#include <fontconfig/fontconfig.h>
 
 #include <algorithm>
 #include <array>
@@ -435,6 +436,11 @@ Rendering render_scan(const PointCloud& cloud, const Drawing& input, const Rende
 bool write_detection_png(const std::string& path, const PointCloud& cloud, const Drawing& drawing,
                          const RenderOptions& options, std::string* error) {
   return write_png(render_scan(cloud, drawing, options).image, path, error);
+}
+
+void release_font_caches() {
+  cairo_debug_reset_static_data();
+  FcFini();
 }
 
 }  // namespace rangefit::render

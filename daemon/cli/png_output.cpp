@@ -10,7 +10,9 @@ namespace {
 bool write(const std::string& path, const PointCloud& cloud, const render::Drawing& drawing,
            const render::RenderOptions& options) {
   std::string error;
-  if (render::write_detection_png(path, cloud, drawing, options, &error)) return true;
+  const bool ok = render::write_detection_png(path, cloud, drawing, options, &error);
+  render::release_font_caches();  // the command draws one picture
+  if (ok) return true;
   std::cerr << "rangefit: --png: " << error << "\n";
   return false;
 }

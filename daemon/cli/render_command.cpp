@@ -174,7 +174,9 @@ int run(const RenderArgs& a) {
   if (a.view_dir.size() == 3) o.toward_sensor = Eigen::Vector3d(a.view_dir.data());
   if (a.sensor_position.size() == 3) o.sensor_position = Eigen::Vector3d(a.sensor_position.data());
   std::string error;
-  if (!render::write_detection_png(a.out, cloud, drawing, o, &error)) {
+  const bool ok = render::write_detection_png(a.out, cloud, drawing, o, &error);
+  render::release_font_caches();  // the command draws one picture
+  if (!ok) {
     std::cerr << "rangefit render: " << error << "\n";
     return kExitBadInput;
   }

@@ -190,5 +190,12 @@ TEST(Render, WritesAPngFile) {
   EXPECT_NE(error.find("/nonexistent-dir/x.png"), std::string::npos);
 }
 
+// The font caches go before exit, so LeakSanitizer sees only our own allocations.
+class FontCaches : public ::testing::Environment {
+ public:
+  void TearDown() override { release_font_caches(); }
+};
+const auto* const kFontCaches = ::testing::AddGlobalTestEnvironment(new FontCaches);
+
 }  // namespace
 }  // namespace rangefit::render
