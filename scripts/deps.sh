@@ -12,6 +12,8 @@ packages=(
   dpkg-dev file  # cpack -G DEB: dpkg-shlibdeps (and file) fill the package's Depends
   ccache  # .ci/run: compile results kept outside the clone
   clang libclang-rt-14-dev  # RANGEFIT_FUZZ=ON: the libFuzzer harnesses of test/fuzz
+  libcairo2-dev fonts-dejavu-core  # render/: pictures of scans and detections, legend font
+  libcpp-httplib-dev  # api/: the HTTP/JSON interface for robot controllers
 )
 
 missing=()

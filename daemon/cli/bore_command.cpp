@@ -14,6 +14,7 @@
 #include "daemon/cli/commands.hpp"
 #include "daemon/cli/json_util.hpp"
 #include "daemon/cli/option_checks.hpp"
+#include "daemon/cli/png_output.hpp"
 #include "detect/bore_detector.hpp"
 #include "io/cloud_io.hpp"
 
@@ -29,6 +30,7 @@ struct BoreArgs {
   double normal_keep = 1.0;
   std::uint64_t seed = 1;
   bool json = false;
+  std::string png;
 };
 
 // "X,Y,Z" -> vector; nullopt on anything else (wrong count, not a number, NaN/Inf, beyond
@@ -182,6 +184,7 @@ int run(const BoreArgs& a) {
   } else {
     print_text(r);
   }
+  if (!write_png_if_asked(a.png, cloud, r, options)) return kExitBadInput;
   if (r.found) return kExitOk;
   return r.reason == BoreReason::kBadPrior ? kExitBadInput : kExitNotFound;
 }
@@ -224,6 +227,8 @@ void add_bore_command(CLI::App& app, int* exit_code) {
   cmd->add_option("--seed", args->seed, "Seed of the random sampling (same seed, same result)");
   cmd->add_flag("--json", args->json,
                 "Print one JSON object: found, entrance, axis, radius, reason, points, time_ms");
+  cmd->add_option("--png", args->png,
+                  "Also draw the scan and the fitted bore to this PNG (as `rangefit render`)");
   cmd->callback([args, exit_code] { *exit_code = run(*args); });
 }
 

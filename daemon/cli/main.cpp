@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "daemon/cli/commands.hpp"
+#include "daemon/cli/render_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -18,6 +19,7 @@ int main(int argc, char** argv) {
   rangefit::cli::add_watch_command(app, &exit_code);
   rangefit::cli::add_replay_command(app, &exit_code);
   rangefit::cli::add_simulate_command(app, &exit_code);
+  rangefit::cli::add_render_command(app, &exit_code);
 
   try {
     app.parse(argc, argv);

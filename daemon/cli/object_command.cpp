@@ -10,6 +10,7 @@
 #include "daemon/cli/cli_options.hpp"
 #include "daemon/cli/commands.hpp"
 #include "daemon/cli/option_checks.hpp"
+#include "daemon/cli/png_output.hpp"
 #include "detect/object_detector.hpp"
 #include "io/cloud_io.hpp"
 #include "io/object_model_file.hpp"
@@ -26,6 +27,7 @@ struct ObjectArgs {
   std::uint64_t seed = 1;
   std::vector<double> viewpoint;
   bool json = false;
+  std::string png;
 };
 
 nlohmann::json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
@@ -139,6 +141,7 @@ int run(const ObjectArgs& a) {
   } else {
     print_text(model, r);
   }
+  if (!write_png_if_asked(a.png, cloud, model, r, o)) return kExitBadInput;
   return r.found() ? kExitOk : kExitNotFound;
 }
 
@@ -168,6 +171,8 @@ void add_object_command(CLI::App& app, int* exit_code) {
       "sensor position X,Y,Z (or X Y Z), mm (optional; enables the free-space check)")
       ->check(finite_range(-kMaxCoordinateMm, kMaxCoordinateMm));
   cmd->add_flag("--json", args->json, "print the result as JSON");
+  cmd->add_option("--png", args->png,
+                  "also draw the scan and the found parts to this PNG (as `rangefit render`)");
   cmd->callback([args, exit_code] { *exit_code = run(*args); });
 }
 

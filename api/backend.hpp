@@ -1,0 +1,53 @@
+#pragma once
+// What the HTTP and line-TCP interfaces ask of the service. Both servers only translate: every
+// request goes through one Backend, which the service implements with the same queue its DDS
+// requests use, so a busy cell, a timeout or an error reads the same on every interface.
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+namespace rangefit::api {
+
+enum class Status {
+  kOk,          // body: the result, state, ...
+  kAccepted,    // queued, body {"id": ...}: poll the result
+  kBadRequest,  // malformed JSON or fields
+  kNotFound,    // no such result or file
+  kTooLarge,    // request body or line over the limit
+  kBusy,        // the queue is full: try again later
+  kTimeout,     // the scan or the detection ran out of time
+  kError,       // anything else; body {"error": ...}
+};
+
+const char* to_string(Status s);  // "ok", "accepted", "bad_request", ...
+int http_status(Status s);        // 200, 202, 400, 404, 413, 503, 504, 500
+
+struct Answer {
+  Status status = Status::kOk;
+  nlohmann::json body = nlohmann::json::object();
+};
+
+// {"error": message} with that status.
+Answer error_answer(Status status, const std::string& message);
+
+// The servers call these from their worker threads, several at once.
+class Backend {
+ public:
+  virtual ~Backend() = default;
+  // A detection request, as `rangefit request` and the spool's request.json spell it. wait: answer
+  // when the result is there (kOk, body = the result JSON) or with kBusy / kTimeout / kError;
+  // otherwise kAccepted with {"id": ...} as soon as it is queued (or kBusy).
+  virtual Answer detect(const nlohmann::json& request, bool wait) = 0;
+  // A result by request id: kOk with the result, kAccepted while it runs, kNotFound.
+  virtual Answer result(const std::string& id) = 0;
+  // Lifecycle state, queue depth, diagnostics.
+  virtual Answer state() = 0;
+  // A file of a finished result, name "cloud.ply" or "picture.png" (the servers ask for no
+  // other); nullopt when there is none. The service only returns paths inside its spool.
+  virtual std::optional<std::filesystem::path> result_file(const std::string& id,
+                                                           const std::string& name) = 0;
+};
+
+}  // namespace rangefit::api

@@ -1,0 +1,166 @@
+#include "api/http_server.hpp"
+
+#include <httplib.h>
+#include <sys/socket.h>
+
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <thread>
+
+namespace rangefit::api {
+
+nlohmann::json answer_json(const Answer& answer) {
+  nlohmann::json j = answer.body.is_object() ? answer.body : nlohmann::json{{"value", answer.body}};
+  j["status"] = to_string(answer.status);
+  return j;
+}
+
+namespace {
+
+constexpr int kBacklog = 128;
+
+void send(httplib::Response& res, const Answer& answer) {
+  res.status = http_status(answer.status);
+  if (answer.status == Status::kBusy) res.set_header("Retry-After", "1");
+  res.set_content(answer_json(answer).dump(), "application/json");
+}
+
+// The backend runs service code: an exception there is a 500 answer, never a dead server thread.
+template <class F>
+void guarded(httplib::Response& res, F&& f) {
+  try {
+    send(res, f());
+  } catch (const std::exception& e) {
+    send(res, error_answer(Status::kError, std::string("internal error: ") + e.what()));
+  }
+}
+
+std::pair<time_t, time_t> sec_usec(std::chrono::milliseconds ms) {
+  return {static_cast<time_t>(ms.count() / 1000), static_cast<time_t>((ms.count() % 1000) * 1000)};
+}
+
+}  // namespace
+
+struct HttpServer::Impl {
+  Backend& backend;
+  HttpOptions options;
+  httplib::Server server;
+  std::thread thread;
+  int port = -1;
+
+  Impl(Backend& b, HttpOptions o) : backend(b), options(std::move(o)) {}
+  void routes();
+};
+
+void HttpServer::Impl::routes() {
+  server.Post("/v1/detect", [this](const httplib::Request& req, httplib::Response& res) {
+    guarded(res, [&] {
+      const nlohmann::json request = nlohmann::json::parse(req.body, nullptr, false);
+      if (request.is_discarded() || !request.is_object()) {
+        return error_answer(Status::kBadRequest, "the body must be one JSON object");
+      }
+      const std::string wait = req.get_param_value("wait");
+      return backend.detect(request, !(wait == "0" || wait == "false"));
+    });
+  });
+  // Ids are the service's own (letters, digits, '-', '_', '.'), so no path can be built from one.
+  server.Get(R"(/v1/results/([A-Za-z0-9_.\-]{1,128}))",
+             [this](const httplib::Request& req, httplib::Response& res) {
+               guarded(res, [&] { return backend.result(req.matches[1]); });
+             });
+  server.Get(
+      R"(/v1/results/([A-Za-z0-9_.\-]{1,128})/(cloud\.ply|picture\.png))",
+      [this](const httplib::Request& req, httplib::Response& res) {
+        try {
+          const std::string name = req.matches[2];
+          const auto path = backend.result_file(req.matches[1], name);
+          std::ifstream in;
+          if (path) in.open(*path, std::ios::binary);
+          if (!in.is_open()) {
+            send(res, error_answer(Status::kNotFound, "no " + name + " for this result"));
+            return;
+          }
+          std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+          res.set_content(std::move(bytes),
+                          name == "picture.png" ? "image/png" : "application/octet-stream");
+        } catch (const std::exception& e) {
+          send(res, error_answer(Status::kError, std::string("internal error: ") + e.what()));
+        }
+      });
+  server.Get("/v1/state", [this](const httplib::Request&, httplib::Response& res) {
+    guarded(res, [&] { return backend.state(); });
+  });
+  // Errors httplib answers itself (no such route, body too large, bad request line) in the
+  // same JSON as ours.
+  server.set_error_handler(
+      httplib::Server::HandlerWithResponse([](const httplib::Request&, httplib::Response& res) {
+        if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
+        const Status s = res.status == 413   ? Status::kTooLarge
+                         : res.status == 404 ? Status::kNotFound
+                         : res.status < 500  ? Status::kBadRequest
+                                             : Status::kError;
+        const int code = res.status;
+        send(res, error_answer(s, "HTTP " + std::to_string(code)));
+        res.status = code;  // keep httplib's code (405, 414, ...) where ours is coarser
+        return httplib::Server::HandlerResponse::Handled;
+      }));
+}
+
+HttpServer::HttpServer(Backend& backend, HttpOptions options)
+    : impl_(std::make_unique<Impl>(backend, std::move(options))) {}
+
+HttpServer::~HttpServer() { stop(); }
+
+bool HttpServer::start(std::string* error) {
+  Impl& m = *impl_;
+  m.routes();
+  const int threads = std::max(1, m.options.threads);
+  m.server.new_task_queue = [threads] {
+    return new httplib::ThreadPool(static_cast<std::size_t>(threads));
+  };
+  m.server.set_payload_max_length(m.options.max_body_bytes);
+  const auto [rs, ru] = sec_usec(m.options.read_timeout);
+  const auto [ws, wu] = sec_usec(m.options.write_timeout);
+  m.server.set_read_timeout(rs, ru);
+  m.server.set_write_timeout(ws, wu);
+  m.server.set_keep_alive_timeout(std::max<time_t>(1, rs));
+  // httplib listens with a backlog of 5: a burst of clients (50 robots after a cell restart)
+  // overflows it and the kernel drops or resets connections. Keep the socket it binds and raise
+  // the backlog after its listen() (Linux takes a second listen() as the new backlog).
+  int listen_fd = -1;
+  // SO_REUSEADDR only: httplib's default also sets SO_REUSEPORT, which would let a second
+  // server bind the same port and silently take half the connections.
+  m.server.set_socket_options([&listen_fd](int fd) {
+    const int one = 1;
+    ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+    listen_fd = fd;
+  });
+  const std::string& host = m.options.listen.host;
+  if (m.options.listen.port == 0) {
+    m.port = m.server.bind_to_any_port(host);
+  } else {
+    m.port = m.server.bind_to_port(host, m.options.listen.port) ? m.options.listen.port : -1;
+  }
+  if (m.port >= 0 && listen_fd >= 0) ::listen(listen_fd, kBacklog);
+  if (m.port < 0) {
+    *error = "http: cannot listen on " + host + ":" + std::to_string(m.options.listen.port);
+    return false;
+  }
+  m.thread = std::thread([&m] { m.server.listen_after_bind(); });
+  // stop() before the accept loop runs would not reach it: wait until it does.
+  for (int i = 0; i < 2000 && !m.server.is_running(); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return true;
+}
+
+void HttpServer::stop() {
+  if (!impl_ || !impl_->thread.joinable()) return;
+  impl_->server.stop();
+  impl_->thread.join();
+}
+
+int HttpServer::port() const { return impl_->port; }
+
+}  // namespace rangefit::api

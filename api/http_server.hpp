@@ -1,0 +1,49 @@
+#pragma once
+// The HTTP/JSON interface for robot controllers and scripts (cpp-httplib):
+//   POST /v1/detect                 body: a detection request; ?wait=0 answers 202 + {"id"} at once
+//   GET  /v1/results/ID             the result (202 while it runs, 404 unknown)
+//   GET  /v1/results/ID/cloud.ply   the scan of a result, and its picture: .../picture.png
+//   GET  /v1/state                  lifecycle state and queue
+// Every JSON answer carries "status" as in backend.hpp ("ok", "busy", "timeout", ...), the HTTP
+// code matches it (200, 503, 504, ...), and errors say why in "error". Bodies over the limit get
+// 413 without being read; a client that stops sending is dropped after the read timeout.
+
+#include <chrono>
+#include <cstddef>
+#include <memory>
+#include <string>
+
+#include "api/backend.hpp"
+#include "api/listen_address.hpp"
+
+namespace rangefit::api {
+
+struct HttpOptions {
+  ListenAddress listen;                          // loopback by default; port 0: any free port
+  std::size_t max_body_bytes = 64 * 1024;        // a detection request is well under 1 KiB
+  std::chrono::milliseconds read_timeout{5000};  // per read: a silent client is dropped after it
+  std::chrono::milliseconds write_timeout{5000};
+  int threads = 8;  // requests served at once; more wait in line for a thread
+};
+
+class HttpServer {
+ public:
+  HttpServer(Backend& backend, HttpOptions options);
+  ~HttpServer();  // stops
+  HttpServer(const HttpServer&) = delete;
+  HttpServer& operator=(const HttpServer&) = delete;
+
+  // Binds and serves on its own threads; false and *error when the address cannot be bound.
+  bool start(std::string* error);
+  void stop();
+  int port() const;  // the bound port (the free one chosen for port 0)
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// The JSON both interfaces send: the answer's body with "status" set.
+nlohmann::json answer_json(const Answer& answer);
+
+}  // namespace rangefit::api

@@ -1,0 +1,65 @@
+#include "render/drawing.hpp"
+
+#include <cstdio>
+#include <string>
+
+namespace rangefit::render {
+namespace {
+
+std::string format(const char* fmt, auto... args) {
+  char buffer[256];
+  std::snprintf(buffer, sizeof buffer, fmt, args...);
+  return buffer;
+}
+
+std::string vec(const Eigen::Vector3d& v, const char* digits = "%.3f") {
+  const std::string f = std::string(digits) + ", " + digits + ", " + digits;
+  return format(f.c_str(), v.x(), v.y(), v.z());
+}
+
+}  // namespace
+
+Drawing bore_drawing(const BoreResult& r) {
+  Drawing d;
+  if (!r.found) {
+    d.legend.push_back("bore not found: " + std::string(to_string(r.reason)));
+  } else {
+    d.bores.push_back({r.entrance, r.axis, r.radius, r.plane_normal, 0.0});
+    d.legend.push_back("bore found" + std::string(r.refined ? ", refined" : "") +
+                       (r.second_fit ? ", notch re-fit" : ""));
+    d.legend.push_back("entrance  " + vec(r.entrance) + " mm");
+    d.legend.push_back("axis      " + vec(r.axis, "%.4f") + " (out of the bore)");
+    d.legend.push_back(
+        format("radius    %.3f mm (before refinement %.3f mm)", r.radius, r.rsf_radius));
+  }
+  const BoreCounts& c = r.counts;
+  d.legend.push_back(format("points    %zu in region, %zu plane, %zu wall (%zu in last fit)", c.roi,
+                            c.plane, c.wall, c.wall_final));
+  d.legend.push_back(format("time      %.1f ms", r.time_ms.total));
+  return d;
+}
+
+Drawing object_drawing(const ObjectModel& model, const ObjectDetectResult& r) {
+  Drawing d;
+  d.legend.push_back(
+      model.name +
+      (r.found() ? ": found" : ": not found (" + std::string(to_string(r.reason)) + ")") +
+      format(", %d hypotheses, %.1f ms", r.hypotheses_evaluated, r.time.total_ms));
+  for (std::size_t i = 0; i < r.instances.size(); ++i) {
+    for (const DetectedPart& p : r.instances[i].parts) {
+      Superquadric shape;
+      for (const ModelPart& mp : model.parts) {
+        if (mp.name == p.name) shape = mp.shape;
+      }
+      d.parts.push_back({p.name, shape, p.T_world_part});
+      d.legend.push_back(format("[%zu] ", i) + p.name + "  centre " + vec(p.center(), "%.2f") +
+                         " mm, z-axis " + vec(p.z_axis()));
+      d.legend.push_back(format("      M %.4f  I %zu  S %zu  coverage %.2f  seen through %.2f",
+                                p.scores.measure, p.scores.interior, p.scores.surface,
+                                p.scores.coverage, p.scores.seen_through));
+    }
+  }
+  return d;
+}
+
+}  // namespace rangefit::render

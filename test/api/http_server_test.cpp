@@ -1,0 +1,212 @@
+// The HTTP interface against a fake service, on loopback: the routes a robot program uses, and
+// what a hostile or careless client does (bad JSON, huge bodies, silence, 50 at once, a busy cell).
+#include "api/http_server.hpp"
+
+#include <arpa/inet.h>
+#include <gtest/gtest.h>
+#include <httplib.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <future>
+#include <vector>
+
+#include "fake_backend.hpp"
+
+namespace rangefit::api {
+namespace {
+
+const std::string kRequest = R"({"kind": "bore", "bore": {"radius_mm": 5}})";
+
+class Http : public ::testing::Test {
+ protected:
+  void start(HttpOptions o = {}) {
+    o.listen = {"127.0.0.1", 0};
+    server_ = std::make_unique<HttpServer>(backend_, o);
+    std::string error;
+    ASSERT_TRUE(server_->start(&error)) << error;
+    ASSERT_GT(server_->port(), 0);
+  }
+  httplib::Client client() const {
+    httplib::Client c("127.0.0.1", server_->port());
+    c.set_read_timeout(10, 0);
+    return c;
+  }
+  static nlohmann::json body(const httplib::Result& r) {
+    return nlohmann::json::parse(r->body, nullptr, false);
+  }
+
+  test::FakeBackend backend_;
+  std::unique_ptr<HttpServer> server_;
+};
+
+TEST_F(Http, DetectWaitsForTheResult) {
+  start();
+  auto c = client();
+  const auto r = c.Post("/v1/detect", kRequest, "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200);
+  const nlohmann::json j = body(r);
+  EXPECT_EQ(j["status"], "ok");
+  EXPECT_EQ(j["found"], true);
+  EXPECT_EQ(r->get_header_value("Content-Type"), "application/json");
+  // The result stays there by id.
+  const auto again = c.Get("/v1/results/" + j["request_id"].get<std::string>());
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->status, 200);
+  EXPECT_EQ(body(again)["bore_radius_mm"], 5.0);
+}
+
+TEST_F(Http, DetectWithoutWaitingGivesAnIdToPoll) {
+  backend_.detect_time = std::chrono::milliseconds(200);
+  const auto dir = std::filesystem::temp_directory_path() / "rangefit_http_test_cloud.ply";
+  std::ofstream(dir) << "ply\n";
+  backend_.cloud_file = dir;
+  start();
+  auto c = client();
+  const auto r = c.Post("/v1/detect?wait=0", kRequest, "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 202);
+  const std::string id = body(r)["id"];
+  const auto running = c.Get("/v1/results/" + id);
+  ASSERT_TRUE(running);
+  EXPECT_EQ(running->status, 202);
+  const auto early = c.Get("/v1/results/" + id + "/cloud.ply");
+  ASSERT_TRUE(early);
+  EXPECT_EQ(early->status, 404) << early->body;  // not finished yet
+  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  EXPECT_EQ(c.Get("/v1/results/" + id)->status, 200);
+  const auto cloud = c.Get("/v1/results/" + id + "/cloud.ply");
+  ASSERT_TRUE(cloud);
+  EXPECT_EQ(cloud->status, 200);
+  EXPECT_EQ(cloud->body, "ply\n");
+  EXPECT_EQ(c.Get("/v1/results/" + id + "/picture.png")->status, 404);
+  std::filesystem::remove(dir);
+}
+
+TEST_F(Http, StateUnknownIdsAndRoutes) {
+  start();
+  auto c = client();
+  const auto state = c.Get("/v1/state");
+  ASSERT_TRUE(state);
+  EXPECT_EQ(state->status, 200);
+  EXPECT_EQ(body(state)["state"], "ready");
+  EXPECT_EQ(c.Get("/v1/results/nope")->status, 404);
+  // No way out of the results: ids are plain names, other files do not exist.
+  EXPECT_EQ(c.Get("/v1/results/..%2F..%2Fetc%2Fpasswd")->status, 404);
+  EXPECT_EQ(c.Get("/v1/results/x/../../etc/passwd")->status, 404);
+  EXPECT_EQ(c.Get("/v1/results/x/request.json")->status, 404);
+  const auto missing = c.Get("/index.html");
+  ASSERT_TRUE(missing);
+  EXPECT_EQ(missing->status, 404);
+  EXPECT_EQ(body(missing)["status"], "not_found");
+}
+
+TEST_F(Http, BadJsonIsABadRequest) {
+  start();
+  auto c = client();
+  for (const std::string& bad : {std::string("{ not json"), std::string("[1, 2]"), std::string(""),
+                                 std::string(R"({"no": "kind"})")}) {
+    const auto r = c.Post("/v1/detect", bad, "application/json");
+    ASSERT_TRUE(r) << bad;
+    EXPECT_EQ(r->status, 400) << bad;
+    EXPECT_EQ(body(r)["status"], "bad_request") << bad;
+    EXPECT_FALSE(body(r)["error"].get<std::string>().empty());
+  }
+  EXPECT_EQ(backend_.detections, 0);
+}
+
+TEST_F(Http, HugeBodiesAreRefused) {
+  HttpOptions o;
+  o.max_body_bytes = 4096;
+  start(o);
+  auto c = client();
+  const std::string huge = R"({"kind": "bore", "pad": ")" + std::string(1 << 20, 'x') + "\"}";
+  const auto r = c.Post("/v1/detect", huge, "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 413);
+  EXPECT_EQ(backend_.detections, 0);
+  // And the server goes on.
+  EXPECT_EQ(client().Post("/v1/detect", kRequest, "application/json")->status, 200);
+}
+
+TEST_F(Http, BusyCellAnswers503) {
+  backend_.capacity = 1;
+  backend_.detect_time = std::chrono::milliseconds(300);
+  start();
+  auto first = std::async(std::launch::async, [this] {
+    return client().Post("/v1/detect", kRequest, "application/json")->status;
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  const auto busy = client().Post("/v1/detect", kRequest, "application/json");
+  ASSERT_TRUE(busy);
+  EXPECT_EQ(busy->status, 503);
+  EXPECT_EQ(body(busy)["status"], "busy");
+  EXPECT_EQ(busy->get_header_value("Retry-After"), "1");
+  EXPECT_EQ(first.get(), 200);
+}
+
+TEST_F(Http, FiftyConcurrentClientsAllGetAnswers) {
+  backend_.detect_time = std::chrono::milliseconds(20);
+  start();
+  std::vector<std::future<int>> clients;
+  for (int i = 0; i < 50; ++i) {
+    clients.push_back(std::async(std::launch::async, [this] {
+      const auto r = client().Post("/v1/detect", kRequest, "application/json");
+      return r ? r->status : -100 - static_cast<int>(r.error());
+    }));
+  }
+  for (auto& f : clients) EXPECT_EQ(f.get(), 200);
+  EXPECT_EQ(backend_.detections, 50);
+}
+
+// Connects and sends half a request, then nothing.
+int silent_client(int port) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(static_cast<std::uint16_t>(port));
+  inet_pton(AF_INET, "127.0.0.1", &a.sin_addr);
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) return -1;
+  const std::string part = "POST /v1/detect HTTP/1.1\r\nHost: x\r\nContent-Length: 100\r\n\r\n{";
+  ::send(fd, part.data(), part.size(), MSG_NOSIGNAL);
+  return fd;
+}
+
+TEST_F(Http, SlowClientsAreDroppedAndDoNotBlockOthers) {
+  HttpOptions o;
+  o.threads = 4;
+  o.read_timeout = std::chrono::milliseconds(300);
+  start(o);
+  std::vector<int> slow;
+  for (int i = 0; i < 4; ++i) slow.push_back(silent_client(server_->port()));  // every thread
+  EXPECT_EQ(client().Post("/v1/detect", kRequest, "application/json")->status, 200);
+  for (const int fd : slow) {
+    ASSERT_GE(fd, 0);
+    pollfd p{fd, POLLIN, 0};
+    ASSERT_EQ(::poll(&p, 1, 3000), 1) << "the server did not drop a silent client";
+    char buf[512];
+    // Closed, possibly after an error answer: reading reaches the end.
+    while (::recv(fd, buf, sizeof buf, 0) > 0) {
+    }
+    ::close(fd);
+  }
+  EXPECT_EQ(backend_.detections, 1);
+}
+
+TEST_F(Http, PortInUseIsAnError) {
+  start();
+  HttpOptions o;
+  o.listen = {"127.0.0.1", server_->port()};
+  HttpServer second(backend_, o);
+  std::string error;
+  EXPECT_FALSE(second.start(&error));
+  EXPECT_NE(error.find(std::to_string(server_->port())), std::string::npos) << error;
+}
+
+}  // namespace
+}  // namespace rangefit::api
