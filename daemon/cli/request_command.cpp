@@ -8,6 +8,7 @@
 #include "daemon/cli/commands.hpp"
 #include "daemon/client.hpp"
 #include "daemon/json_codec.hpp"
+#include "daemon/result_outcome.hpp"
 
 namespace rangefit::cli {
 namespace {
@@ -57,9 +58,7 @@ int run(RequestArgs& a, daemon::DetectKind kind) {
       return kExitBadInput;
     }
     std::cout << daemon::to_json(*result).dump(2) << "\n";
-    if (result->found) return kExitOk;
-    return result->reason.empty() || result->reason.starts_with("no fit") ? kExitNotFound
-                                                                          : kExitBadInput;
+    return daemon::exit_code_of(*result);
   } catch (const std::exception& e) {
     std::cerr << "rangefit request: " << e.what() << "\n";
     return kExitBadInput;
