@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "daemon/driver_configs.hpp"
+#include "io/object_model_file.hpp"
 
 namespace rangefit::daemon {
 namespace {
@@ -316,13 +317,37 @@ void read_device(FieldReader& r, DeviceConfig& d) {
   r.reject_unknown();
 }
 
-void read_object(FieldReader& r, ObjectModelConfig& o) {
+std::filesystem::path resolve(const std::filesystem::path& p, const std::filesystem::path& base) {
+  return p.empty() || p.is_absolute() || base.empty() ? p : base / p;
+}
+
+void read_object(FieldReader& r, ObjectModelConfig& o, const std::filesystem::path& base_dir) {
   r.read("name", o.name);
-  if (o.name.empty()) r.fail("name", "is required");
-  r.read("scale_mm", o.scale_mm, 0.1, 1e5);
-  if (o.scale_mm == std::array<double, 3>{})
-    r.fail("scale_mm", "is required (three half-sizes, mm)");
-  r.read("shape", o.shape, 0.1, 2.0);
+  std::string file;
+  r.read("model", file);
+  o.model_file = resolve(file, base_dir);
+  if (!file.empty()) {
+    for (const char* inline_key : {"scale_mm", "shape", "taper"}) {
+      if (r.find(inline_key) != nullptr) {
+        r.fail(inline_key, "is for inline models; the model file (model) gives the parts");
+      }
+    }
+    try {
+      o.model = io::read_object_model(o.model_file);
+    } catch (const std::exception& e) {
+      r.fail("model", e.what());
+    }
+    if (o.name.empty()) o.name = o.model.name;
+  } else {
+    if (o.name.empty()) r.fail("name", "is required (or give a model file: model = \"x.toml\")");
+    r.read("scale_mm", o.scale_mm, 0.1, 1e5);
+    if (o.scale_mm == std::array<double, 3>{})
+      r.fail("scale_mm", "is required (three half-sizes, mm), or a model file (model)");
+    r.read("shape", o.shape, 0.1, 2.0);
+    r.read("taper", o.taper, -1.0, 1.0);
+    o.model = inline_object(o.name, o.scale_mm, o.shape, o.taper).model;
+  }
+  if (o.name.empty()) r.fail("name", "is required (the model file has no name)");
   std::string mesh;
   r.read("mesh", mesh);
   o.mesh = mesh;
@@ -333,10 +358,6 @@ void read_object(FieldReader& r, ObjectModelConfig& o) {
 struct FusionTableError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
-
-std::filesystem::path resolve(const std::filesystem::path& p, const std::filesystem::path& base) {
-  return p.empty() || p.is_absolute() || base.empty() ? p : base / p;
-}
 
 DaemonConfig read_root(const toml::table& root, std::string_view source_name,
                        const std::filesystem::path& base_dir) {
@@ -399,7 +420,7 @@ DaemonConfig read_root(const toml::table& root, std::string_view source_name,
     for (std::size_t i = 0; i < arr->size(); ++i) {
       const std::string path = "objects[" + std::to_string(i) + "]";
       FieldReader sub(*(*arr)[i].as_table(), path);
-      read_object(sub, c.objects.emplace_back());
+      read_object(sub, c.objects.emplace_back(), base_dir);
       if (!names.insert(c.objects.back().name).second) sub.fail("name", "duplicate object name");
     }
   }
@@ -415,6 +436,19 @@ DaemonConfig read_root(const toml::table& root, std::string_view source_name,
 }
 
 }  // namespace
+
+ObjectModelConfig inline_object(std::string name, std::array<double, 3> scale_mm,
+                                std::array<double, 2> shape, std::array<double, 2> taper) {
+  ObjectModelConfig o;
+  o.name = std::move(name);
+  o.scale_mm = scale_mm;
+  o.shape = shape;
+  o.taper = taper;
+  o.model.name = o.name;
+  o.model.parts.push_back({o.name, Superquadric{scale_mm[0], scale_mm[1], scale_mm[2], shape[0],
+                                                shape[1], taper[0], taper[1]}});
+  return o;
+}
 
 const char* to_string(DriverKind k) {
   switch (k) {

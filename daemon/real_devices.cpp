@@ -213,7 +213,8 @@ ScanOutcome RealDevices::scan_stripe(const DeviceConfig& device, const ScanReque
                                        health_watch(device.name, *ranger, axis_name, *axis), &why);
   if (end == ScanLoopEnd::kCancelled) axis->halt();
   if (end != ScanLoopEnd::kDone) return failed(device, why);
-  return finish_scan(device, assembler.finish());
+  return finish_scan(device, assembler.finish(), Eigen::Isometry3d::Identity(),
+                     stripe_sensor(fc.geometry, from, to), clock_.get());
 }
 
 ScanOutcome RealDevices::scan_css(const DeviceConfig& device, const ScanRequest& request,
@@ -248,7 +249,8 @@ ScanOutcome RealDevices::scan_css(const DeviceConfig& device, const ScanRequest&
       *css, *joints, {cancel, progress}, [&] { return sweep.at_end; }, fuse,
       health_watch(device.name, *css, robot_name, *joints), &why);
   if (end != ScanLoopEnd::kDone) return failed(device, why);
-  return finish_scan(device, assembler.finish());
+  return finish_scan(device, assembler.finish(), Eigen::Isometry3d::Identity(),
+                     css_sensor(fc.geometry), clock_.get());
 }
 
 ScanOutcome RealDevices::scan_pan_tilt(const DeviceConfig& device, const ScanRequest& request,
@@ -281,7 +283,11 @@ ScanOutcome RealDevices::scan_pan_tilt(const DeviceConfig& device, const ScanReq
       *head, *ranger, {cancel, progress}, [&] { return sweep.at_end; }, fuse,
       health_watch(device.name, *ranger, head_name, *head), &why);
   if (end != ScanLoopEnd::kDone) return failed(device, why);
-  return finish_scan(device, assembler.finish());
+  // The real head's tilt is held by the cell program; its zero is the calibrated pose.
+  return finish_scan(
+      device, assembler.finish(), Eigen::Isometry3d::Identity(),
+      pan_tilt_sensor(fc.geometry, 0.5 * fc.geometry.sweep_angle_rad, fc.geometry.tilt_zero_rad),
+      clock_.get());
 }
 
 }  // namespace rangefit::daemon

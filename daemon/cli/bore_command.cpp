@@ -12,6 +12,7 @@
 
 #include "daemon/cli/commands.hpp"
 #include "daemon/cli/json_util.hpp"
+#include "daemon/detection_adapter.hpp"
 #include "detect/bore_detector.hpp"
 #include "io/cloud_io.hpp"
 
@@ -99,7 +100,6 @@ void print_text(const BoreResult& r) {
 }
 
 int run(const BoreArgs& a) {
-  BorePrior prior;
   const auto entrance = parse_vec(a.entrance);
   const auto axis = parse_vec(a.axis);
   if (!entrance || !axis || axis->norm() == 0.0) {
@@ -111,12 +111,13 @@ int run(const BoreArgs& a) {
     std::cerr << "rangefit bore: --cad-radius must be a positive number of millimetres\n";
     return kExitBadInput;
   }
-  prior.entrance = *entrance;
-  prior.axis = *axis;
-  prior.radius = a.radius;
-  BoreOptions options;
-  options.seed = a.seed;
-  options.normal_keep = a.normal_keep;
+  daemon::BoreQuery query;
+  query.entrance = *entrance;
+  query.axis = *axis;
+  query.radius = a.radius;
+  query.seed = a.seed;
+  query.normal_keep = a.normal_keep;
+  daemon::ScanSensor sensor;  // what the user knows of the sensor
   const std::pair<const std::string*, const char*> optional_vectors[] = {
       {&a.plane_normal, "--cad-plane-normal"},
       {&a.view_dir, "--view-dir"},
@@ -128,9 +129,9 @@ int run(const BoreArgs& a) {
       std::cerr << "rangefit bore: " << name << " needs three finite numbers X,Y,Z\n";
       return kExitBadInput;
     }
-    if (text == &a.plane_normal) prior.plane_normal = *v;
-    if (text == &a.view_dir) options.view_dir = *v;
-    if (text == &a.sensor_position) options.sensor_position = *v;
+    if (text == &a.plane_normal) query.plane_normal = *v;
+    if (text == &a.view_dir) sensor.view_dir = *v;
+    if (text == &a.sensor_position) sensor.sensor_position = *v;
   }
   PointCloud cloud;
   try {
@@ -139,7 +140,8 @@ int run(const BoreArgs& a) {
     std::cerr << "rangefit bore: " << e.what() << "\n";
     return kExitBadInput;
   }
-  const BoreResult r = detect_bore(cloud, prior, options);
+  const daemon::BoreDetection d = daemon::bore_detection(query, sensor);
+  const BoreResult r = detect_bore(cloud, d.prior, d.options);
   if (a.json) {
     std::cout << to_json(r).dump() << "\n";
   } else {

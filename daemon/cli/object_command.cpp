@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "daemon/cli/commands.hpp"
+#include "daemon/detection_adapter.hpp"
 #include "detect/object_detector.hpp"
 #include "io/cloud_io.hpp"
 #include "io/object_model_file.hpp"
@@ -99,14 +100,16 @@ int run(const ObjectArgs& a) {
     std::cerr << "rangefit object: " << e.what() << "\n";
     return kExitBadInput;
   }
-  ObjectDetectOptions o;
-  if (a.hypotheses > 0) o.hypotheses = o.compound_hypotheses = a.hypotheses;
-  o.trials = a.trials;
-  o.instances = a.instances;
-  o.seed = a.seed;
+  daemon::ObjectQuery query;
+  query.hypotheses = a.hypotheses;
+  query.trials = a.trials;
+  query.instances = a.instances;
+  query.seed = a.seed;
+  daemon::ScanSensor sensor;  // what the user knows of the sensor
   if (a.viewpoint.size() == 3)
-    o.viewpoint = Eigen::Vector3d(a.viewpoint[0], a.viewpoint[1], a.viewpoint[2]);
-  const ObjectDetectResult r = detect_object(model, cloud.points, o);
+    sensor.sensor_position = Eigen::Vector3d(a.viewpoint[0], a.viewpoint[1], a.viewpoint[2]);
+  const ObjectDetectResult r =
+      detect_object(model, cloud.points, daemon::object_detect_options(query, model, sensor));
   if (r.reason == DetectReason::kInvalidModel || r.reason == DetectReason::kInvalidOptions) {
     std::cerr << "rangefit object: " << to_string(r.reason) << "\n";
     return kExitBadInput;
