@@ -122,7 +122,10 @@ struct SimCell::Run {
 };
 
 SimCell::SimCell(const DaemonConfig& config)
-    : config_(config), clock_(std::make_unique<sim::SimClock>(config.sim.time_scale)) {
+    : SimCell(config, std::make_unique<sim::SimClock>(config.sim.time_scale)) {}
+
+SimCell::SimCell(const DaemonConfig& config, std::unique_ptr<sim::SimClock> clock)
+    : config_(config), clock_(std::move(clock)) {
   std::map<std::string, std::shared_ptr<LoadedScene>> by_path;
   for (const auto& d : config_.devices) {
     if (d.driver != DriverKind::kSim) continue;
