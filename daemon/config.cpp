@@ -306,7 +306,22 @@ void read_device(FieldReader& r, DeviceConfig& d) {
   r.read("sweep_end", d.sweep_end, -kMaxDouble, kMaxDouble);
   r.read("sweep_speed", d.sweep_speed, 0.0, kMaxDouble);
   r.read("motion", d.motion);
+  std::string protocol;
+  r.read("protocol", protocol);
+  if (!protocol.empty()) {
+    if (d.kind != "robot") r.fail("protocol", "only for kind robot");
+    if (protocol == "cia402") {
+      d.protocol = JointProtocol::kCia402;
+    } else if (protocol == "powercube") {
+      d.protocol = JointProtocol::kPowerCube;
+    } else {
+      r.fail("protocol", "must be cia402 or powercube");
+    }
+  }
   read_bus_addresses(r, d);
+  if (d.protocol == JointProtocol::kPowerCube && d.can_node > 31) {
+    r.fail("can_node", "a PowerCube module id is 1 .. 31");
+  }
   std::string scene;
   r.read("scene", scene);
   d.scene = scene;

@@ -21,6 +21,10 @@ namespace rangefit::daemon {
 enum class DriverKind { kSim, kReal, kReplay };
 const char* to_string(DriverKind k);
 
+// How a driver = "real" robot's joint is read over CAN: a CiA 402 drive (node can_node) or a
+// Schunk/AMTEC PowerCube module (module id can_node, 1..31).
+enum class JointProtocol { kCia402, kPowerCube };
+
 // Faults a simulated device injects (driver = "sim"): the sensor's link drops during a scan, as
 // a USB or CAN device that is unplugged and plugged back in. For tests and demos.
 struct SimFaultConfig {
@@ -46,8 +50,9 @@ struct DeviceConfig {
   int pan_node = 0;     // pan_tilt: the pan axis' CiA 402 node (1)
   int tilt_node = 0;    // pan_tilt: the tilt axis' CiA 402 node (2)
   int modbus_unit = 0;  // axis: the drive's Modbus unit id (1)
-  std::filesystem::path scene;  // sim driver: scene TOML; empty = sim.scene
-  SimFaultConfig sim_fault;     // sim driver: [devices.sim_fault]
+  JointProtocol protocol = JointProtocol::kCia402;  // robot: protocol = "cia402" | "powercube"
+  std::filesystem::path scene;                      // sim driver: scene TOML; empty = sim.scene
+  SimFaultConfig sim_fault;                         // sim driver: [devices.sim_fault]
 };
 
 // An object model: a model file (io/object_model_file.hpp: parts with taper, compound links),

@@ -51,6 +51,11 @@ std::unique_ptr<hal::Device> make_driver(const DeviceConfig& d, const DaemonConf
     return std::make_unique<drivers::FhppAxis>(
         fhpp_axis_config(d, config.fusion.stripe_cell.geometry.axis_travel_mm));
   }
+  if (d.kind == "robot" && d.protocol == JointProtocol::kPowerCube) {
+    const auto c = robot_powercube_config(d, config.fusion.css.joint);
+    return std::make_unique<drivers::can::PowerCubeJointSource>(
+        c, socketcan(d.transport, drivers::can::powercube_filter(c)));
+  }
   if (d.kind == "robot") {
     const auto c = robot_joint_config(d, config.fusion.css.joint);
     return std::make_unique<drivers::can::Cia402JointSource>(
