@@ -5,8 +5,9 @@
 //   (daemon/real_devices.hpp); "replay" returns a recorded cloud (PLY)
 //   as the scan, replaying a spooled or simulated scan through the full pipeline and DDS as fast
 //   as possible (benchmarks, offline checks).
-// - ModelDetector runs the thesis detectors of detect/ with the configured parameters and
-//   reports their found/reason unchanged (no gate of its own).
+// - ModelDetector runs the thesis detectors of detect/ with the options the detection adapter
+//   (daemon/detection_adapter.hpp) makes of the request, the configured model and what the
+//   scan's sensor knows, and reports their found/reason unchanged (no gate of its own).
 
 #include <map>
 #include <mutex>
@@ -40,11 +41,14 @@ class DeviceBackend final : public ScanBackend {
 class ModelDetector final : public Detector {
  public:
   explicit ModelDetector(DaemonConfig config) : config_(std::move(config)) {}
-  DetectionResult detect(const PointCloud& cloud, const ScanRequest& request) override;
+  DetectionResult detect(const PointCloud& cloud, const ScanRequest& request,
+                         const ScanSensor& sensor) override;
 
  private:
-  DetectionResult detect_object_request(const PointCloud& cloud, const ScanRequest& request);
-  DetectionResult detect_bore_request(const PointCloud& cloud, const ScanRequest& request);
+  DetectionResult detect_object_request(const PointCloud& cloud, const ScanRequest& request,
+                                        const ScanSensor& sensor);
+  DetectionResult detect_bore_request(const PointCloud& cloud, const ScanRequest& request,
+                                      const ScanSensor& sensor);
   DaemonConfig config_;
 };
 

@@ -12,6 +12,7 @@
 
 #include "daemon/driver_configs.hpp"
 #include "daemon/scan_types.hpp"
+#include "io/object_model_file.hpp"
 #include "io/toml_file.hpp"
 
 namespace rangefit::daemon {
@@ -311,7 +312,22 @@ void read_device(FieldReader& r, DeviceConfig& d) {
   r.read("sweep_end", d.sweep_end, -sweep_limit, sweep_limit);
   r.read("sweep_speed", d.sweep_speed, 0.0, sweep_is_linear(d.kind) ? 1e5 : 100.0);
   r.read("motion", d.motion);
+  std::string protocol;
+  r.read("protocol", protocol);
+  if (!protocol.empty()) {
+    if (d.kind != "robot") r.fail("protocol", "only for kind robot");
+    if (protocol == "cia402") {
+      d.protocol = JointProtocol::kCia402;
+    } else if (protocol == "powercube") {
+      d.protocol = JointProtocol::kPowerCube;
+    } else {
+      r.fail("protocol", "must be cia402 or powercube");
+    }
+  }
   read_bus_addresses(r, d);
+  if (d.protocol == JointProtocol::kPowerCube && d.can_node > 31) {
+    r.fail("can_node", "a PowerCube module id is 1 .. 31");
+  }
   std::string scene;
   r.read("scene", scene);
   d.scene = scene;
@@ -322,13 +338,37 @@ void read_device(FieldReader& r, DeviceConfig& d) {
   r.reject_unknown();
 }
 
-void read_object(FieldReader& r, ObjectModelConfig& o) {
+std::filesystem::path resolve(const std::filesystem::path& p, const std::filesystem::path& base) {
+  return p.empty() || p.is_absolute() || base.empty() ? p : base / p;
+}
+
+void read_object(FieldReader& r, ObjectModelConfig& o, const std::filesystem::path& base_dir) {
   r.read("name", o.name);
-  if (o.name.empty()) r.fail("name", "is required");
-  r.read("scale_mm", o.scale_mm, 0.1, 1e5);
-  if (o.scale_mm == std::array<double, 3>{})
-    r.fail("scale_mm", "is required (three half-sizes, mm)");
-  r.read("shape", o.shape, 0.1, 2.0);
+  std::string file;
+  r.read("model", file);
+  o.model_file = resolve(file, base_dir);
+  if (!file.empty()) {
+    for (const char* inline_key : {"scale_mm", "shape", "taper"}) {
+      if (r.find(inline_key) != nullptr) {
+        r.fail(inline_key, "is for inline models; the model file (model) gives the parts");
+      }
+    }
+    try {
+      o.model = io::read_object_model(o.model_file);
+    } catch (const std::exception& e) {
+      r.fail("model", e.what());
+    }
+    if (o.name.empty()) o.name = o.model.name;
+  } else {
+    if (o.name.empty()) r.fail("name", "is required (or give a model file: model = \"x.toml\")");
+    r.read("scale_mm", o.scale_mm, 0.1, 1e5);
+    if (o.scale_mm == std::array<double, 3>{})
+      r.fail("scale_mm", "is required (three half-sizes, mm), or a model file (model)");
+    r.read("shape", o.shape, 0.1, 2.0);
+    r.read("taper", o.taper, -1.0, 1.0);
+    o.model = inline_object(o.name, o.scale_mm, o.shape, o.taper).model;
+  }
+  if (o.name.empty()) r.fail("name", "is required (the model file has no name)");
   std::string mesh;
   r.read("mesh", mesh);
   o.mesh = mesh;
@@ -339,10 +379,6 @@ void read_object(FieldReader& r, ObjectModelConfig& o) {
 struct FusionTableError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
-
-std::filesystem::path resolve(const std::filesystem::path& p, const std::filesystem::path& base) {
-  return p.empty() || p.is_absolute() || base.empty() ? p : base / p;
-}
 
 DaemonConfig read_root(const toml::table& root, std::string_view source_name,
                        const std::filesystem::path& base_dir) {
@@ -405,7 +441,7 @@ DaemonConfig read_root(const toml::table& root, std::string_view source_name,
     for (std::size_t i = 0; i < arr->size(); ++i) {
       const std::string path = "objects[" + std::to_string(i) + "]";
       FieldReader sub(*(*arr)[i].as_table(), path);
-      read_object(sub, c.objects.emplace_back());
+      read_object(sub, c.objects.emplace_back(), base_dir);
       if (!names.insert(c.objects.back().name).second) sub.fail("name", "duplicate object name");
     }
   }
@@ -421,6 +457,19 @@ DaemonConfig read_root(const toml::table& root, std::string_view source_name,
 }
 
 }  // namespace
+
+ObjectModelConfig inline_object(std::string name, std::array<double, 3> scale_mm,
+                                std::array<double, 2> shape, std::array<double, 2> taper) {
+  ObjectModelConfig o;
+  o.name = std::move(name);
+  o.scale_mm = scale_mm;
+  o.shape = shape;
+  o.taper = taper;
+  o.model.name = o.name;
+  o.model.parts.push_back({o.name, Superquadric{scale_mm[0], scale_mm[1], scale_mm[2], shape[0],
+                                                shape[1], taper[0], taper[1]}});
+  return o;
+}
 
 const char* to_string(DriverKind k) {
   switch (k) {

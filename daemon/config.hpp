@@ -13,12 +13,17 @@
 #include <utility>
 #include <vector>
 
+#include "detect/object_model.hpp"
 #include "fusion/config.hpp"
 
 namespace rangefit::daemon {
 
 enum class DriverKind { kSim, kReal, kReplay };
 const char* to_string(DriverKind k);
+
+// How a driver = "real" robot's joint is read over CAN: a CiA 402 drive (node can_node) or a
+// Schunk/AMTEC PowerCube module (module id can_node, 1..31).
+enum class JointProtocol { kCia402, kPowerCube };
 
 // Faults a simulated device injects (driver = "sim"): the sensor's link drops during a scan, as
 // a USB or CAN device that is unplugged and plugged back in. For tests and demos.
@@ -45,16 +50,28 @@ struct DeviceConfig {
   int pan_node = 0;     // pan_tilt: the pan axis' CiA 402 node (1)
   int tilt_node = 0;    // pan_tilt: the tilt axis' CiA 402 node (2)
   int modbus_unit = 0;  // axis: the drive's Modbus unit id (1)
-  std::filesystem::path scene;  // sim driver: scene TOML; empty = sim.scene
-  SimFaultConfig sim_fault;     // sim driver: [devices.sim_fault]
+  JointProtocol protocol = JointProtocol::kCia402;  // robot: protocol = "cia402" | "powercube"
+  std::filesystem::path scene;                      // sim driver: scene TOML; empty = sim.scene
+  SimFaultConfig sim_fault;                         // sim driver: [devices.sim_fault]
 };
 
+// An object model: a model file (io/object_model_file.hpp: parts with taper, compound links),
+// or, as a shorthand, one inline superquadric. Either way `model` holds the validated model the
+// detector gets, read when the configuration is loaded (start-up and reload).
 struct ObjectModelConfig {
-  std::string name;                   // requests name models by it
-  std::array<double, 3> scale_mm{};   // superquadric half-sizes a1, a2, a3 (thesis ch. 5), mm
-  std::array<double, 2> shape{1, 1};  // superquadric exponents eps1, eps2 (0.1 .. 2)
+  std::string name;                   // requests name models by it; default: the file's name
+  std::filesystem::path model_file;   // model TOML; relative: to the config file
+  std::array<double, 3> scale_mm{};   // inline: superquadric half-sizes a1, a2, a3, mm
+  std::array<double, 2> shape{1, 1};  // inline: exponents eps1, eps2 (0.1 .. 2)
+  std::array<double, 2> taper{0, 0};  // inline: taper kx, ky along z (-1 .. 1)
   std::filesystem::path mesh;         // optional CAD mesh (STL) of the object
+  ObjectModel model;                  // what detection uses
 };
+
+// The inline shorthand as code (tests, defaults): one part named after the model.
+ObjectModelConfig inline_object(std::string name, std::array<double, 3> scale_mm,
+                                std::array<double, 2> shape = {1, 1},
+                                std::array<double, 2> taper = {0, 0});
 
 // found/reason of a result are the detector's own (detect/); the daemon adds no gate of its own.
 struct DetectionConfig {

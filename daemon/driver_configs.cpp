@@ -60,6 +60,16 @@ drivers::can::Cia402Config robot_joint_config(const DeviceConfig& d, int joint) 
   return c;
 }
 
+drivers::can::PowerCubeConfig robot_powercube_config(const DeviceConfig& d, int joint) {
+  drivers::can::PowerCubeConfig c;
+  c.name = d.name;
+  drivers::can::PowerCubeModuleConfig m;
+  m.joint = static_cast<std::uint8_t>(joint);
+  set_if(d.can_node, m.module);
+  c.modules.push_back(m);
+  return c;
+}
+
 drivers::can::RangerConfig ranger_config(const DeviceConfig& d) {
   drivers::can::RangerConfig c;
   c.name = d.name;
@@ -80,6 +90,8 @@ std::string pan_tilt_angles_name(const std::string& head) { return head + "/angl
 std::vector<CanNodeUse> can_nodes(const DeviceConfig& d) {
   const CanNodeUse ranger{"can_node", ranger_config(d).node, d.can_node == 0};
   if (d.kind == "robot") {
+    // PowerCube modules answer on ids of their own (0x0A0 + module), apart from CiA 402 nodes.
+    if (d.protocol == JointProtocol::kPowerCube) return {};
     return {{"can_node", robot_joint_config(d, 1).joints.at(0).node, d.can_node == 0}};
   }
   if (d.kind == "stripe") return {ranger};

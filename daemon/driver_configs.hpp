@@ -10,6 +10,7 @@
 #include "daemon/config.hpp"
 #include "drivers/can/cia402_joint_source.hpp"
 #include "drivers/can/cia402_pan_tilt_source.hpp"
+#include "drivers/can/powercube_joint_source.hpp"
 #include "drivers/can/ranger_source.hpp"
 #include "drivers/modbus/fhpp_axis.hpp"
 
@@ -29,6 +30,8 @@ bool parse_modbus_address(const std::string& transport, ModbusAddress* out, std:
 drivers::FhppAxisConfig fhpp_axis_config(const DeviceConfig& d, double axis_travel_mm);
 // kind = "robot": the CSS's last joint (JointSample::joint = joint) on node can_node.
 drivers::can::Cia402Config robot_joint_config(const DeviceConfig& d, int joint);
+// kind = "robot", protocol = "powercube": the same joint as PowerCube module can_node (1).
+drivers::can::PowerCubeConfig robot_powercube_config(const DeviceConfig& d, int joint);
 // kind = "stripe" or "pan_tilt": the laser-stripe ranger on node can_node.
 drivers::can::RangerConfig ranger_config(const DeviceConfig& d);
 // kind = "pan_tilt": the head's pan and tilt axes (pan_node, tilt_node), named "<name>/angles".

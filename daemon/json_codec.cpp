@@ -16,15 +16,21 @@ DetectKind kind(const std::string& s) {
 }  // namespace
 
 nlohmann::json to_json(const ScanRequest& r) {
-  return {{"id", r.id},
-          {"kind", to_string(r.kind)},
-          {"model", r.model},
-          {"bore",
-           {{"position_mm", to_array(r.bore.position_mm)},
-            {"axis", to_array(r.bore.axis)},
-            {"radius_mm", r.bore.radius_mm}}},
-          {"sensor", r.sensor},
-          {"sweep", {r.sweep_start, r.sweep_end, r.sweep_speed}}};
+  nlohmann::json j = {{"id", r.id},
+                      {"kind", to_string(r.kind)},
+                      {"model", r.model},
+                      {"bore",
+                       {{"position_mm", to_array(r.bore.position_mm)},
+                        {"axis", to_array(r.bore.axis)},
+                        {"radius_mm", r.bore.radius_mm}}},
+                      {"sensor", r.sensor},
+                      {"sweep", {r.sweep_start, r.sweep_end, r.sweep_speed}},
+                      {"instances", r.instances},
+                      {"hypotheses", r.hypotheses},
+                      {"trials", r.trials},
+                      {"seed", r.seed}};
+  if (r.bore.plane_normal) j["bore"]["plane_normal"] = to_array(*r.bore.plane_normal);
+  return j;
 }
 
 nlohmann::json to_json(const DetectionResult& r) {
@@ -34,7 +40,8 @@ nlohmann::json to_json(const DetectionResult& r) {
     parts.push_back({{"name", p.name},
                      {"translation_mm", to_array(p.T_world_part.translation())},
                      {"quaternion_wxyz", {q.w(), q.x(), q.y(), q.z()}},
-                     {"score", p.score}});
+                     {"score", p.score},
+                     {"instance", p.instance}});
   }
   return {{"request_id", r.request_id},
           {"kind", to_string(r.kind)},
@@ -46,7 +53,8 @@ nlohmann::json to_json(const DetectionResult& r) {
           {"num_points", r.num_points},
           {"scan_seconds", r.scan_seconds},
           {"detect_seconds", r.detect_seconds},
-          {"spool_entry", r.spool_entry}};
+          {"spool_entry", r.spool_entry},
+          {"acquired_wall_ns", r.acquired_wall_ns}};
 }
 
 bool from_json(const nlohmann::json& j, ScanRequest& out, std::string* error) {
@@ -61,6 +69,14 @@ bool from_json(const nlohmann::json& j, ScanRequest& out, std::string* error) {
     out.sweep_start = j.at("sweep").at(0).get<double>();
     out.sweep_end = j.at("sweep").at(1).get<double>();
     out.sweep_speed = j.at("sweep").at(2).get<double>();
+    // Absent in entries spooled before these fields existed.
+    if (j.at("bore").contains("plane_normal")) {
+      out.bore.plane_normal = vec(j.at("bore").at("plane_normal"));
+    }
+    out.instances = j.value("instances", 1);
+    out.hypotheses = j.value("hypotheses", 0);
+    out.trials = j.value("trials", 0);
+    out.seed = j.value("seed", std::uint64_t{0});
     return true;
   } catch (const std::exception& e) {
     *error = std::string("request: ") + e.what();
@@ -86,6 +102,7 @@ bool from_json(const nlohmann::json& j, DetectionResult& out, std::string* error
                                        .toRotationMatrix();
       part.T_world_part.translation() = vec(p.at("translation_mm"));
       part.score = p.at("score").get<double>();
+      part.instance = p.value("instance", std::uint32_t{0});
       out.parts.push_back(std::move(part));
     }
     out.bore_radius_mm = j.at("bore_radius_mm").get<double>();
@@ -93,6 +110,7 @@ bool from_json(const nlohmann::json& j, DetectionResult& out, std::string* error
     out.scan_seconds = j.at("scan_seconds").get<double>();
     out.detect_seconds = j.at("detect_seconds").get<double>();
     out.spool_entry = j.at("spool_entry").get<std::string>();
+    out.acquired_wall_ns = j.value("acquired_wall_ns", std::int64_t{0});
     return true;
   } catch (const std::exception& e) {
     *error = std::string("result: ") + e.what();

@@ -38,12 +38,15 @@ const char* to_string(LifecycleState s) {
   return "?";
 }
 
-builtin_interfaces_msg_dds__Time_ wall_time_now() {
-  const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
-                      std::chrono::system_clock::now().time_since_epoch())
-                      .count();
+builtin_interfaces_msg_dds__Time_ wall_time(std::int64_t ns) {
   return {static_cast<std::int32_t>(ns / 1'000'000'000),
           static_cast<std::uint32_t>(ns % 1'000'000'000)};
+}
+
+builtin_interfaces_msg_dds__Time_ wall_time_now() {
+  return wall_time(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                       std::chrono::system_clock::now().time_since_epoch())
+                       .count());
 }
 
 CloudOut::CloudOut(const PointCloud& cloud) : frame_(cloud.frame_id) {
@@ -133,7 +136,9 @@ DetectionOut::DetectionOut(const DetectionResult& r) : r_(r), kind_(to_string(r.
     scores_.push_back(part.score);
   }
   const auto n = static_cast<std::uint32_t>(r_.parts.size());
+  for (const auto& part : r_.parts) instances_.push_back(part.instance);
   msg_.header = header(frame_);
+  if (r_.acquired_wall_ns > 0) msg_.header.stamp = wall_time(r_.acquired_wall_ns);
   msg_.request_id = c_str(r_.request_id);
   msg_.kind = c_str(kind_);
   msg_.found = r_.found;
@@ -147,6 +152,7 @@ DetectionOut::DetectionOut(const DetectionResult& r) : r_(r), kind_(to_string(r.
   msg_.scan_seconds = r_.scan_seconds;
   msg_.detect_seconds = r_.detect_seconds;
   msg_.spool_entry = c_str(r_.spool_entry);
+  msg_.part_instances = {n, n, instances_.data(), false};
 }
 
 geometry_msgs_msg_dds__PoseStamped_ DetectionOut::first_pose() const {
@@ -167,6 +173,7 @@ DetectionResult from_msg(const rangefit_msgs_msg_dds__Detection_& msg) {
     PartPose part;
     if (i < msg.part_names._length) part.name = str(msg.part_names._buffer[i]);
     if (i < msg.scores._length) part.score = msg.scores._buffer[i];
+    if (i < msg.part_instances._length) part.instance = msg.part_instances._buffer[i];
     const auto& p = msg.poses._buffer[i];
     const Eigen::Quaterniond q(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z);
     part.T_world_part = Eigen::Isometry3d::Identity();
@@ -180,6 +187,8 @@ DetectionResult from_msg(const rangefit_msgs_msg_dds__Detection_& msg) {
   r.scan_seconds = msg.scan_seconds;
   r.detect_seconds = msg.detect_seconds;
   r.spool_entry = str(msg.spool_entry);
+  r.acquired_wall_ns =
+      std::int64_t{msg.header.stamp.sec} * 1'000'000'000 + msg.header.stamp.nanosec;
   return r;
 }
 
@@ -197,6 +206,12 @@ RequestOut::RequestOut(const ScanRequest& req, bool linear_sweep)
   msg_.sweep_start = req_.sweep_start;
   msg_.sweep_end = req_.sweep_end;
   msg_.sweep_speed = req_.sweep_speed;
+  const Eigen::Vector3d n = req_.bore.plane_normal.value_or(Eigen::Vector3d::Zero());
+  msg_.bore_plane_normal = {n.x(), n.y(), n.z()};
+  msg_.instances = static_cast<std::uint32_t>(std::max(req_.instances, 0));
+  msg_.hypotheses = static_cast<std::uint32_t>(std::max(req_.hypotheses, 0));
+  msg_.trials = static_cast<std::uint32_t>(std::max(req_.trials, 0));
+  msg_.seed = req_.seed;
 }
 
 ScanRequest from_msg(const rangefit_msgs_msg_dds__DetectRequest_& msg, std::string* error) {
@@ -212,6 +227,15 @@ ScanRequest from_msg(const rangefit_msgs_msg_dds__DetectRequest_& msg, std::stri
   req.sweep_start = msg.sweep_start;
   req.sweep_end = msg.sweep_end;
   req.sweep_speed = msg.sweep_speed;
+  const Eigen::Vector3d n(msg.bore_plane_normal.x, msg.bore_plane_normal.y,
+                          msg.bore_plane_normal.z);
+  if (n != Eigen::Vector3d::Zero()) req.bore.plane_normal = n;  // zero: not given
+  // Counts beyond int are clamped; request validation names the field that is out of range.
+  constexpr std::uint32_t kMaxCount = 1u << 30;
+  req.instances = static_cast<int>(std::min(msg.instances, kMaxCount));
+  req.hypotheses = static_cast<int>(std::min(msg.hypotheses, kMaxCount));
+  req.trials = static_cast<int>(std::min(msg.trials, kMaxCount));
+  req.seed = msg.seed;
   error->clear();
   if (kind == "bore") {
     req.kind = DetectKind::kBore;
@@ -223,7 +247,8 @@ ScanRequest from_msg(const rangefit_msgs_msg_dds__DetectRequest_& msg, std::stri
   if (error->empty() && req.id.empty()) *error = "request_id is empty";
   const bool finite = req.bore.position_mm.allFinite() && req.bore.axis.allFinite() &&
                       std::isfinite(req.bore.radius_mm) && std::isfinite(req.sweep_start) &&
-                      std::isfinite(req.sweep_end) && std::isfinite(req.sweep_speed);
+                      std::isfinite(req.sweep_end) && std::isfinite(req.sweep_speed) &&
+                      n.allFinite();
   if (error->empty() && !finite) *error = "non-finite number in request";
   return req;
 }

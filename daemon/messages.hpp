@@ -33,6 +33,7 @@ inline constexpr std::uint8_t kDiagOk = 0, kDiagWarn = 1, kDiagError = 2, kDiagS
 
 // std_msgs/Header stamp from the wall clock (ROS time), as ROS 2 nodes expect.
 builtin_interfaces_msg_dds__Time_ wall_time_now();
+builtin_interfaces_msg_dds__Time_ wall_time(std::int64_t ns_since_epoch);
 
 class CloudOut {
  public:
@@ -60,6 +61,7 @@ class DetectionOut {
   DetectionOut(const DetectionOut&) = delete;
   DetectionOut& operator=(const DetectionOut&) = delete;
   const rangefit_msgs_msg_dds__Detection_& msg() const { return msg_; }
+  // Header stamp: the scan's acquisition time when known (acquired_wall_ns), else now.
   // The pose of the first part as geometry_msgs/PoseStamped (rt/rangefit/pose).
   geometry_msgs_msg_dds__PoseStamped_ first_pose() const;
 
@@ -69,6 +71,7 @@ class DetectionOut {
   std::vector<char*> names_;
   std::vector<geometry_msgs_msg_dds__Pose_> poses_;
   std::vector<double> scores_;
+  std::vector<std::uint32_t> instances_;
   rangefit_msgs_msg_dds__Detection_ msg_{};
 };
 DetectionResult from_msg(const rangefit_msgs_msg_dds__Detection_& msg);

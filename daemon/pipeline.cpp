@@ -145,15 +145,15 @@ ScanOutcome Pipeline::run_scan(const ScanRequest& request, bool* timed_out) {
   return outcome;
 }
 
-DetectionResult Pipeline::run_detection(const PointCloud& cloud, const ScanRequest& request) {
+DetectionResult Pipeline::run_detection(const ScanOutcome& scan, const ScanRequest& request) {
   hal::Duration limit;
   {
     std::lock_guard lock(mutex_);
     limit = options_.detect_timeout;
   }
-  auto detect = [this, &cloud, &request] {
+  auto detect = [this, &scan, &request] {
     try {
-      return detector_.detect(cloud, request);
+      return detector_.detect(scan.cloud, request, scan.sensor);
     } catch (const std::exception& e) {
       return DetectionResult::error(request, std::string("detector threw: ") + e.what());
     }
@@ -179,7 +179,7 @@ void Pipeline::process(const ScanRequest& request) {
   if (outcome.status) {
     set_state(LifecycleState::kDetecting, "", request.id);
     const auto t1 = std::chrono::steady_clock::now();
-    result = run_detection(outcome.cloud, request);
+    result = run_detection(outcome, request);
     result.detect_seconds = seconds_since(t1);
     failed = pending_detection_.valid();
   } else if (scan_timed_out) {
@@ -192,6 +192,7 @@ void Pipeline::process(const ScanRequest& request) {
   result.model = request.model;
   result.num_points = outcome.cloud.size();
   result.scan_seconds = scan_s;
+  result.acquired_wall_ns = outcome.acquired_wall_ns;
   touch();
 
   if (spool_ != nullptr) {

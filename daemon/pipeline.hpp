@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "daemon/messages.hpp"
+#include "daemon/scan_sensor.hpp"
 #include "daemon/scan_types.hpp"
 #include "daemon/spool.hpp"
 #include "detect/point_cloud.hpp"
@@ -31,8 +32,19 @@ struct NamedHealth {
 };
 
 struct ScanOutcome {
+  ScanOutcome() = default;
+  ScanOutcome(hal::Status s, PointCloud c, ScanSensor view = {}, std::int64_t acquired = 0)
+      : status(std::move(s)),
+        cloud(std::move(c)),
+        sensor(std::move(view)),
+        acquired_wall_ns(acquired) {}
+
   hal::Status status;  // not ok: the scan failed (device gone, timeout, cancelled)
   PointCloud cloud;    // world frame, mm
+  ScanSensor sensor;   // what the sensor knows about its rays, world frame
+  // Wall-clock time (ns since the Unix epoch) the scan's last sample was taken; 0: unknown
+  // (the result is then stamped when it is published).
+  std::int64_t acquired_wall_ns = 0;
 };
 
 class ScanBackend {
@@ -49,7 +61,8 @@ class Detector {
  public:
   virtual ~Detector() = default;
   // Fills found/reason/parts/bore_radius_mm; the pipeline fills ids, counts and timings.
-  virtual DetectionResult detect(const PointCloud& cloud, const ScanRequest& request) = 0;
+  virtual DetectionResult detect(const PointCloud& cloud, const ScanRequest& request,
+                                 const ScanSensor& sensor) = 0;
 };
 
 class ResultSink {
@@ -105,7 +118,7 @@ class Pipeline {
   void run();
   void process(const ScanRequest& request);
   ScanOutcome run_scan(const ScanRequest& request, bool* timed_out);
-  DetectionResult run_detection(const PointCloud& cloud, const ScanRequest& request);
+  DetectionResult run_detection(const ScanOutcome& scan, const ScanRequest& request);
   void set_state(LifecycleState s, const std::string& detail, const std::string& active);
   void touch() { last_progress_ns_.store(clock_.now().count()); }
 

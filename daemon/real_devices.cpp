@@ -51,6 +51,11 @@ std::unique_ptr<hal::Device> make_driver(const DeviceConfig& d, const DaemonConf
     return std::make_unique<drivers::FhppAxis>(
         fhpp_axis_config(d, config.fusion.stripe_cell.geometry.axis_travel_mm));
   }
+  if (d.kind == "robot" && d.protocol == JointProtocol::kPowerCube) {
+    const auto c = robot_powercube_config(d, config.fusion.css.joint);
+    return std::make_unique<drivers::can::PowerCubeJointSource>(
+        c, socketcan(d.transport, drivers::can::powercube_filter(c)));
+  }
   if (d.kind == "robot") {
     const auto c = robot_joint_config(d, config.fusion.css.joint);
     return std::make_unique<drivers::can::Cia402JointSource>(
@@ -213,7 +218,8 @@ ScanOutcome RealDevices::scan_stripe(const DeviceConfig& device, const ScanReque
                                        health_watch(device.name, *ranger, axis_name, *axis), &why);
   if (end == ScanLoopEnd::kCancelled) axis->halt();
   if (end != ScanLoopEnd::kDone) return failed(device, why);
-  return finish_scan(device, assembler.finish());
+  return finish_scan(device, assembler.finish(), Eigen::Isometry3d::Identity(),
+                     stripe_sensor(fc.geometry, from, to), clock_.get());
 }
 
 ScanOutcome RealDevices::scan_css(const DeviceConfig& device, const ScanRequest& request,
@@ -248,7 +254,8 @@ ScanOutcome RealDevices::scan_css(const DeviceConfig& device, const ScanRequest&
       *css, *joints, {cancel, progress}, [&] { return sweep.at_end; }, fuse,
       health_watch(device.name, *css, robot_name, *joints), &why);
   if (end != ScanLoopEnd::kDone) return failed(device, why);
-  return finish_scan(device, assembler.finish());
+  return finish_scan(device, assembler.finish(), Eigen::Isometry3d::Identity(),
+                     css_sensor(fc.geometry), clock_.get());
 }
 
 ScanOutcome RealDevices::scan_pan_tilt(const DeviceConfig& device, const ScanRequest& request,
@@ -281,7 +288,11 @@ ScanOutcome RealDevices::scan_pan_tilt(const DeviceConfig& device, const ScanReq
       *head, *ranger, {cancel, progress}, [&] { return sweep.at_end; }, fuse,
       health_watch(device.name, *ranger, head_name, *head), &why);
   if (end != ScanLoopEnd::kDone) return failed(device, why);
-  return finish_scan(device, assembler.finish());
+  // The real head's tilt is held by the cell program; its zero is the calibrated pose.
+  return finish_scan(
+      device, assembler.finish(), Eigen::Isometry3d::Identity(),
+      pan_tilt_sensor(fc.geometry, 0.5 * fc.geometry.sweep_angle_rad, fc.geometry.tilt_zero_rad),
+      clock_.get());
 }
 
 }  // namespace rangefit::daemon

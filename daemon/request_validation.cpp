@@ -35,11 +35,20 @@ std::string validate_request(ScanRequest& request, const DaemonConfig& config) {
     if (!(request.bore.radius_mm > 0.0)) return "bore_radius must be > 0";
     if (!(request.bore.axis.norm() > 1e-9)) return "bore_axis must not be zero";
     request.bore.axis.normalize();
+    if (request.bore.plane_normal) request.bore.plane_normal->normalize();
   } else if (config.object(request.model) == nullptr) {
     std::string known;
     for (const auto& o : config.objects) known += (known.empty() ? "" : ", ") + o.name;
     return "unknown object model \"" + request.model +
            "\" (configured: " + (known.empty() ? "none" : known) + ")";
+  }
+  if (request.instances == 0) request.instances = 1;
+  if (request.instances < 1 || request.instances > 1000) return "instances must be in 1 .. 1000";
+  if (request.hypotheses < 0 || request.hypotheses > 10000) {
+    return "hypotheses must be in 0 .. 10000 (0: the detector's default)";
+  }
+  if (request.trials < 0 || request.trials > 10000) {
+    return "trials must be in 0 .. 10000 (0: the detector's default)";
   }
   if (request.sensor.empty()) {
     request.sensor = request.kind == DetectKind::kBore ? config.service.bore_sensor

@@ -13,6 +13,7 @@
 
 #include "daemon/config.hpp"
 #include "daemon/pipeline.hpp"
+#include "daemon/scan_sensor.hpp"
 #include "fusion/fused_scan.hpp"
 #include "fusion/profile_assembler.hpp"
 #include "hal/source.hpp"
@@ -95,8 +96,14 @@ struct SweepEdges {
 Eigen::Isometry3d device_extrinsics(const DeviceConfig& d);
 
 // The fused scan in the world frame, p_world = device_extrinsics(device) * T_mount_sensor *
-// p_sensor; a scan fusion marked bad is an error naming the device.
+// p_sensor, with the sensor (given in fusion's frame) moved along; a scan fusion marked bad is an
+// error naming the device. With the devices' clock, the last sample's stamp is put on the wall
+// clock (the offset between the two read once, here).
 ScanOutcome finish_scan(const DeviceConfig& device, fusion::FusedScan scan,
-                        const Eigen::Isometry3d& T_mount_sensor = Eigen::Isometry3d::Identity());
+                        const Eigen::Isometry3d& T_mount_sensor = Eigen::Isometry3d::Identity(),
+                        const ScanSensor& sensor = {}, const hal::Clock* clock = nullptr);
+
+// t (of clock) on the wall clock, ns since the Unix epoch.
+std::int64_t wall_ns(hal::Timestamp t, const hal::Clock& clock);
 
 }  // namespace rangefit::daemon

@@ -122,7 +122,10 @@ struct SimCell::Run {
 };
 
 SimCell::SimCell(const DaemonConfig& config)
-    : config_(config), clock_(std::make_unique<sim::SimClock>(config.sim.time_scale)) {
+    : SimCell(config, std::make_unique<sim::SimClock>(config.sim.time_scale)) {}
+
+SimCell::SimCell(const DaemonConfig& config, std::unique_ptr<sim::SimClock> clock)
+    : config_(config), clock_(std::move(clock)) {
   std::map<std::string, std::shared_ptr<LoadedScene>> by_path;
   for (const auto& d : config_.devices) {
     if (d.driver != DriverKind::kSim) continue;
@@ -208,7 +211,8 @@ ScanOutcome SimCell::scan_css(Run& run) {
                  run.healthy(rig.css(), rig.joint()), &why) == ScanLoopEnd::kDone;
   run.end(rig.css(), rig.joint(), ok);
   if (!ok) return {hal::Status::Error(run.device.name + ": " + why), {}};
-  return finish_scan(run.device, assembler.finish(), run.scene.scene.mounts.T_scene_css);
+  return finish_scan(run.device, assembler.finish(), run.scene.scene.mounts.T_scene_css,
+                     css_sensor(fc.geometry), clock_.get());
 }
 
 ScanOutcome SimCell::scan_stripe(Run& run) {
@@ -251,7 +255,8 @@ ScanOutcome SimCell::scan_stripe(Run& run) {
   const bool ok = end == ScanLoopEnd::kDone;
   run.end(ranger, axis, ok);
   if (!ok) return {hal::Status::Error(run.device.name + ": " + why), {}};
-  return finish_scan(run.device, assembler.finish(), run.scene.scene.mounts.T_scene_stripe);
+  return finish_scan(run.device, assembler.finish(), run.scene.scene.mounts.T_scene_stripe,
+                     stripe_sensor(fc.geometry, from, to), clock_.get());
 }
 
 ScanOutcome SimCell::scan_pan_tilt(Run& run) {
@@ -284,7 +289,8 @@ ScanOutcome SimCell::scan_pan_tilt(Run& run) {
                  run.healthy(head.ranger(), head.angles()), &why) == ScanLoopEnd::kDone;
   run.end(head.ranger(), head.angles(), ok);
   if (!ok) return {hal::Status::Error(run.device.name + ": " + why), {}};
-  return finish_scan(run.device, assembler.finish(), run.scene.scene.mounts.T_scene_pantilt);
+  return finish_scan(run.device, assembler.finish(), run.scene.scene.mounts.T_scene_pantilt,
+                     pan_tilt_sensor(fc.geometry, half, o.tilt_rad), clock_.get());
 }
 
 }  // namespace rangefit::daemon

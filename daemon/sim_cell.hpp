@@ -34,7 +34,9 @@ class SimCell {
  public:
   // Loads the scene of every simulated scanning device; throws std::runtime_error naming the
   // device and the file when one cannot be loaded (start-up or reload, never mid-scan).
+  // The devices' clock is a sim::SimClock at sim.time_scale, or the one given.
   explicit SimCell(const DaemonConfig& config);
+  SimCell(const DaemonConfig& config, std::unique_ptr<sim::SimClock> clock);
   ~SimCell();
   SimCell(const SimCell&) = delete;
   SimCell& operator=(const SimCell&) = delete;

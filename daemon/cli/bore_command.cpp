@@ -15,6 +15,7 @@
 #include "daemon/cli/json_util.hpp"
 #include "daemon/cli/option_checks.hpp"
 #include "daemon/cli/png_output.hpp"
+#include "daemon/detection_adapter.hpp"
 #include "detect/bore_detector.hpp"
 #include "io/cloud_io.hpp"
 
@@ -131,7 +132,6 @@ void print_text(const BoreResult& r) {
 }
 
 int run(const BoreArgs& a) {
-  BorePrior prior;
   const auto entrance = parse_vec(a.entrance);
   const auto axis = parse_vec(a.axis);
   if (!entrance || !axis || axis->norm() == 0.0) {
@@ -143,19 +143,20 @@ int run(const BoreArgs& a) {
     std::cerr << "rangefit bore: --cad-radius must be a positive number of millimetres\n";
     return kExitBadInput;
   }
-  prior.entrance = *entrance;
-  prior.axis = *axis;
-  prior.radius = a.radius;
-  prior.outer_radius = a.outer_radius;
-  BoreOptions options;
-  if (a.walls == "outer") options.walls = BoreWalls::kOuter;
-  if (a.walls == "both") options.walls = BoreWalls::kBoth;
   if (a.walls == "both" && !(a.outer_radius > a.radius)) {
     std::cerr << "rangefit bore: --walls both needs --cad-outer-radius larger than --cad-radius\n";
     return kExitBadInput;
   }
-  options.seed = a.seed;
-  options.normal_keep = a.normal_keep;
+  daemon::BoreQuery query;
+  query.entrance = *entrance;
+  query.axis = *axis;
+  query.radius = a.radius;
+  query.seed = a.seed;
+  query.normal_keep = a.normal_keep;
+  query.outer_radius = a.outer_radius;
+  if (a.walls == "outer") query.walls = BoreWalls::kOuter;
+  if (a.walls == "both") query.walls = BoreWalls::kBoth;
+  daemon::ScanSensor sensor;  // what the user knows of the sensor
   const std::pair<const std::string*, const char*> optional_vectors[] = {
       {&a.plane_normal, "--cad-plane-normal"},
       {&a.view_dir, "--view-dir"},
@@ -167,9 +168,9 @@ int run(const BoreArgs& a) {
       std::cerr << "rangefit bore: " << name << " needs three finite numbers X,Y,Z within +-1e6\n";
       return kExitBadInput;
     }
-    if (text == &a.plane_normal) prior.plane_normal = *v;
-    if (text == &a.view_dir) options.view_dir = *v;
-    if (text == &a.sensor_position) options.sensor_position = *v;
+    if (text == &a.plane_normal) query.plane_normal = *v;
+    if (text == &a.view_dir) sensor.view_dir = *v;
+    if (text == &a.sensor_position) sensor.sensor_position = *v;
   }
   PointCloud cloud;
   try {
@@ -178,13 +179,14 @@ int run(const BoreArgs& a) {
     std::cerr << "rangefit bore: " << e.what() << "\n";
     return kExitBadInput;
   }
-  const BoreResult r = detect_bore(cloud, prior, options);
+  const daemon::BoreDetection d = daemon::bore_detection(query, sensor);
+  const BoreResult r = detect_bore(cloud, d.prior, d.options);
   if (a.json) {
     std::cout << to_json(r).dump() << "\n";
   } else {
     print_text(r);
   }
-  if (!write_png_if_asked(a.png, cloud, r, options)) return kExitBadInput;
+  if (!write_png_if_asked(a.png, cloud, r, d.options)) return kExitBadInput;
   if (r.found) return kExitOk;
   return r.reason == BoreReason::kBadPrior ? kExitBadInput : kExitNotFound;
 }

@@ -11,6 +11,7 @@
 #include "daemon/cli/commands.hpp"
 #include "daemon/cli/option_checks.hpp"
 #include "daemon/cli/png_output.hpp"
+#include "daemon/detection_adapter.hpp"
 #include "detect/object_detector.hpp"
 #include "io/cloud_io.hpp"
 #include "io/object_model_file.hpp"
@@ -123,14 +124,16 @@ int run(const ObjectArgs& a) {
     std::cerr << "rangefit object: " << e.what() << "\n";
     return kExitBadInput;
   }
-  ObjectDetectOptions o;
-  if (a.hypotheses > 0) o.hypotheses = o.compound_hypotheses = a.hypotheses;
-  o.trials = a.trials;
-  o.instances = a.instances;
-  o.seed = a.seed;
-  o.sensor = cloud.sensor;  // a scan saved by rangefit says how it was taken
+  daemon::ObjectQuery query;
+  query.hypotheses = a.hypotheses;
+  query.trials = a.trials;
+  query.instances = a.instances;
+  query.seed = a.seed;
+  daemon::ScanSensor sensor;  // what the user knows of the sensor
+  sensor.view = cloud.sensor;  // a scan saved by rangefit says how it was taken
   if (a.viewpoint.size() == 3)
-    o.viewpoint = Eigen::Vector3d(a.viewpoint[0], a.viewpoint[1], a.viewpoint[2]);
+    sensor.sensor_position = Eigen::Vector3d(a.viewpoint[0], a.viewpoint[1], a.viewpoint[2]);
+  const ObjectDetectOptions o = daemon::object_detect_options(query, model, sensor);
   const ObjectDetectResult r = detect_object(model, cloud.points, o);
   if (r.reason == DetectReason::kInvalidModel || r.reason == DetectReason::kInvalidOptions) {
     std::cerr << "rangefit object: " << to_string(r.reason) << "\n";

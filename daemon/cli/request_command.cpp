@@ -4,10 +4,12 @@
 #include <chrono>
 #include <iostream>
 #include <random>
+#include <vector>
 
 #include "daemon/cli/commands.hpp"
 #include "daemon/client.hpp"
 #include "daemon/json_codec.hpp"
+#include "daemon/result_outcome.hpp"
 
 namespace rangefit::cli {
 namespace {
@@ -23,6 +25,11 @@ struct RequestArgs {
   double radius_mm = 0;
   std::array<double, 3> sweep{};  // start, end, speed
   double timeout_s = 120;
+  std::vector<double> plane_normal;  // bore: optional
+  int instances = 1;
+  int hypotheses = 0;
+  int trials = 0;
+  std::uint64_t seed = 0;
 };
 
 std::string make_id() {
@@ -42,6 +49,14 @@ int run(RequestArgs& a, daemon::DetectKind kind) {
   req.sweep_start = a.sweep[0];
   req.sweep_end = a.sweep[1];
   req.sweep_speed = a.sweep[2];
+  if (a.plane_normal.size() == 3) {
+    req.bore.plane_normal =
+        Eigen::Vector3d(a.plane_normal[0], a.plane_normal[1], a.plane_normal[2]);
+  }
+  req.instances = a.instances;
+  req.hypotheses = a.hypotheses;
+  req.trials = a.trials;
+  req.seed = a.seed;
   try {
     daemon::DdsClient client(a.domain);
     const auto timeout = std::chrono::milliseconds(static_cast<long>(a.timeout_s * 1000));
@@ -57,9 +72,7 @@ int run(RequestArgs& a, daemon::DetectKind kind) {
       return kExitBadInput;
     }
     std::cout << daemon::to_json(*result).dump(2) << "\n";
-    if (result->found) return kExitOk;
-    return result->reason.empty() || result->reason.starts_with("no fit") ? kExitNotFound
-                                                                          : kExitBadInput;
+    return daemon::exit_code_of(*result);
   } catch (const std::exception& e) {
     std::cerr << "rangefit request: " << e.what() << "\n";
     return kExitBadInput;
@@ -74,6 +87,7 @@ void common(CLI::App* sub, RequestArgs& a) {
   sub->add_flag("--linear", a.linear, "the sensor sweeps linearly (values in mm)");
   sub->add_option("--timeout", a.timeout_s, "seconds to wait for the result")
       ->capture_default_str();
+  sub->add_option("--seed", a.seed, "seed of the detection (default: the daemon's)");
 }
 
 }  // namespace
@@ -88,10 +102,21 @@ void add_request_command(CLI::App& app, int* exit_code) {
       ->required();
   bore->add_option("--axis", bore_args.axis, "expected axis x y z")->capture_default_str();
   bore->add_option("--radius", bore_args.radius_mm, "expected radius, mm")->required();
+  bore->add_option("--plane-normal", bore_args.plane_normal,
+                   "normal x y z of the surface around the bore (default: the axis)")
+      ->expected(3);
   bore->callback([exit_code] { *exit_code = run(bore_args, daemon::DetectKind::kBore); });
   auto* object = cmd->add_subcommand("object", "find a configured object model");
   common(object, object_args);
   object->add_option("--model", object_args.model, "object model name (daemon config)")->required();
+  object->add_option("--instances", object_args.instances, "K: instances to report, best first")
+      ->check(CLI::Range(1, 1000));
+  object
+      ->add_option("--hypotheses", object_args.hypotheses,
+                   "m: pose hypotheses per part (default: the detector's)")
+      ->check(CLI::Range(1, 10000));
+  object->add_option("--trials", object_args.trials, "n: RANSAC trials per hypothesis")
+      ->check(CLI::Range(1, 10000));
   object->callback([exit_code] { *exit_code = run(object_args, daemon::DetectKind::kObject); });
 }
 

@@ -23,7 +23,7 @@ class DdsServiceTest : public ::testing::Test {
                                 ::testing::UnitTest::GetInstance()->current_test_info()->name());
     config_ = test::replay_css_config(dir_, dir_ / "scan.ply");
     config_.dds.diagnostics_period_s = 0.1;
-    config_.objects.push_back({"box", {40, 30, 20}, {0.1, 0.1}, {}});
+    config_.objects.push_back(inline_object("box", {40, 30, 20}, {0.1, 0.1}));
   }
   void TearDown() override {
     loop_.reset();

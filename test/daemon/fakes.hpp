@@ -63,7 +63,8 @@ class FakeBackend final : public daemon::ScanBackend {
 class CentroidDetector final : public daemon::Detector {
  public:
   bool throw_next = false;
-  daemon::DetectionResult detect(const PointCloud& cloud, const daemon::ScanRequest&) override {
+  daemon::DetectionResult detect(const PointCloud& cloud, const daemon::ScanRequest&,
+                                 const daemon::ScanSensor&) override {
     if (throw_next) throw std::runtime_error("boom");
     daemon::DetectionResult r;
     if (cloud.empty()) {

@@ -23,8 +23,9 @@ using Fields = std::vector<std::string>;  // "type name" in IDL spelling
 // .msg → IDL type spelling as rosidl_adapter maps it.
 std::string idl_type(std::string t) {
   static const std::map<std::string, std::string> kPrim{
-      {"bool", "boolean"},  {"byte", "octet"},  {"float64", "double"}, {"float32", "float"},
-      {"string", "string"}, {"uint8", "uint8"}, {"uint32", "uint32"},  {"int32", "int32"}};
+      {"bool", "boolean"},  {"byte", "octet"},    {"float64", "double"},
+      {"float32", "float"}, {"string", "string"}, {"uint8", "uint8"},
+      {"uint32", "uint32"}, {"int32", "int32"},   {"uint64", "uint64"}};
   bool seq = false;
   if (t.size() > 2 && t.ends_with("[]")) {
     seq = true;

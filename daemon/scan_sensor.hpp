@@ -1,0 +1,39 @@
+#pragma once
+// What the sensor that took a scan knows about where its rays came from, in the frame of the
+// scan's points: a direction or position to orient normals toward (bores) and the visibility
+// model of the sweep (objects: coverage and free-space checks). Built from the same geometry
+// the drivers, the simulator and fusion use, for the sweep that was actually run.
+
+#include <Eigen/Geometry>
+#include <optional>
+
+#include "detect/sensor_view.hpp"
+#include "hal/css_geometry.hpp"
+#include "hal/pan_tilt_geometry.hpp"
+#include "hal/stripe_geometry.hpp"
+
+namespace rangefit::daemon {
+
+struct ScanSensor {
+  std::optional<Eigen::Vector3d> view_dir;         // unit, from the scene toward the sensor
+  std::optional<Eigen::Vector3d> sensor_position;  // mm; preferred over view_dir when set
+  SensorView view;                                 // kUnknown: nothing known
+};
+
+// The CSS in fusion's CSS world frame (eq. 4.17): it looks along the sensor's -z at the scan
+// centre (omega = 0), so the direction toward it is the sensor's +z there.
+ScanSensor css_sensor(const hal::CssGeometry& g);
+
+// The stripe cell in the table frame (the fused cloud's): the fan apex moves relative to the
+// table by -s * axis_direction while the axis runs from `from` to `to` (mm).
+ScanSensor stripe_sensor(const hal::StripeCellGeometry& g, double from_mm, double to_mm);
+
+// The pan-tilt head in its world frame (eq. 5.7): the laser plane turns about world x through
+// the pan-tilt centre by pan - pan_zero in [-half, +half], at the fixed tilt the unit reports.
+ScanSensor pan_tilt_sensor(const hal::PanTiltGeometry& g, double half_sweep_rad,
+                           double reported_tilt_rad);
+
+// The same sensor seen from another frame: p' = T p for points, R v for directions.
+ScanSensor transformed(const ScanSensor& s, const Eigen::Isometry3d& T);
+
+}  // namespace rangefit::daemon
