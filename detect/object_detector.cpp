@@ -188,11 +188,12 @@ std::optional<Rejection> misfit(const HypothesisContext& ctx, const Superquadric
 }
 
 // Hypotheses of one part. After each batch the vote leader among the places not yet set aside
-// is judged; a leader that fails a check is set aside, and so is, for a compound model, one
-// that passes and has been found again by `confirmations` hypotheses (its hypotheses stay in the
-// vote, but a look-alike of the part is not fitted again and again while the real part waits).
+// is judged; a leader that fails a check is set aside, and so is one that passes and has been
+// found again by `confirmations` hypotheses, for a compound model (its hypotheses stay in the
+// vote, but a look-alike of the part is not fitted again and again while the real part waits;
+// and for a single-part model asked for K instances, each of the first K - 1 established).
 // A set-aside place's points are no longer drawn as RANSAC seeds. A single-part model stops
-// once its leader passes and has been found again by `confirmations` hypotheses. Batches are
+// once K leaders have passed and been found again by `confirmations` hypotheses each. Batches are
 // fixed, so the stop and the set-aside points are deterministic.
 std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Superquadric& part,
                                         std::size_t part_index, bool compound,
@@ -204,6 +205,7 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Sup
   const std::size_t m = static_cast<std::size_t>(compound ? o.compound_hypotheses : o.hypotheses);
   std::vector<PartHypothesis> all(m);
   std::vector<PlacedPart> set_aside;
+  std::size_t established = 0;
   HypothesisContext ctx = base;
   std::size_t done = 0;
   while (done < m) {
@@ -241,7 +243,8 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Sup
     const bool clean = static_cast<double>(ls.interior) <=
                        kCleanInteriorRatio * static_cast<double>(ls.interior + ls.surface);
     if (agree < o.confirmations || !clean) continue;
-    if (!compound) break;
+    // One more place established: a single-part model stops once it has its K instances.
+    if (!compound && ++established >= static_cast<std::size_t>(o.instances)) break;
     set_aside.push_back({part, T});
   }
   all.resize(done);
