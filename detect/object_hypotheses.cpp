@@ -210,23 +210,37 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
   // from both sides: the pose is re-fitted at u = 1 + du, 1, 1 - du, and a parabola in u through
   // the three mean squares of G - 1 has its vertex at the size the points want. (Steps even in s
   // would favour the larger part.)
+  //
+  // Three ways of being a different size are asked: all over, across the part's axis only (a1,
+  // a2: a fatter can, an oblate ball) and along it only (a3: a taller can). For the last two G is
+  // not homogeneous, but near u = 1 the parabola still places the size. The verdict is the one
+  // farthest from the model among those the points determine.
   PoseFitOptions fit;
   fit.max_iterations = o.iterations;
-  double ms[3];
-  for (int k = 0; k < 3; ++k) {
-    const double s = 1.0 / std::sqrt(1.0 + (1 - k) * du);
-    Superquadric scaled = part;
-    scaled.a1 *= s, scaled.a2 *= s, scaled.a3 *= s;
-    const PoseFitResult r = fit_pose(scaled, sel, T, fit);
-    if (!r.ok()) return e;
-    ms[k] = r.measure * r.measure;
+  const PoseFitResult at_model = fit_pose(part, sel, T, fit);
+  if (!at_model.ok()) return e;
+  const double ms1 = at_model.measure * at_model.measure;
+  enum Mode { kAll, kAcross, kAlong };
+  for (Mode mode : {kAll, kAcross, kAlong}) {
+    double ms[3] = {0.0, ms1, 0.0};
+    bool ok = true;
+    for (int k : {0, 2}) {
+      const double s = 1.0 / std::sqrt(1.0 + (1 - k) * du);
+      Superquadric scaled = part;
+      if (mode != kAlong) scaled.a1 *= s, scaled.a2 *= s;
+      if (mode != kAcross) scaled.a3 *= s;
+      const PoseFitResult r = fit_pose(scaled, sel, T, fit);
+      ok = ok && r.ok();
+      ms[k] = r.measure * r.measure;
+    }
+    const double curvature = ms[0] - 2.0 * ms[1] + ms[2];
+    if (!ok || !(curvature > 0.05 * ms[1]) || !(curvature > 1e-12)) continue;
+    const double u = 1.0 + du * 0.5 * (ms[2] - ms[0]) / curvature;
+    if (!(u > 0.0)) continue;
+    const double scale = 1.0 / std::sqrt(u);
+    if (!e.determined || std::abs(scale - 1.0) > std::abs(e.scale - 1.0)) e.scale = scale;
+    e.determined = true;
   }
-  const double curvature = ms[0] - 2.0 * ms[1] + ms[2];
-  if (!(curvature > 0.05 * ms[1]) || !(curvature > 1e-12)) return e;
-  const double u = 1.0 + du * 0.5 * (ms[2] - ms[0]) / curvature;
-  if (!(u > 0.0)) return e;
-  e.determined = true;
-  e.scale = 1.0 / std::sqrt(u);
   return e;
 }
 

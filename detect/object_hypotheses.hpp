@@ -55,12 +55,12 @@ PartScores verify_pose(const HypothesisContext& ctx, const Superquadric& part,
 
 // How well the part's own size explains its points: the pose is re-fitted with the part a little
 // smaller and a little larger (G scaled by 1 + du and 1 - du), and a parabola through the three
-// mean squares of G - 1 gives the scale the points want. A look-alike 4 % larger than the model
-// wants ~1.04 whatever its point count; a part seen only on a plane face gives a flat parabola and
-// no verdict.
+// mean squares of G - 1 gives the scale the points want: all over, across the axis and along it.
+// A look-alike 4 % larger than the model wants ~1.04 whatever its point count; a part seen only
+// on a plane face gives a flat parabola and no verdict.
 struct SizeEvidence {
-  bool determined = false;  // the parabola is curved enough to place its vertex
-  double scale = 1.0;       // the scale the points want (vertex of the parabola)
+  bool determined = false;  // at least one parabola is curved enough to place its vertex
+  double scale = 1.0;       // the scale the points want farthest from 1 (vertex of a parabola)
   // Robust spread of the distances from the surface of the points near it at the given pose,
   // mm (1.4826 median |d|: the sigma of the range noise for a part that is really there).
   double residual_mm = 0.0;
