@@ -13,6 +13,10 @@ namespace {
 constexpr std::size_t kMinPatchPoints = 8;
 constexpr double kTrimPerMeasure = 3.0;
 constexpr int kSeedRedraws = 8;
+// Size evidence: a scaled fit whose mean square is below this share of the model's fit is
+// clearly better.
+constexpr double kClearlyBetter = 0.6;
+constexpr int kSizeFitIterations = 8;
 
 std::uint64_t splitmix64(std::uint64_t& state) {
   std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
@@ -216,7 +220,7 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
   // not homogeneous, but near u = 1 the parabola still places the size. The verdict is the one
   // farthest from the model among those the points determine.
   PoseFitOptions fit;
-  fit.max_iterations = o.iterations;
+  fit.max_iterations = std::min(o.iterations, kSizeFitIterations);  // from a converged pose
   const PoseFitResult at_model = fit_pose(part, sel, T, fit);
   if (!at_model.ok()) return e;
   const double ms1 = at_model.measure * at_model.measure;
@@ -233,11 +237,21 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
       ok = ok && r.ok();
       ms[k] = r.measure * r.measure;
     }
+    if (!ok) continue;
     const double curvature = ms[0] - 2.0 * ms[1] + ms[2];
-    if (!ok || !(curvature > 0.05 * ms[1]) || !(curvature > 1e-12)) continue;
-    const double u = 1.0 + du * 0.5 * (ms[2] - ms[0]) / curvature;
-    if (!(u > 0.0)) continue;
-    const double scale = 1.0 / std::sqrt(u);
+    double scale;
+    if (std::min(ms[0], ms[2]) < kClearlyBetter * ms[1]) {
+      // A step away from the model's size fits clearly better: the size the points want lies
+      // beyond the step (a look-alike far off looks linear over it, not curved). "Clearly": one
+      // face of a box seen alone can prefer a step along one axis a little.
+      scale = 1.0 / std::sqrt(1.0 + (ms[0] < ms[2] ? du : -du));
+    } else if (curvature > 0.05 * ms[1] && curvature > 1e-12) {
+      const double u = 1.0 + du * 0.5 * (ms[2] - ms[0]) / curvature;
+      if (!(u > 0.0)) continue;
+      scale = 1.0 / std::sqrt(u);
+    } else {
+      continue;
+    }
     if (!e.determined || std::abs(scale - 1.0) > std::abs(e.scale - 1.0)) e.scale = scale;
     e.determined = true;
   }
