@@ -513,7 +513,11 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
 
   // 5.1.2: m hypotheses per part.
   t0 = Clock::now();
-  const HypothesisContext ctx{cloud, &tree, &options, {}};
+  HypothesisContext ctx{cloud, &tree, &options, {}, std::nullopt, 0.0};
+  if (options.rest_on_plane && cover.removed_plane) {
+    ctx.table = cover.removed_plane;
+    ctx.table_margin_mm = options.plane_margin_mm + 3.0 * noise_mm;
+  }
   const bool single = model.parts.size() == 1;
   std::vector<std::vector<PartHypothesis>> hyps(model.parts.size()), unfit(model.parts.size());
   bool any_valid = false, all_confirmed = true;

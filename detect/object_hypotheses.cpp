@@ -30,6 +30,18 @@ std::size_t uniform_index(std::uint64_t& state, std::size_t n) {
   return static_cast<std::size_t>(splitmix64(state) % static_cast<std::uint64_t>(n));
 }
 
+// How far a posed part reaches through the table plane (<= 0: not at all), by its inscribed
+// ellipsoid, whose support along n is sqrt(sum (a_i n.R_i)^2): a part with eps <= 1 contains it,
+// so a part whose ellipsoid sinks sinks at least as far. Tapered and pinched (eps > 1) parts are
+// not judged (0).
+double sinks_by(const Superquadric& part, const Eigen::Isometry3d& T, const pca::Plane& table) {
+  if (part.eps1 > 1.0 || part.eps2 > 1.0 || part.kx != 0.0 || part.ky != 0.0) return 0.0;
+  const Eigen::Vector3d n = T.linear().transpose() * table.normal;
+  const double support = std::sqrt(std::pow(part.a1 * n.x(), 2) + std::pow(part.a2 * n.y(), 2) +
+                                   std::pow(part.a3 * n.z(), 2));
+  return support - table.normal.dot(T.translation() - table.point);
+}
+
 // RANSAC patch radius: the smallest size (5.1.2), wider for an elongated part (a shaft), whose
 // small patches are nearly round bits of a thin cylinder and leave its axis to chance.
 double patch_radius(const Superquadric& part) {
@@ -292,6 +304,7 @@ PartHypothesis generate_hypothesis(const HypothesisContext& ctx, const Superquad
     }
     const PoseFitResult fit = fit_pose_from_moments(part, sample, init);
     if (!fit.ok()) continue;
+    if (ctx.table && sinks_by(part, fit.T_world_part, *ctx.table) > ctx.table_margin_mm) continue;
     Eigen::Isometry3d T = fit.T_world_part;
     double measure = fit.measure;
     if (o.refine_each_trial) {

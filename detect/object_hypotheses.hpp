@@ -5,10 +5,12 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 #include <span>
 
 #include "detect/kdtree.hpp"
 #include "detect/object_detector.hpp"
+#include "detect/pca.hpp"
 #include "detect/superquadric.hpp"
 
 namespace rangefit {
@@ -29,6 +31,10 @@ struct HypothesisContext {
   // Candidates already judged and set aside: RANSAC seeds are not drawn among the points they
   // explain (G < 1 + refine_trim), so new hypotheses go elsewhere.
   std::span<const PlacedPart> seed_excluded;
+  // The removed table plane, its normal towards the objects (rest_on_plane): RANSAC trials whose
+  // part sinks into it by more than `table_margin_mm` are not taken.
+  std::optional<pca::Plane> table;
+  double table_margin_mm = 0.0;
 };
 
 // A part already placed (another part of the same compound object): the points it explains
