@@ -74,12 +74,18 @@ bool plausible(const PartHypothesis& h, const ObjectDetectOptions& o) {
 }
 
 // Confirmation by the surface evidence (see ObjectDetectOptions::min_coverage).
+// For a part of a compound object the measurable share is judged over the whole object (its
+// siblings hide some of it: the head hides the end of the shaft).
 std::optional<Rejection> unconfirmed(const SurfaceCoverage& c, const ObjectDetectOptions& o,
-                                     bool sensor_known) {
+                                     bool sensor_known, bool judge_share = true) {
   const double min_cover = sensor_known ? o.min_coverage : o.min_coverage_unknown_sensor;
-  if (c.measurable < o.min_measurable_samples || c.measurable < o.min_measurable_share * c.facing) {
+  if (c.measurable < o.min_measurable_samples) {
     return Rejection{0, Check::kHidden, static_cast<double>(c.measurable),
                      static_cast<double>(o.min_measurable_samples), Eigen::Vector3d::Zero()};
+  }
+  const double share = c.facing > 0 ? static_cast<double>(c.measurable) / c.facing : 0.0;
+  if (judge_share && share < o.min_measurable_share) {
+    return Rejection{0, Check::kHidden, share, o.min_measurable_share, Eigen::Vector3d::Zero()};
   }
   if (c.below_plane_mm > std::max(o.plane_margin_mm, 0.1 * c.min_size_mm)) {
     return Rejection{0, Check::kBelowPlane, c.below_plane_mm,
@@ -227,10 +233,11 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Sup
         static_cast<std::size_t>(std::min_element(sums.begin(), sums.end()) - sums.begin());
     const Eigen::Isometry3d& T = valid[lead].T_world_part;
     const SurfaceCoverage seen = surface_coverage(part, T, ctx.points, *ctx.tree, cover);
-    const bool passes = !unconfirmed(seen, o, cover.sensor.kind != SensorView::Kind::kUnknown) &&
-                        (compound || !floating(seen.lowest_mm, part.min_size(),
-                                               cover.removed_plane.has_value(), noise_mm, o)) &&
-                        !misfit(ctx, part, T, {}, noise_mm);
+    const bool passes =
+        !unconfirmed(seen, o, cover.sensor.kind != SensorView::Kind::kUnknown, !compound) &&
+        (compound || !floating(seen.lowest_mm, part.min_size(), cover.removed_plane.has_value(),
+                               noise_mm, o)) &&
+        !misfit(ctx, part, T, {}, noise_mm);
     if (!passes) {
       set_aside.push_back({part, T});
       continue;
@@ -588,6 +595,7 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
     std::optional<Rejection> why;
     double lowest = INFINITY, lowest_size = 0.0;
     std::size_t lowest_part = 0;
+    int facing = 0, measurable = 0;
     for (std::size_t p = 0; p < model.parts.size() && !why; ++p) {
       DetectedPart& part = inst.parts[p];
       const SurfaceCoverage seen =
@@ -599,7 +607,8 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
       part.scores.measurable = seen.measurable;
       part.scores.coverage = seen.covered;
       part.scores.seen_through = seen.seen_through;
-      why = unconfirmed(seen, options, sensor_known);
+      facing += seen.facing, measurable += seen.measurable;
+      why = unconfirmed(seen, options, sensor_known, single);
       if (!why) {
         std::vector<PlacedPart> others;
         for (std::size_t q = 0; q < model.parts.size(); ++q) {
@@ -608,6 +617,11 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
         why = misfit(ctx, model.parts[p].shape, part.T_world_part, others, noise_mm, &part.scores);
       }
       if (why) why->part = p, why->centre = part.center();
+    }
+    if (!why && !single && measurable < options.min_measurable_share * facing) {
+      why =
+          Rejection{0, Check::kHidden, facing > 0 ? static_cast<double>(measurable) / facing : 0.0,
+                    options.min_measurable_share, inst.parts[0].center()};
     }
     if (!why) {
       why = floating(lowest, lowest_size, cover.removed_plane.has_value(), noise_mm, options);
