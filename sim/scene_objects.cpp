@@ -27,6 +27,51 @@ Eigen::Isometry3d pose(const Eigen::Matrix3d& R, const Eigen::Vector3d& t) {
 
 }  // namespace
 
+Eigen::Isometry3d pose_from_axis(const Eigen::Vector3d& centre, const Eigen::Vector3d& z,
+                                 double spin_rad) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = (Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), z.normalized()) *
+                Eigen::AngleAxisd(spin_rad, Eigen::Vector3d::UnitZ()))
+                   .toRotationMatrix();
+  T.translation() = centre;
+  return T;
+}
+
+ObjectModel single(const std::string& name, const Superquadric& sq) {
+  return ObjectModel{name, {ModelPart{name, sq}}, {}};
+}
+
+// Figure 5.18, table 5.3 poses.
+std::vector<ScenePart> fig_5_18_parts() {
+  return {{"cylinder", cylinder_model(),
+           pose_from_axis({153.646, 146.348, 58.275}, {-0.35028, -0.33886, 0.87319})},
+          {"box", box_model(),
+           pose_from_axis({88.923, 94.128, 59.173}, {0.18692, -0.29300, 0.93767}, 0.3)},
+          {"sphere", sphere_model(), pose_from_axis({160.0, 65.0, 50.0}, {0, 0, 1})},
+          {"cone", cone_model(), pose_from_axis({213.074, 110.438, 40.0}, {0, 0, 1})}};
+}
+
+// Figure 5.28: radii 48, 50 and 52, 10 mm apart.
+std::vector<ScenePart> three_spheres_parts() {
+  return {{"sphere48", {48, 48, 48, 1, 1, 0, 0}, pose_from_axis({40, 100, 48}, {0, 0, 1})},
+          {"sphere50", {50, 50, 50, 1, 1, 0, 0}, pose_from_axis({148, 100, 50}, {0, 0, 1})},
+          {"sphere52", {52, 52, 52, 1, 1, 0, 0}, pose_from_axis({260, 100, 52}, {0, 0, 1})}};
+}
+
+// The mallet (parts 0, 1) among look-alikes and two occluding boxes.
+std::vector<ScenePart> mallet_scene_parts() {
+  const Eigen::Vector3d x = Eigen::Vector3d::UnitX(), y = Eigen::Vector3d::UnitY();
+  return {
+      {"mallet/head", {30, 30, 56, 0.1, 1.0, 0, 0}, pose_from_axis({60, 240, 30}, x)},
+      {"mallet/shaft", {12, 10, 120, 0.1, 1.0, 0, 0}, pose_from_axis({60, 70, 30}, y, 1.5708)},
+      {"lookalike/drum", {30, 30, 56, 0.1, 1.0, 0, 0}, pose_from_axis({250, 60, 30}, y)},
+      {"lookalike/rod", {12, 10, 120, 0.1, 1.0, 0, 0}, pose_from_axis({250, 300, 12}, {1, 0.2, 0})},
+      {"hammer/head", {15, 15, 45, 0.1, 1.0, 0, 0}, pose_from_axis({320, 200, 15}, y)},
+      {"hammer/shaft", {12, 10, 120, 0.1, 1.0, 0, 0}, pose_from_axis({320, 35, 12}, y)},
+      {"occluder/box", {20, 40, 25, 0.1, 0.1, 0, 0}, pose_from_axis({115, 120, 25}, {0, 0, 1})},
+      {"occluder/block", {15, 15, 35, 0.1, 0.1, 0, 0}, pose_from_axis({265, -10, 35}, {0, 0, 1})}};
+}
+
 Superquadric cylinder_model() { return {30, 30, 50, 0.1, 1.0, 0.0, 0.0}; }
 Superquadric box_model() { return {25, 25, 50, 0.1, 0.1, 0.0, 0.0}; }
 Superquadric sphere_model() { return {50, 50, 50, 1.0, 1.0, 0.0, 0.0}; }

@@ -16,6 +16,19 @@ namespace rangefit::sim {
 // Table 5.2: cylinder 30,30,50 e 0.1,1; box 25,25,50 e 0.1,0.1; sphere 50; cone 20,20,40 e 0.1,1
 // taper -1,-1 (base radius 40 at z = -40, tip at +40). Mallet: head 30,30,56 and shaft 12,10,120
 // (both e 0.1,1), their axes at 90 deg and centres 170 mm apart.
+// The pose whose z-axis is `z` (turned by spin about it) at `centre`.
+Eigen::Isometry3d pose_from_axis(const Eigen::Vector3d& centre, const Eigen::Vector3d& z,
+                                 double spin_rad = 0.0);
+// A one-part model.
+ObjectModel single(const std::string& name, const Superquadric& sq);
+
+// The thesis scenes' parts with their poses: fig. 5.18 (table 5.3: cylinder, box, sphere,
+// cone), fig. 5.28 (spheres of 48, 50 and 52 mm; the 50 is index 1) and the mallet (parts 0, 1)
+// among a drum, a rod, a hammer and two occluding boxes.
+std::vector<ScenePart> fig_5_18_parts();
+std::vector<ScenePart> three_spheres_parts();
+std::vector<ScenePart> mallet_scene_parts();
+
 Superquadric cylinder_model();
 Superquadric box_model();
 Superquadric sphere_model();
