@@ -6,6 +6,8 @@
 #include <chrono>
 #include <future>
 
+#include "daemon/log_escape.hpp"
+
 namespace rangefit::daemon {
 namespace {
 
@@ -204,16 +206,17 @@ void Pipeline::process(const ScanRequest& request) {
   }
   // State first, then the result: a client holding the result sees the settled state.
   if (!failed) {
-    spdlog::info("request {}: {} ({} points, scan {:.2f} s, detect {:.2f} s){}", request.id,
-                 result.found ? "found" : "not found", result.num_points, result.scan_seconds,
-                 result.detect_seconds, result.reason.empty() ? "" : ": " + result.reason);
+    spdlog::info("request {}: {} ({} points, scan {:.2f} s, detect {:.2f} s){}",
+                 log_escape(request.id), result.found ? "found" : "not found", result.num_points,
+                 result.scan_seconds, result.detect_seconds,
+                 result.reason.empty() ? "" : ": " + result.reason);
     set_state(LifecycleState::kIdle, "", "");
   } else {
     {
       std::lock_guard lock(mutex_);
       last_error_ = result.reason;
     }
-    spdlog::error("request {}: {}", request.id, result.reason);
+    spdlog::error("request {}: {}", log_escape(request.id), log_escape(result.reason));
     // FAULT is reported while the failure is the latest news; the next good scan clears it.
     set_state(LifecycleState::kFault, result.reason, "");
   }
@@ -221,7 +224,8 @@ void Pipeline::process(const ScanRequest& request) {
   ++completed_;
   sink_.on_result(result);
   if (pending_detection_.valid()) {
-    spdlog::warn("request {}: waiting for the timed-out detector to return", request.id);
+    spdlog::warn("request {}: waiting for the timed-out detector to return",
+                 log_escape(request.id));
     pending_detection_.wait();  // no touch(): a detector that never returns starves the watchdog
     pending_detection_ = {};
   }

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "daemon/log_escape.hpp"
 #include "daemon/request_validation.hpp"
 
 namespace rangefit::daemon {
@@ -46,16 +47,16 @@ void Service::step(std::chrono::milliseconds timeout) {
   dds_.poll_requests(timeout, [&](ScanRequest req, const std::string& error) {
     std::string why = error.empty() ? validate_request(req, config_) : error;
     if (!why.empty()) {
-      spdlog::warn("request \"{}\" rejected: {}", req.id, why);
+      spdlog::warn("request \"{}\" rejected: {}", log_escape(req.id), log_escape(why));
       dds_.on_result(DetectionResult::error(req, "bad request: " + why));
       return;
     }
     switch (pipeline_->submit(req)) {
       case Submit::kAccepted:
-        spdlog::info("request {} ({}) queued", req.id, to_string(req.kind));
+        spdlog::info("request {} ({}) queued", log_escape(req.id), to_string(req.kind));
         break;
       case Submit::kBusy:
-        spdlog::warn("request {} refused: busy", req.id);
+        spdlog::warn("request {} refused: busy", log_escape(req.id));
         dds_.on_result(DetectionResult::error(
             req, fmt::format("busy: {} requests queued", pipeline_->queue_depth())));
         break;
