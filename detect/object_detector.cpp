@@ -77,7 +77,7 @@ bool plausible(const PartHypothesis& h, const ObjectDetectOptions& o) {
 // For a part of a compound object the measurable share is judged over the whole object (its
 // siblings hide some of it: the head hides the end of the shaft).
 std::optional<Rejection> unconfirmed(const SurfaceCoverage& c, const ObjectDetectOptions& o,
-                                     bool sensor_known, bool judge_share = true) {
+                                     bool sensor_known, bool judge_share) {
   const double min_cover = sensor_known ? o.min_coverage : o.min_coverage_unknown_sensor;
   if (c.measurable < o.min_measurable_samples) {
     return Rejection{0, Check::kHidden, static_cast<double>(c.measurable),
@@ -193,6 +193,34 @@ std::optional<Rejection> misfit(const HypothesisContext& ctx, const Superquadric
   return std::nullopt;
 }
 
+// Every check a posed part must pass beyond eq. 5.2-5.4, in one place for the search's early
+// stop and for the final candidates. `alone`: a part of a single-part model, whose measurable
+// share and rest on the table are judged here; a part of a compound object is judged on those
+// together with its siblings (detect_object). The coverage and fit scores go into `scores` and
+// the coverage into `seen` when given.
+std::optional<Rejection> judge_part(const HypothesisContext& ctx, const Superquadric& part,
+                                    const Eigen::Isometry3d& T, std::span<const PlacedPart> others,
+                                    const CoverageOptions& cover, double noise_mm, bool alone,
+                                    PartScores* scores = nullptr, SurfaceCoverage* seen = nullptr) {
+  const ObjectDetectOptions& o = *ctx.options;
+  const SurfaceCoverage c = surface_coverage(part, T, ctx.points, *ctx.tree, cover);
+  if (seen) *seen = c;
+  if (scores) {
+    scores->facing = c.facing;
+    scores->measurable = c.measurable;
+    scores->coverage = c.covered;
+    scores->seen_through = c.seen_through;
+  }
+  std::optional<Rejection> why =
+      unconfirmed(c, o, cover.sensor.kind != SensorView::Kind::kUnknown, alone);
+  if (!why && alone) {
+    why = floating(c.lowest_mm, part.min_size(), cover.removed_plane.has_value(), noise_mm, o);
+  }
+  if (!why) why = misfit(ctx, part, T, others, noise_mm, scores);
+  if (why) why->centre = T.translation();
+  return why;
+}
+
 // Hypotheses of one part. After each batch the vote leader among the places not yet set aside
 // is judged; a leader that fails a check is set aside, and so is one that passes and has been
 // found again by `confirmations` hypotheses, for a compound model (its hypotheses stay in the
@@ -232,13 +260,7 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Sup
     const std::size_t lead =
         static_cast<std::size_t>(std::min_element(sums.begin(), sums.end()) - sums.begin());
     const Eigen::Isometry3d& T = valid[lead].T_world_part;
-    const SurfaceCoverage seen = surface_coverage(part, T, ctx.points, *ctx.tree, cover);
-    const bool passes =
-        !unconfirmed(seen, o, cover.sensor.kind != SensorView::Kind::kUnknown, !compound) &&
-        (compound || !floating(seen.lowest_mm, part.min_size(), cover.removed_plane.has_value(),
-                               noise_mm, o)) &&
-        !misfit(ctx, part, T, {}, noise_mm);
-    if (!passes) {
+    if (judge_part(ctx, part, T, {}, cover, noise_mm, !compound)) {
       set_aside.push_back({part, T});
       continue;
     }
@@ -502,7 +524,6 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
     cover.sensor.kind = SensorView::Kind::kPoint;
     cover.sensor.origin = *options.viewpoint;
   }
-  const bool sensor_known = cover.sensor.kind != SensorView::Kind::kUnknown;
   cover.occupancy = &occupancy;
   if (result.plane.removed()) {
     // Oriented towards the objects: they rest on the plane, the sensor looks from their side.
@@ -598,32 +619,26 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
     int facing = 0, measurable = 0;
     for (std::size_t p = 0; p < model.parts.size() && !why; ++p) {
       DetectedPart& part = inst.parts[p];
-      const SurfaceCoverage seen =
-          surface_coverage(model.parts[p].shape, part.T_world_part, cloud, tree, cover);
+      std::vector<PlacedPart> others;
+      for (std::size_t q = 0; q < model.parts.size(); ++q) {
+        if (q != p) others.push_back({model.parts[q].shape, inst.parts[q].T_world_part});
+      }
+      SurfaceCoverage seen;
+      why = judge_part(ctx, model.parts[p].shape, part.T_world_part, others, cover, noise_mm,
+                       single, &part.scores, &seen);
+      if (why) why->part = p;
       if (seen.lowest_mm < lowest) {
         lowest = seen.lowest_mm, lowest_size = model.parts[p].shape.min_size(), lowest_part = p;
       }
-      part.scores.facing = seen.facing;
-      part.scores.measurable = seen.measurable;
-      part.scores.coverage = seen.covered;
-      part.scores.seen_through = seen.seen_through;
       facing += seen.facing, measurable += seen.measurable;
-      why = unconfirmed(seen, options, sensor_known, single);
-      if (!why) {
-        std::vector<PlacedPart> others;
-        for (std::size_t q = 0; q < model.parts.size(); ++q) {
-          if (q != p) others.push_back({model.parts[q].shape, inst.parts[q].T_world_part});
-        }
-        why = misfit(ctx, model.parts[p].shape, part.T_world_part, others, noise_mm, &part.scores);
-      }
-      if (why) why->part = p, why->centre = part.center();
     }
+    // A compound object's measurable share and rest on the table, over all its parts.
     if (!why && !single && measurable < options.min_measurable_share * facing) {
       why =
           Rejection{0, Check::kHidden, facing > 0 ? static_cast<double>(measurable) / facing : 0.0,
                     options.min_measurable_share, inst.parts[0].center()};
     }
-    if (!why) {
+    if (!why && !single) {
       why = floating(lowest, lowest_size, cover.removed_plane.has_value(), noise_mm, options);
       if (why) why->part = lowest_part, why->centre = inst.parts[lowest_part].center();
     }
