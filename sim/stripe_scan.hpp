@@ -48,7 +48,7 @@ class PartCaster {
 
  private:
   std::vector<ScenePart> parts_;
-  std::vector<Eigen::Vector3d> centres_;  // bounding sphere of each part's bounds box
+  std::vector<Eigen::Vector3d> centres_;  // a sphere holding each part (stripe_scan.cpp)
   std::vector<double> radii_;
   Eigen::AlignedBox2d table_;
 };
