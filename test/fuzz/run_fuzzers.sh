@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Runs every fuzzer built in BUILD for SECONDS each, from a copy of its seed corpus (the corpus in
+# the repository only grows by hand), and fails on the first finding: a crash, a sanitizer
+# report, a leak or a timeout. The crashing input is left in the work folder and its path printed.
+#   bash test/fuzz/run_fuzzers.sh build-fuzz 20 [name ...]
+set -euo pipefail
+build=${1:?usage: run_fuzzers.sh BUILD SECONDS [name ...]}
+seconds=${2:?usage: run_fuzzers.sh BUILD SECONDS [name ...]}
+shift 2
+here=$(cd "$(dirname "$0")" && pwd)
+work=$(mktemp -d /tmp/rangefit-fuzz.XXXXXX)
+names=("$@")
+if [ ${#names[@]} -eq 0 ]; then
+  for exe in "$build"/test/fuzz/*_fuzz; do names+=("$(basename "$exe" _fuzz)"); done
+fi
+for name in "${names[@]}"; do
+  exe="$build/test/fuzz/${name}_fuzz"
+  mkdir -p "$work/$name"
+  [ -d "$here/corpus/$name" ] && cp -r "$here/corpus/$name/." "$work/$name/"
+  if ! ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+      "$exe" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+      -artifact_prefix="$work/$name-" "$work/$name" > "$work/$name.log" 2>&1; then
+    tail -n 40 "$work/$name.log"
+    echo "fuzz: $name found a problem; input: $(ls "$work/$name"-* 2>/dev/null | head -1)"
+    exit 1
+  fi
+  echo "fuzz: $name $(grep -o 'number_of_executed_units: [0-9]*' "$work/$name.log" | cut -d' ' -f2) runs, no finding"
+done
+rm -rf "$work"
