@@ -14,11 +14,9 @@
 #include <memory>
 #include <string>
 
-#include "daemon/config.hpp"
-#include "daemon/dds_security.hpp"
-#include "daemon/dds_service.hpp"
-#include "daemon/service.hpp"
-#include "daemon/systemd_notify.hpp"
+#include "daemon/service/config.hpp"
+#include "daemon/rangefitd/service.hpp"
+#include "daemon/rangefitd/systemd_notify.hpp"
 
 namespace {
 
@@ -117,8 +115,6 @@ int main(int argc, char** argv) {
   hal::MonotonicClock clock;
   std::unique_ptr<daemon::Service> service;
   try {
-    daemon::apply_dds_config_uri(loaded.config->dds.config_uri);
-    daemon::apply_dds_security(loaded.config->dds.security);
     service = std::make_unique<daemon::Service>(*loaded.config, clock);
   } catch (const std::exception& e) {
     spdlog::critical("start-up failed: {}", e.what());
