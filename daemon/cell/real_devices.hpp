@@ -29,8 +29,8 @@
 #include <string>
 #include <vector>
 
-#include "daemon/service/config.hpp"
 #include "daemon/cell/driver_configs.hpp"
+#include "daemon/service/config.hpp"
 #include "daemon/service/pipeline.hpp"
 #include "hal/source.hpp"
 

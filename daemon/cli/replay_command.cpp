@@ -2,9 +2,9 @@
 
 #include <iostream>
 
-#include "daemon/service/model_detector.hpp"
 #include "daemon/cli/commands.hpp"
 #include "daemon/service/json_codec.hpp"
+#include "daemon/service/model_detector.hpp"
 #include "daemon/service/spool.hpp"
 
 namespace rangefit::cli {

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "daemon/service/config.hpp"
 #include "daemon/dds/dds.hpp"
 #include "daemon/dds/messages.hpp"
 #include "daemon/dds/topics.hpp"
+#include "daemon/service/config.hpp"
 #include "daemon/service/pipeline.hpp"
 
 namespace rangefit::daemon {

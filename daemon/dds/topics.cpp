@@ -7,7 +7,9 @@ dds::QosSpec latched_qos(int depth) { return {true, true, depth}; }
 dds::QosSpec diagnostics_qos() { return {true, false, 10}; }
 dds::QosSpec request_qos(int depth) { return {true, false, depth}; }
 
-Cloud cloud(int depth) { return {kCloud, &sensor_msgs_msg_dds__PointCloud2__desc, cloud_qos(depth)}; }
+Cloud cloud(int depth) {
+  return {kCloud, &sensor_msgs_msg_dds__PointCloud2__desc, cloud_qos(depth)};
+}
 Detections detections(int depth) {
   return {kDetections, &rangefit_msgs_msg_dds__Detection__desc, latched_qos(depth)};
 }

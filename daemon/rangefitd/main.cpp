@@ -14,9 +14,9 @@
 #include <memory>
 #include <string>
 
-#include "daemon/service/config.hpp"
 #include "daemon/rangefitd/service.hpp"
 #include "daemon/rangefitd/systemd_notify.hpp"
+#include "daemon/service/config.hpp"
 
 namespace {
 

@@ -7,10 +7,10 @@
 #include <string>
 
 #include "daemon/cell/device_backend.hpp"
-#include "daemon/service/model_detector.hpp"
-#include "daemon/service/config.hpp"
 #include "daemon/dds/dds_service.hpp"
+#include "daemon/service/config.hpp"
 #include "daemon/service/diagnostics.hpp"
+#include "daemon/service/model_detector.hpp"
 #include "daemon/service/pipeline.hpp"
 #include "daemon/service/spool.hpp"
 

@@ -12,10 +12,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "daemon/cell/sim_cell.hpp"
 #include "daemon/dds/client.hpp"
 #include "daemon/dds/messages.hpp"
 #include "daemon/rangefitd/service.hpp"
-#include "daemon/cell/sim_cell.hpp"
 #include "daemon/service/spool.hpp"
 #include "io/ply.hpp"
 #include "sim/sim_clock.hpp"
