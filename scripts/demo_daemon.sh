@@ -11,7 +11,7 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-$root/build}"
 time_scale="${2:-1}"
 rangefitd="$build/daemon/rangefitd/rangefitd"
-rangefit="$build/daemon/rangefit"
+rangefit="$build/daemon/cli/rangefit"
 for exe in "$rangefitd" "$rangefit"; do
   [[ -x "$exe" ]] || { echo "demo: $exe is missing; run scripts/demo.sh" >&2; exit 1; }
 done

@@ -15,7 +15,7 @@
 #include "daemon/cli/json_util.hpp"
 #include "daemon/cli/option_checks.hpp"
 #include "daemon/cli/png_output.hpp"
-#include "daemon/detection_adapter.hpp"
+#include "daemon/service/detection_adapter.hpp"
 #include "detect/bore_detector.hpp"
 #include "io/cloud_io.hpp"
 

@@ -11,7 +11,7 @@
 #include "daemon/cli/commands.hpp"
 #include "daemon/cli/option_checks.hpp"
 #include "daemon/cli/png_output.hpp"
-#include "daemon/detection_adapter.hpp"
+#include "daemon/service/detection_adapter.hpp"
 #include "detect/object_detector.hpp"
 #include "io/cloud_io.hpp"
 #include "io/object_model_file.hpp"

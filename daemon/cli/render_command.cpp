@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "daemon/cli/commands.hpp"
-#include "daemon/json_codec.hpp"
+#include "daemon/service/json_codec.hpp"
 #include "io/cloud_io.hpp"
 #include "io/object_model_file.hpp"
 #include "render/render.hpp"

@@ -2,10 +2,10 @@
 
 #include <iostream>
 
-#include "daemon/backends.hpp"
 #include "daemon/cli/commands.hpp"
-#include "daemon/json_codec.hpp"
-#include "daemon/spool.hpp"
+#include "daemon/service/json_codec.hpp"
+#include "daemon/service/model_detector.hpp"
+#include "daemon/service/spool.hpp"
 
 namespace rangefit::cli {
 

@@ -14,11 +14,9 @@
 #include <memory>
 #include <string>
 
-#include "daemon/config.hpp"
-#include "daemon/dds_security.hpp"
-#include "daemon/dds_service.hpp"
-#include "daemon/service.hpp"
-#include "daemon/systemd_notify.hpp"
+#include "daemon/rangefitd/service.hpp"
+#include "daemon/rangefitd/systemd_notify.hpp"
+#include "daemon/service/config.hpp"
 
 namespace {
 
@@ -90,6 +88,23 @@ CommandLine parse_command_line(int argc, char** argv) {
   return cl;
 }
 
+// SIGHUP: re-reads config_path and swaps it in between scans; a refused one changes nothing.
+bool reload(daemon::Service& service, const std::string& config_path, daemon::Notifier& notifier) {
+  notifier.notify("RELOADING=1");
+  spdlog::info("SIGHUP: reloading {}", config_path);
+  auto next = daemon::load_config(config_path);
+  std::string why = next.error;
+  if (next.config && service.reload(*next.config, &why)) {
+    spdlog::set_level(spdlog::level::from_str(next.config->service.log_level));
+    spdlog::info("configuration reloaded");
+    notifier.notify("READY=1\nSTATUS=configuration reloaded");
+    return true;
+  }
+  spdlog::error("reload refused, keeping the running configuration: {}", why);
+  notifier.notify("READY=1\nSTATUS=reload refused: " + why);
+  return false;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -117,8 +132,6 @@ int main(int argc, char** argv) {
   hal::MonotonicClock clock;
   std::unique_ptr<daemon::Service> service;
   try {
-    daemon::apply_dds_config_uri(loaded.config->dds.config_uri);
-    daemon::apply_dds_security(loaded.config->dds.security);
     service = std::make_unique<daemon::Service>(*loaded.config, clock);
   } catch (const std::exception& e) {
     spdlog::critical("start-up failed: {}", e.what());
@@ -159,19 +172,7 @@ int main(int argc, char** argv) {
     siginfo_t info{};
     const int sig = sigtimedwait(&signals, &info, &zero);
     if (sig == SIGHUP) {
-      notifier.notify("RELOADING=1");
-      spdlog::info("SIGHUP: reloading {}", config_path);
-      auto next = daemon::load_config(config_path);
-      std::string why = next.error;
-      if (next.config && service->reload(*next.config, &why)) {
-        spdlog::set_level(spdlog::level::from_str(next.config->service.log_level));
-        watchdog.set_stall_limit(stall_limit());
-        spdlog::info("configuration reloaded");
-        notifier.notify("READY=1\nSTATUS=configuration reloaded");
-      } else {
-        spdlog::error("reload refused, keeping the running configuration: {}", why);
-        notifier.notify("READY=1\nSTATUS=reload refused: " + why);
-      }
+      if (reload(*service, config_path, notifier)) watchdog.set_stall_limit(stall_limit());
     } else if (sig == SIGTERM || sig == SIGINT) {
       notifier.notify("STOPPING=1\nSTATUS=stopping");
       spdlog::info("{}: stopping (aborting the running scan)", strsignal(sig));

@@ -16,9 +16,9 @@
 #include <random>
 #include <thread>
 
-#include "daemon/client.hpp"
-#include "daemon/service.hpp"
-#include "daemon/sim_cell.hpp"
+#include "daemon/cell/sim_cell.hpp"
+#include "daemon/dds/client.hpp"
+#include "daemon/rangefitd/service.hpp"
 #include "io/ply.hpp"
 #include "sim/synthetic_bore.hpp"
 

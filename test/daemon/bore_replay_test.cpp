@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <memory>
 
-#include "daemon/client.hpp"
-#include "daemon/service.hpp"
+#include "daemon/dds/client.hpp"
+#include "daemon/rangefitd/service.hpp"
 #include "io/ply.hpp"
 #include "sim/synthetic_bore.hpp"
 #include "test/daemon/replay_service.hpp"

@@ -1,4 +1,4 @@
-#include "daemon/cloud_msg_guard.hpp"
+#include "daemon/dds/cloud_msg_guard.hpp"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <numbers>
 
-#include "daemon/config.hpp"
+#include "daemon/service/config.hpp"
 #include "test/daemon/replay_service.hpp"
 
 namespace rangefit::daemon {

@@ -1,4 +1,4 @@
-#include "daemon/config.hpp"
+#include "daemon/service/config.hpp"
 
 #include <gtest/gtest.h>
 

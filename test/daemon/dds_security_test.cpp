@@ -4,7 +4,7 @@
 // scripts/make_dds_security.sh (openssl), runs rangefitd secured in its own process and checks
 // that a secured participant exchanges a request and its result with it while an unsecured
 // `rangefit watch` beside a secured one receives nothing.
-#include "daemon/dds_security.hpp"
+#include "daemon/dds/dds_security.hpp"
 
 #include <dds/dds.h>
 #include <gtest/gtest.h>
@@ -16,7 +16,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "daemon/client.hpp"
+#include "daemon/dds/client.hpp"
 #include "test/daemon/daemon_process.hpp"
 #include "test/daemon/replay_service.hpp"
 

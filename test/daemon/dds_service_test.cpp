@@ -1,13 +1,13 @@
 // rangefitd's DDS face, in-process, over a loopback-only Cyclone configuration on a random
 // domain: requests in, results, clouds and diagnostics out, as a separate client sees them.
-#include "daemon/service.hpp"
+#include "daemon/rangefitd/service.hpp"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <memory>
 
-#include "daemon/client.hpp"
+#include "daemon/dds/client.hpp"
 #include "io/ply.hpp"
 #include "test/daemon/fakes.hpp"
 #include "test/daemon/replay_service.hpp"

@@ -1,7 +1,7 @@
 // What a driver = "real" device's [[devices]] table hands its drivers: the configured bus
 // addresses reach the driver settings (and the CAN filters built from them), unset ones stay at
 // the drivers' own defaults. No bus needed.
-#include "daemon/driver_configs.hpp"
+#include "daemon/cell/driver_configs.hpp"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "daemon/pipeline.hpp"
+#include "daemon/service/pipeline.hpp"
 
 namespace rangefit::test {
 

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "daemon/log_escape.hpp"
-#include "daemon/request_validation.hpp"
+#include "daemon/service/log_escape.hpp"
+#include "daemon/service/request_validation.hpp"
 
 namespace rangefit::daemon {
 namespace {

@@ -97,8 +97,8 @@ TEST_P(MsgIdlAgreement, MsgAndIdlDeclareTheSameFieldsInOrder) {
   const std::string name = GetParam();
   Fields msg_constants;
   const Fields msg =
-      msg_fields(read("daemon/msg/rangefit_msgs/msg/" + name + ".msg"), &msg_constants);
-  const std::string idl = read("daemon/idl/rangefit_msgs.idl");
+      msg_fields(read("daemon/dds/msg/rangefit_msgs/msg/" + name + ".msg"), &msg_constants);
+  const std::string idl = read("daemon/dds/idl/rangefit_msgs.idl");
   ASSERT_FALSE(msg.empty());
   EXPECT_EQ(msg, idl_struct(idl, name + "_"));
   EXPECT_EQ(msg_constants, idl_constants(idl, name));
@@ -108,7 +108,7 @@ INSTANTIATE_TEST_SUITE_P(RangefitMsgs, MsgIdlAgreement,
                          ::testing::Values("Detection", "DetectRequest", "State"));
 
 TEST(MsgIdlAgreement, AMissingStructIsNoMatch) {
-  EXPECT_TRUE(idl_struct(read("daemon/idl/rangefit_msgs.idl"), "Nope_").empty());
+  EXPECT_TRUE(idl_struct(read("daemon/dds/idl/rangefit_msgs.idl"), "Nope_").empty());
 }
 
 }  // namespace

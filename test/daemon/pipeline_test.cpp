@@ -1,4 +1,4 @@
-#include "daemon/pipeline.hpp"
+#include "daemon/service/pipeline.hpp"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // an error result and the daemon goes on with the next request.
 #include <gtest/gtest.h>
 
-#include "daemon/pipeline.hpp"
+#include "daemon/service/pipeline.hpp"
 #include "test/daemon/fakes.hpp"
 
 namespace rangefit::daemon {

@@ -2,14 +2,14 @@
 // speak the real protocol on this machine: the simulated Festo drive's Modbus TCP server on
 // loopback (sim/modbus_axis_server). SocketCAN and USB hardware are absent here, which is itself
 // the case to test: reported, never fatal.
-#include "daemon/real_devices.hpp"
+#include "daemon/cell/real_devices.hpp"
 
 #include <gtest/gtest.h>
 
 #include <thread>
 
-#include "daemon/backends.hpp"
-#include "daemon/diagnostics.hpp"
+#include "daemon/cell/device_backend.hpp"
+#include "daemon/service/diagnostics.hpp"
 #include "sim/modbus_axis_server.hpp"
 
 namespace rangefit::daemon {

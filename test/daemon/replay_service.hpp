@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <thread>
 
-#include "daemon/config.hpp"
-#include "daemon/service.hpp"
+#include "daemon/rangefitd/service.hpp"
+#include "daemon/service/config.hpp"
 #include "test/daemon/dds_test_env.hpp"
 
 namespace rangefit::test {

@@ -10,8 +10,8 @@
 #include <sstream>
 #include <string>
 
-#include "daemon/result_outcome.hpp"
-#include "daemon/service.hpp"
+#include "daemon/rangefitd/service.hpp"
+#include "daemon/service/result_outcome.hpp"
 #include "detect/bore_result.hpp"
 #include "detect/object_detector.hpp"
 #include "io/ply.hpp"

@@ -3,8 +3,8 @@
 // field that is out of range.
 #include <gtest/gtest.h>
 
-#include "daemon/messages.hpp"
-#include "daemon/request_validation.hpp"
+#include "daemon/dds/messages.hpp"
+#include "daemon/service/request_validation.hpp"
 
 namespace rangefit::daemon {
 namespace {

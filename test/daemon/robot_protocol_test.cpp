@@ -2,8 +2,8 @@
 // the driver gets the module id and joint the config names.
 #include <gtest/gtest.h>
 
-#include "daemon/config.hpp"
-#include "daemon/driver_configs.hpp"
+#include "daemon/cell/driver_configs.hpp"
+#include "daemon/service/config.hpp"
 
 namespace rangefit::daemon {
 namespace {

@@ -1,7 +1,7 @@
 // The read-fuse-watch loop every scan of rangefitd runs (real and simulated), and the sweep edges
 // of a sweep the daemon only watches. The streams are scripted sources (an internal seam): each
 // read hands over the next batch of the script, then nothing.
-#include "daemon/scan_loop.hpp"
+#include "daemon/cell/scan_loop.hpp"
 
 #include <gtest/gtest.h>
 

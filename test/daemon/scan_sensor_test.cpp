@@ -2,7 +2,7 @@
 // sweep that measured the scan. Checked on points the simulated stripe cell measured: every point
 // has a sweep position where the laser plane held it, the points of one profile agree on it, it
 // advances with the axis, and the apex and camera sit where the cell's geometry puts them.
-#include "daemon/scan_sensor.hpp"
+#include "daemon/service/scan_sensor.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <map>
 
-#include "daemon/sim_cell.hpp"
+#include "daemon/cell/sim_cell.hpp"
 
 namespace rangefit::daemon {
 namespace {

@@ -12,11 +12,11 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "daemon/client.hpp"
-#include "daemon/messages.hpp"
-#include "daemon/service.hpp"
-#include "daemon/sim_cell.hpp"
-#include "daemon/spool.hpp"
+#include "daemon/cell/sim_cell.hpp"
+#include "daemon/dds/client.hpp"
+#include "daemon/dds/messages.hpp"
+#include "daemon/rangefitd/service.hpp"
+#include "daemon/service/spool.hpp"
 #include "io/ply.hpp"
 #include "sim/sim_clock.hpp"
 #include "sim/superquadric_raycast.hpp"

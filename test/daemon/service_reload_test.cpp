@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "daemon/service.hpp"
+#include "daemon/rangefitd/service.hpp"
 #include "test/daemon/dds_test_env.hpp"
 
 namespace rangefit::daemon {

@@ -9,8 +9,8 @@
 #include <memory>
 #include <sstream>
 
-#include "daemon/client.hpp"
-#include "daemon/service.hpp"
+#include "daemon/dds/client.hpp"
+#include "daemon/rangefitd/service.hpp"
 #include "sim/scene_loader.hpp"
 #include "test/daemon/replay_service.hpp"
 

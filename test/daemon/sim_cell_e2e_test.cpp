@@ -11,7 +11,7 @@
 #include <optional>
 #include <string>
 
-#include "daemon/client.hpp"
+#include "daemon/dds/client.hpp"
 #include "sim/scene_loader.hpp"
 #include "test/daemon/daemon_process.hpp"
 #include "test/daemon/dds_test_env.hpp"

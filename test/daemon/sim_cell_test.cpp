@@ -1,6 +1,6 @@
 // daemon/sim_cell: the request's scan plan drives the simulated motion, every scanning kind runs
 // through its fusion assembler, and bad plans or cancellation end a scan with a clear error.
-#include "daemon/sim_cell.hpp"
+#include "daemon/cell/sim_cell.hpp"
 
 #include <gtest/gtest.h>
 

@@ -8,8 +8,8 @@
 #include <fstream>
 #include <memory>
 
-#include "daemon/client.hpp"
-#include "daemon/service.hpp"
+#include "daemon/dds/client.hpp"
+#include "daemon/rangefitd/service.hpp"
 #include "test/daemon/replay_service.hpp"
 
 namespace rangefit::daemon {

@@ -1,4 +1,4 @@
-#include "daemon/spool.hpp"
+#include "daemon/service/spool.hpp"
 
 #include <gtest/gtest.h>
 

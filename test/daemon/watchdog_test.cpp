@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "daemon/systemd_notify.hpp"
+#include "daemon/rangefitd/systemd_notify.hpp"
 #include "test/daemon/notify_socket.hpp"
 
 namespace rangefit::daemon {

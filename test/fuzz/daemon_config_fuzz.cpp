@@ -1,5 +1,5 @@
 // rangefitd's configuration: a config or an error string, never an exception.
-#include "daemon/config.hpp"
+#include "daemon/service/config.hpp"
 #include "test/fuzz/fuzz_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,0 +1,68 @@
+#pragma once
+// driver = "real": the cell's drivers, built from each device's kind and transport:
+//   axis     - drivers::FhppAxis (Festo FHPP over Modbus): "host:port" (TCP) or "/dev/tty..."
+//              (RTU), unit modbus_unit (default 1);
+//   robot    - drivers::can::Cia402JointSource (CiA 402 joints, SYNC master) on a SocketCAN
+//              interface, e.g. "can0"; the CSS's last joint (fusion.css.joint) on node can_node
+//              (default 1);
+//   stripe   - drivers::can::RangerCanSource (node can_node, default 0x20) on a SocketCAN
+//              interface;
+//   css      - drivers::css_usb::CssUsbDriver over LibusbTransport: "usb" or "usb:VID:PID" (hex);
+//   pan_tilt - the head's ranger (drivers::can::RangerCanSource, node can_node) and its pan/tilt
+//              axes (drivers::can::Cia402PanTiltSource, nodes pan_node and tilt_node, default 1
+//              and 2, reported as "<name>/angles") on one SocketCAN interface.
+// daemon/driver_configs.hpp builds each driver's settings from the device's table.
+// Every driver starts at construction and reconnects by itself, so a device that is absent at
+// start is only reported (diagnostics ERROR via its health) and never fatal; a request that needs
+// it is answered with an error naming the device and its state.
+//
+// Scans: a stripe device sweeps with its `motion` axis (or the only axis) exactly like the
+// simulated cell; a css device records while the robot program pivots the last joint through
+// -delta .. +delta (the daemon does not command the robot) and is bounded by
+// service.scan_timeout_s; a pan_tilt device likewise records while the cell program pans the
+// head through the sweep (the daemon does not command the pan-tilt unit).
+
+#include <atomic>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "daemon/cell/driver_configs.hpp"
+#include "daemon/service/config.hpp"
+#include "daemon/service/pipeline.hpp"
+#include "hal/source.hpp"
+
+namespace rangefit::daemon {
+
+class RealDevices {
+ public:
+  // Builds and starts every driver = "real" device; throws std::runtime_error on a transport
+  // string that cannot be understood (a config error, so at start-up or reload only).
+  explicit RealDevices(const CellConfig& config);
+  ~RealDevices();
+  RealDevices(const RealDevices&) = delete;
+  RealDevices& operator=(const RealDevices&) = delete;
+
+  ScanOutcome scan(const DeviceConfig& device, const ScanRequest& request,
+                   const std::atomic<bool>& cancel, const std::function<void()>& progress);
+  std::vector<NamedHealth> health() const;
+
+ private:
+  ScanOutcome scan_stripe(const DeviceConfig& device, const ScanRequest& request,
+                          const std::atomic<bool>& cancel, const std::function<void()>& progress);
+  ScanOutcome scan_css(const DeviceConfig& device, const ScanRequest& request,
+                       const std::atomic<bool>& cancel, const std::function<void()>& progress);
+  ScanOutcome scan_pan_tilt(const DeviceConfig& device, const ScanRequest& request,
+                            const std::atomic<bool>& cancel, const std::function<void()>& progress);
+  // The device that moves `device`: its `motion` field, else the only device of `kind`.
+  hal::Device* motion_of(const DeviceConfig& device, const std::string& kind,
+                         std::string* why) const;
+
+  CellConfig config_;
+  std::unique_ptr<hal::Clock> clock_;  // CLOCK_MONOTONIC, shared by the drivers that take one
+  std::map<std::string, std::unique_ptr<hal::Device>> devices_;  // by config name
+};
+
+}  // namespace rangefit::daemon

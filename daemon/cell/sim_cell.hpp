@@ -1,0 +1,67 @@
+#pragma once
+// driver = "sim": the simulated cell on the same path as the hardware. Per scan, the sim/ devices
+// of the requested sensor stream into the fusion/ assembler exactly as the real drivers would:
+//   css      - sim::CssRig: CSS revolutions + the robot's last-joint stream → CssAssembler;
+//   stripe   - sim::StripeCell: ranger profiles + linear-axis samples → StripeCellAssembler;
+//   pan_tilt - sim::PanTiltHead: ranger profiles + pan/tilt samples → PanTiltAssembler.
+// The request's scan plan sets the motion (sweep range and speed), the [fusion] table the
+// geometry both the devices and the assemblers use. While the scan runs the loop watches the
+// devices' health: a link lost mid-scan ends the scan with an error and leaves the device
+// reported as disconnected until its next scan starts streaming again.
+//
+// Frames: fusion builds each sensor's own world frame; the scene's [sensors.*] mount places it in
+// the scene and the device's xyz_mm/rpy_rad extrinsics, when set, place the scene in the world:
+// p_world = T(xyz, rpy) * T_scene_sensor * p_sensor.
+
+#include <atomic>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "daemon/service/config.hpp"
+#include "daemon/service/pipeline.hpp"
+
+namespace rangefit::sim {
+class SimClock;
+}  // namespace rangefit::sim
+
+namespace rangefit::daemon {
+
+class SimCell {
+ public:
+  // Loads the scene of every simulated scanning device; throws std::runtime_error naming the
+  // device and the file when one cannot be loaded (start-up or reload, never mid-scan).
+  // The devices' clock is a sim::SimClock at sim.time_scale, or the one given.
+  explicit SimCell(const CellConfig& config);
+  SimCell(const CellConfig& config, std::unique_ptr<sim::SimClock> clock);
+  ~SimCell();
+  SimCell(const SimCell&) = delete;
+  SimCell& operator=(const SimCell&) = delete;
+
+  // device.driver must be kSim. request.sweep_* are in internal units (mm or rad).
+  ScanOutcome scan(const DeviceConfig& device, const ScanRequest& request,
+                   const std::atomic<bool>& cancel, const std::function<void()>& progress);
+  // One entry per simulated HAL device: "<name>" (the sensor) and "<name>/joint", "/axis" or
+  // "/angles" (the stream that moves it).
+  std::vector<NamedHealth> health() const;
+
+ private:
+  struct LoadedScene;
+  struct Run;  // one scan in progress
+  ScanOutcome scan_css(Run& run);
+  ScanOutcome scan_stripe(Run& run);
+  ScanOutcome scan_pan_tilt(Run& run);
+
+  CellConfig config_;
+  std::unique_ptr<sim::SimClock> clock_;
+  std::map<std::string, std::shared_ptr<LoadedScene>> scenes_;  // by device name
+  std::map<std::string, int> scans_;                            // scans started, by device
+  mutable std::mutex mutex_;
+  std::map<std::string, hal::DeviceHealth> health_;
+  std::map<std::string, hal::StreamCounters> totals_;  // of finished scans, by health name
+};
+
+}  // namespace rangefit::daemon

@@ -1,0 +1,71 @@
+#include "daemon/dds/client.hpp"
+
+#include <thread>
+
+#include "daemon/dds/cloud_msg_guard.hpp"
+
+namespace rangefit::daemon {
+
+DdsClient::DdsClient(std::uint32_t domain_id)
+    : participant_(domain_id),
+      requests_(participant_, topics::request()),
+      // Keeps more results than the daemon's depth 1, so none is lost between two waits.
+      detections_(participant_, topics::detections(16)),
+      diagnostics_(participant_, topics::diagnostics()),
+      clouds_(participant_, topics::cloud()),
+      states_(participant_, topics::state()) {}
+
+bool DdsClient::wait_for_daemon(std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (requests_.matched() == 0) {
+    if (std::chrono::steady_clock::now() >= deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return true;
+}
+
+bool DdsClient::send(const ScanRequest& request, bool linear_sweep) {
+  const RequestOut out(request, linear_sweep);
+  return requests_.write(out.msg());
+}
+
+std::optional<DetectionResult> DdsClient::wait_result(const std::string& request_id,
+                                                      std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  for (;;) {
+    for (auto it = pending_.begin(); it != pending_.end(); ++it) {
+      if (it->request_id == request_id) {
+        DetectionResult r = std::move(*it);
+        pending_.erase(it);
+        return r;
+      }
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= deadline) return std::nullopt;
+    if (detections_.wait(
+            std::min<std::chrono::nanoseconds>(deadline - now, std::chrono::milliseconds(200)))) {
+      detections_.take_each(
+          [&](const rangefit_msgs_msg_dds__Detection_& m) { pending_.push_back(from_msg(m)); });
+    }
+  }
+}
+
+void DdsClient::poll(std::chrono::milliseconds timeout, const Callbacks& cb) {
+  detections_.wait(timeout);
+  detections_.take_each([&](const rangefit_msgs_msg_dds__Detection_& m) {
+    if (cb.detection) cb.detection(from_msg(m));
+  });
+  diagnostics_.take_each([&](const diagnostic_msgs_msg_dds__DiagnosticArray_& m) {
+    if (cb.diagnostics) cb.diagnostics(from_msg(m));
+  });
+  clouds_.take_each([&](const sensor_msgs_msg_dds__PointCloud2_& m) {
+    if (cb.cloud) cb.cloud(cloud_from_wire(m));
+  });
+  states_.take_each([&](const rangefit_msgs_msg_dds__State_& m) {
+    if (cb.state) {
+      cb.state(static_cast<LifecycleState>(m.state), m.detail == nullptr ? "" : m.detail);
+    }
+  });
+}
+
+}  // namespace rangefit::daemon

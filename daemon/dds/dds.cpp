@@ -1,0 +1,37 @@
+#include "daemon/dds/dds.hpp"
+
+namespace rangefit::dds {
+
+Qos::Qos(const QosSpec& spec) : qos_(dds_create_qos()) {
+  dds_qset_reliability(qos_, spec.reliable ? DDS_RELIABILITY_RELIABLE : DDS_RELIABILITY_BEST_EFFORT,
+                       DDS_SECS(1));
+  dds_qset_durability(
+      qos_, spec.transient_local ? DDS_DURABILITY_TRANSIENT_LOCAL : DDS_DURABILITY_VOLATILE);
+  dds_qset_history(qos_, DDS_HISTORY_KEEP_LAST, spec.depth);
+  // ROS 2 (rmw_cyclonedds_cpp) only speaks XCDR1; pin it so a newer default cannot change it.
+  dds_data_representation_id_t xcdr1 = DDS_DATA_REPRESENTATION_XCDR1;
+  dds_qset_data_representation(qos_, 1, &xcdr1);
+}
+
+Participant::Participant(dds_domainid_t domain, const std::string& config) {
+  if (!config.empty()) {
+    const dds_entity_t d = dds_create_domain(domain, config.c_str());
+    if (d < 0) throw DdsError("create domain " + std::to_string(domain) + " with its config", d);
+    domain_ = Entity(d);
+  }
+  const dds_entity_t p = dds_create_participant(domain, nullptr, nullptr);
+  if (p < 0) throw DdsError("create participant on domain " + std::to_string(domain), p);
+  entity_ = Entity(p);
+}
+
+dds_entity_t Participant::topic(const char* name, const dds_topic_descriptor_t* desc,
+                                const QosSpec& qos) {
+  // Topic QoS only matters for defaults; readers and writers carry their own. Cyclone returns
+  // the same underlying topic for repeated creation, and deletes it with the participant.
+  const Qos q(qos);
+  const dds_entity_t t = dds_create_topic(entity_.get(), desc, name, q.get(), nullptr);
+  if (t < 0) throw DdsError(std::string("create topic ") + name, t);
+  return t;
+}
+
+}  // namespace rangefit::dds

@@ -1,0 +1,278 @@
+#include "daemon/dds/messages.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+namespace rangefit::daemon {
+namespace {
+
+char* c_str(const std::string& s) { return const_cast<char*>(s.c_str()); }  // DDS only reads it
+std::string str(const char* s) { return s == nullptr ? std::string() : std::string(s); }
+
+std_msgs_msg_dds__Header_ header(const std::string& frame) {
+  return {wall_time_now(), c_str(frame)};
+}
+
+constexpr std::uint8_t kFloat32 = 7, kFloat64 = 8;  // sensor_msgs/PointField datatypes
+
+}  // namespace
+
+builtin_interfaces_msg_dds__Time_ wall_time(std::int64_t ns) {
+  return {static_cast<std::int32_t>(ns / 1'000'000'000),
+          static_cast<std::uint32_t>(ns % 1'000'000'000)};
+}
+
+builtin_interfaces_msg_dds__Time_ wall_time_now() {
+  return wall_time(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                       std::chrono::system_clock::now().time_since_epoch())
+                       .count());
+}
+
+CloudOut::CloudOut(const PointCloud& cloud) : frame_(cloud.frame_id) {
+  names_ = {"x", "y", "z"};
+  if (cloud.has_normals()) names_.insert(names_.end(), {"normal_x", "normal_y", "normal_z"});
+  for (std::size_t i = 0; i < names_.size(); ++i) {
+    fields_.push_back({c_str(names_[i]), static_cast<std::uint32_t>(4 * i), kFloat32, 1});
+  }
+  const std::uint32_t step = static_cast<std::uint32_t>(4 * names_.size());
+  data_.resize(cloud.size() * step);
+  std::uint8_t* out = data_.data();
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    float v[6];
+    for (int k = 0; k < 3; ++k) v[k] = static_cast<float>(cloud.points[i][k] * kMetresPerMm);
+    if (cloud.has_normals()) {
+      for (int k = 0; k < 3; ++k) v[3 + k] = static_cast<float>(cloud.normals[i][k]);
+    }
+    std::memcpy(out, v, step);
+    out += step;
+  }
+  msg_.header = header(frame_);
+  msg_.height = 1;
+  msg_.width = static_cast<std::uint32_t>(cloud.size());
+  msg_.fields = {static_cast<std::uint32_t>(fields_.size()),
+                 static_cast<std::uint32_t>(fields_.size()), fields_.data(), false};
+  msg_.is_bigendian = std::endian::native == std::endian::big;
+  msg_.point_step = step;
+  msg_.row_step = step * msg_.width;
+  msg_.data = {static_cast<std::uint32_t>(data_.size()), static_cast<std::uint32_t>(data_.size()),
+               data_.data(), false};
+  msg_.is_dense = true;
+}
+
+PointCloud from_msg(const sensor_msgs_msg_dds__PointCloud2_& msg) {
+  PointCloud cloud;
+  cloud.frame_id = str(msg.header.frame_id);
+  int offset[3] = {-1, -1, -1};
+  std::uint8_t type[3] = {};
+  for (std::uint32_t i = 0; i < msg.fields._length; ++i) {
+    const auto& f = msg.fields._buffer[i];
+    const std::string name = str(f.name);
+    const int axis = name == "x" ? 0 : name == "y" ? 1 : name == "z" ? 2 : -1;
+    if (axis >= 0 && (f.datatype == kFloat32 || f.datatype == kFloat64)) {
+      offset[axis] = static_cast<int>(f.offset);
+      type[axis] = f.datatype;
+    }
+  }
+  const std::uint64_t n = std::uint64_t{msg.width} * msg.height;
+  if (offset[0] < 0 || offset[1] < 0 || offset[2] < 0 || msg.point_step == 0 ||
+      std::uint64_t{msg.data._length} < n * msg.point_step) {
+    return cloud;
+  }
+  for (int k = 0; k < 3; ++k) {
+    if (static_cast<std::uint32_t>(offset[k]) + (type[k] == kFloat32 ? 4u : 8u) > msg.point_step) {
+      return cloud;
+    }
+  }
+  const bool swap = msg.is_bigendian != (std::endian::native == std::endian::big);
+  cloud.points.reserve(n);
+  for (std::uint64_t i = 0; i < n; ++i) {
+    const std::uint8_t* p = msg.data._buffer + i * msg.point_step;
+    Eigen::Vector3d v;
+    for (int k = 0; k < 3; ++k) {
+      std::uint8_t bytes[8];
+      const std::size_t size = type[k] == kFloat32 ? 4 : 8;
+      std::memcpy(bytes, p + offset[k], size);
+      if (swap) std::reverse(bytes, bytes + size);
+      if (size == 4) {
+        float f;
+        std::memcpy(&f, bytes, 4);
+        v[k] = f;
+      } else {
+        std::memcpy(&v[k], bytes, 8);
+      }
+    }
+    if (v.allFinite()) cloud.points.push_back(v / kMetresPerMm);
+  }
+  return cloud;
+}
+
+DetectionOut::DetectionOut(const DetectionResult& r) : r_(r), kind_(to_string(r.kind)) {
+  for (const auto& part : r_.parts) {
+    names_.push_back(c_str(part.name));
+    const Eigen::Vector3d t = part.T_world_part.translation() * kMetresPerMm;
+    const Eigen::Quaterniond q(part.T_world_part.rotation());
+    poses_.push_back({{t.x(), t.y(), t.z()}, {q.x(), q.y(), q.z(), q.w()}});
+    scores_.push_back(part.score);
+  }
+  const auto n = static_cast<std::uint32_t>(r_.parts.size());
+  for (const auto& part : r_.parts) instances_.push_back(part.instance);
+  msg_.header = header(frame_);
+  if (r_.acquired_wall_ns > 0) msg_.header.stamp = wall_time(r_.acquired_wall_ns);
+  msg_.request_id = c_str(r_.request_id);
+  msg_.kind = c_str(kind_);
+  msg_.found = r_.found;
+  msg_.reason = c_str(r_.reason);
+  msg_.model = c_str(r_.model);
+  msg_.part_names = {n, n, names_.data(), false};
+  msg_.poses = {n, n, poses_.data(), false};
+  msg_.bore_radius = r_.bore_radius_mm * kMetresPerMm;
+  msg_.scores = {n, n, scores_.data(), false};
+  msg_.num_points = static_cast<std::uint32_t>(r_.num_points);
+  msg_.scan_seconds = r_.scan_seconds;
+  msg_.detect_seconds = r_.detect_seconds;
+  msg_.spool_entry = c_str(r_.spool_entry);
+  msg_.part_instances = {n, n, instances_.data(), false};
+}
+
+geometry_msgs_msg_dds__PoseStamped_ DetectionOut::first_pose() const {
+  geometry_msgs_msg_dds__PoseStamped_ p{};
+  p.header = msg_.header;
+  p.pose = poses_.empty() ? geometry_msgs_msg_dds__Pose_{{0, 0, 0}, {0, 0, 0, 1}} : poses_.front();
+  return p;
+}
+
+DetectionResult from_msg(const rangefit_msgs_msg_dds__Detection_& msg) {
+  DetectionResult r;
+  r.request_id = str(msg.request_id);
+  r.kind = str(msg.kind) == "object" ? DetectKind::kObject : DetectKind::kBore;
+  r.found = msg.found;
+  r.reason = str(msg.reason);
+  r.model = str(msg.model);
+  for (std::uint32_t i = 0; i < msg.poses._length; ++i) {
+    PartPose part;
+    if (i < msg.part_names._length) part.name = str(msg.part_names._buffer[i]);
+    if (i < msg.scores._length) part.score = msg.scores._buffer[i];
+    if (i < msg.part_instances._length) part.instance = msg.part_instances._buffer[i];
+    const auto& p = msg.poses._buffer[i];
+    const Eigen::Quaterniond q(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z);
+    part.T_world_part = Eigen::Isometry3d::Identity();
+    if (q.norm() > 0) part.T_world_part.linear() = q.normalized().toRotationMatrix();
+    part.T_world_part.translation() =
+        Eigen::Vector3d(p.position.x, p.position.y, p.position.z) / kMetresPerMm;
+    r.parts.push_back(std::move(part));
+  }
+  r.bore_radius_mm = msg.bore_radius / kMetresPerMm;
+  r.num_points = msg.num_points;
+  r.scan_seconds = msg.scan_seconds;
+  r.detect_seconds = msg.detect_seconds;
+  r.spool_entry = str(msg.spool_entry);
+  r.acquired_wall_ns =
+      std::int64_t{msg.header.stamp.sec} * 1'000'000'000 + msg.header.stamp.nanosec;
+  return r;
+}
+
+RequestOut::RequestOut(const ScanRequest& req, bool linear_sweep)
+    : req_(req), kind_(to_string(req.kind)) {
+  convert_sweep_units(req_, linear_sweep, true);
+  msg_.request_id = c_str(req_.id);
+  msg_.kind = c_str(kind_);
+  msg_.model = c_str(req_.model);
+  const Eigen::Vector3d p = req_.bore.position_mm * kMetresPerMm;
+  msg_.bore_position = {p.x(), p.y(), p.z()};
+  msg_.bore_axis = {req_.bore.axis.x(), req_.bore.axis.y(), req_.bore.axis.z()};
+  msg_.bore_radius = req_.bore.radius_mm * kMetresPerMm;
+  msg_.sensor = c_str(req_.sensor);
+  msg_.sweep_start = req_.sweep_start;
+  msg_.sweep_end = req_.sweep_end;
+  msg_.sweep_speed = req_.sweep_speed;
+  const Eigen::Vector3d n = req_.bore.plane_normal.value_or(Eigen::Vector3d::Zero());
+  msg_.bore_plane_normal = {n.x(), n.y(), n.z()};
+  msg_.instances = static_cast<std::uint32_t>(std::max(req_.instances, 0));
+  msg_.hypotheses = static_cast<std::uint32_t>(std::max(req_.hypotheses, 0));
+  msg_.trials = static_cast<std::uint32_t>(std::max(req_.trials, 0));
+  msg_.seed = req_.seed;
+}
+
+ScanRequest from_msg(const rangefit_msgs_msg_dds__DetectRequest_& msg, std::string* error) {
+  ScanRequest req;
+  req.id = str(msg.request_id);
+  const std::string kind = str(msg.kind);
+  req.model = str(msg.model);
+  req.sensor = str(msg.sensor);
+  req.bore.position_mm =
+      Eigen::Vector3d(msg.bore_position.x, msg.bore_position.y, msg.bore_position.z) / kMetresPerMm;
+  req.bore.axis = Eigen::Vector3d(msg.bore_axis.x, msg.bore_axis.y, msg.bore_axis.z);
+  req.bore.radius_mm = msg.bore_radius / kMetresPerMm;
+  req.sweep_start = msg.sweep_start;
+  req.sweep_end = msg.sweep_end;
+  req.sweep_speed = msg.sweep_speed;
+  const Eigen::Vector3d n(msg.bore_plane_normal.x, msg.bore_plane_normal.y,
+                          msg.bore_plane_normal.z);
+  if (n != Eigen::Vector3d::Zero()) req.bore.plane_normal = n;  // zero: not given
+  // Counts beyond int are clamped; request validation names the field that is out of range.
+  constexpr std::uint32_t kMaxCount = 1u << 30;
+  req.instances = static_cast<int>(std::min(msg.instances, kMaxCount));
+  req.hypotheses = static_cast<int>(std::min(msg.hypotheses, kMaxCount));
+  req.trials = static_cast<int>(std::min(msg.trials, kMaxCount));
+  req.seed = msg.seed;
+  error->clear();
+  if (kind == "bore") {
+    req.kind = DetectKind::kBore;
+  } else if (kind == "object") {
+    req.kind = DetectKind::kObject;
+  } else {
+    *error = "unknown kind \"" + kind + "\" (expected \"bore\" or \"object\")";
+  }
+  if (error->empty() && req.id.empty()) *error = "request_id is empty";
+  const bool finite = req.bore.position_mm.allFinite() && req.bore.axis.allFinite() &&
+                      std::isfinite(req.bore.radius_mm) && std::isfinite(req.sweep_start) &&
+                      std::isfinite(req.sweep_end) && std::isfinite(req.sweep_speed) &&
+                      n.allFinite();
+  if (error->empty() && !finite) *error = "non-finite number in request";
+  return req;
+}
+
+StateOut::StateOut(LifecycleState s, std::string detail, std::string active_id, std::uint32_t depth)
+    : frame_("world"), detail_(std::move(detail)), active_(std::move(active_id)) {
+  msg_.header = header(frame_);
+  msg_.state = static_cast<std::uint8_t>(s);
+  msg_.detail = c_str(detail_);
+  msg_.active_request_id = c_str(active_);
+  msg_.queue_depth = depth;
+}
+
+DiagnosticsOut::DiagnosticsOut(std::vector<DiagStatus> statuses)
+    : frame_(""), statuses_(std::move(statuses)) {
+  values_.resize(statuses_.size());
+  for (std::size_t i = 0; i < statuses_.size(); ++i) {
+    auto& s = statuses_[i];
+    for (auto& [k, v] : s.values) values_[i].push_back({c_str(k), c_str(v)});
+    const auto n = static_cast<std::uint32_t>(values_[i].size());
+    c_statuses_.push_back({s.level,
+                           c_str(s.name),
+                           c_str(s.message),
+                           c_str(s.hardware_id),
+                           {n, n, values_[i].data(), false}});
+  }
+  const auto n = static_cast<std::uint32_t>(c_statuses_.size());
+  msg_.header = header(frame_);
+  msg_.status = {n, n, c_statuses_.data(), false};
+}
+
+std::vector<DiagStatus> from_msg(const diagnostic_msgs_msg_dds__DiagnosticArray_& msg) {
+  std::vector<DiagStatus> out;
+  for (std::uint32_t i = 0; i < msg.status._length; ++i) {
+    const auto& s = msg.status._buffer[i];
+    DiagStatus d{s.level, str(s.name), str(s.message), str(s.hardware_id), {}};
+    for (std::uint32_t k = 0; k < s.values._length; ++k) {
+      d.values.emplace_back(str(s.values._buffer[k].key), str(s.values._buffer[k].value));
+    }
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+
+}  // namespace rangefit::daemon

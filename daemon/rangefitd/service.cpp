@@ -1,0 +1,124 @@
+#include "daemon/rangefitd/service.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "daemon/service/log_escape.hpp"
+#include "daemon/service/request_validation.hpp"
+
+namespace rangefit::daemon {
+namespace {
+
+hal::Duration seconds(double s) {
+  return std::chrono::duration_cast<hal::Duration>(std::chrono::duration<double>(s));
+}
+
+}  // namespace
+
+Service::Service(DaemonConfig config, hal::Clock& clock, std::unique_ptr<ScanBackend> backend,
+                 std::unique_ptr<Detector> detector)
+    : config_(std::move(config)),
+      clock_(clock),
+      backend_(std::move(backend)),
+      detector_(std::move(detector)),
+      own_backend_(backend_ == nullptr),
+      spool_(config_.spool),
+      dds_(config_.dds) {
+  std::string why;
+  if (!spool_.open(&why)) throw std::runtime_error(why);
+  if (own_backend_) {
+    backend_ = std::make_unique<DeviceBackend>(config_);
+    detector_ = std::make_unique<ModelDetector>(config_);
+  }
+  build_pipeline();
+}
+
+Service::~Service() { pipeline_->stop(true); }
+
+void Service::build_pipeline() {
+  PipelineOptions options;
+  options.queue_capacity = config_.service.queue_capacity;
+  options.scan_timeout = seconds(config_.service.scan_timeout_s);
+  options.detect_timeout = seconds(config_.detection.timeout_s);
+  pipeline_ = std::make_unique<Pipeline>(options, *backend_, *detector_, &spool_, dds_, clock_);
+}
+
+void Service::step(std::chrono::milliseconds timeout) {
+  dds_.poll_requests(timeout, [&](ScanRequest req, const std::string& error) {
+    std::string why = error.empty() ? validate_request(req, config_) : error;
+    if (!why.empty()) {
+      spdlog::warn("request \"{}\" rejected: {}", log_escape(req.id), log_escape(why));
+      dds_.on_result(DetectionResult::error(req, "bad request: " + why));
+      return;
+    }
+    switch (pipeline_->submit(req)) {
+      case Submit::kAccepted:
+        spdlog::info("request {} ({}) queued", log_escape(req.id), to_string(req.kind));
+        break;
+      case Submit::kBusy:
+        spdlog::warn("request {} refused: busy", log_escape(req.id));
+        dds_.on_result(DetectionResult::error(
+            req, fmt::format("busy: {} requests queued", pipeline_->queue_depth())));
+        break;
+      case Submit::kStopping:
+        dds_.on_result(DetectionResult::error(req, "daemon stopping"));
+        break;
+    }
+  });
+  if (clock_.now() >= next_diagnostics_) {
+    publish_diagnostics();
+    next_diagnostics_ = clock_.now() + seconds(config_.dds.diagnostics_period_s);
+  }
+}
+
+void Service::publish_diagnostics() {
+  PipelineSnapshot snap{pipeline_->state(),      pipeline_->queue_depth(),
+                        pipeline_->completed(),  pipeline_->rejected_busy(),
+                        pipeline_->last_error(), stalled()};
+  dds_.publish_diagnostics(diagnostics_.build(backend_->health(), snap, clock_.now()));
+}
+
+bool Service::stalled() const {
+  return pipeline_->stalled(clock_.now(), seconds(config_.service.stall_timeout_s));
+}
+
+std::string Service::status_line() const {
+  return fmt::format(
+      "{}; queue {}; {} scans done{}", to_string(pipeline_->state()), pipeline_->queue_depth(),
+      pipeline_->completed(),
+      pipeline_->last_error().empty() ? "" : "; last error: " + pipeline_->last_error());
+}
+
+bool Service::reload(const DaemonConfig& next, std::string* why) {
+  if (next.dds.domain_id != config_.dds.domain_id ||
+      next.dds.config_uri != config_.dds.config_uri || next.dds.security != config_.dds.security ||
+      next.dds.cloud_depth != config_.dds.cloud_depth ||
+      next.dds.request_depth != config_.dds.request_depth) {
+    *why = "dds settings changed; they apply on restart only (config not reloaded)";
+    return false;
+  }
+  Spool spool(next.spool);
+  if (!spool.open(why)) return false;
+  // Devices first (a simulated scene may fail to load): a refused config changes nothing.
+  std::unique_ptr<ScanBackend> backend;
+  if (own_backend_) {
+    try {
+      backend = std::make_unique<DeviceBackend>(next);
+    } catch (const std::exception& e) {
+      *why = e.what();
+      return false;
+    }
+  }
+  // Finish the running scan with the old configuration, then swap everything in.
+  pipeline_->stop(false);
+  config_ = next;
+  spool_ = std::move(spool);
+  if (own_backend_) {
+    backend_ = std::move(backend);
+    detector_ = std::make_unique<ModelDetector>(config_);
+  }
+  build_pipeline();
+  return true;
+}
+
+}  // namespace rangefit::daemon

@@ -1,0 +1,55 @@
+#pragma once
+// One running configuration of rangefitd: backend, detector, spool, pipeline and DDS entities,
+// built from a DaemonConfig. The executable (daemon/rangefitd) owns signals and sd_notify and
+// calls step() from its main loop; tests can run a Service in-process the same way.
+
+#include <memory>
+#include <string>
+
+#include "daemon/cell/device_backend.hpp"
+#include "daemon/dds/dds_service.hpp"
+#include "daemon/service/config.hpp"
+#include "daemon/service/diagnostics.hpp"
+#include "daemon/service/model_detector.hpp"
+#include "daemon/service/pipeline.hpp"
+#include "daemon/service/spool.hpp"
+
+namespace rangefit::daemon {
+
+class Service {
+ public:
+  // Throws std::runtime_error when the spool cannot be opened or DDS cannot start (start-up).
+  // backend/detector: null to use DeviceBackend/ModelDetector built from the config.
+  Service(DaemonConfig config, hal::Clock& clock, std::unique_ptr<ScanBackend> backend = nullptr,
+          std::unique_ptr<Detector> detector = nullptr);
+  ~Service();
+
+  // Takes requests (waiting up to timeout) and publishes diagnostics when due.
+  void step(std::chrono::milliseconds timeout);
+  // SIGHUP: a config that changes nothing DDS-related is swapped in between scans (the running
+  // scan finishes with the old one). Returns false with *why when the new config is refused.
+  bool reload(const DaemonConfig& next, std::string* why);
+  void stop(bool abort) { pipeline_->stop(abort); }
+
+  bool stalled() const;
+  std::string status_line() const;  // for STATUS=
+  hal::Timestamp last_progress() const { return pipeline_->last_progress(); }
+  const DaemonConfig& config() const { return config_; }
+  void publish_diagnostics();
+
+ private:
+  void build_pipeline();
+
+  DaemonConfig config_;
+  hal::Clock& clock_;
+  std::unique_ptr<ScanBackend> backend_;
+  std::unique_ptr<Detector> detector_;
+  bool own_backend_;
+  Spool spool_;
+  DdsService dds_;
+  std::unique_ptr<Pipeline> pipeline_;
+  DiagnosticsBuilder diagnostics_;
+  hal::Timestamp next_diagnostics_{0};
+};
+
+}  // namespace rangefit::daemon

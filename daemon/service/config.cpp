@@ -1,0 +1,527 @@
+// TOML → DaemonConfig. Each table is read through a FieldReader that knows the dotted path of
+// the table, so every error names the field; keys nobody reads are reported as unknown, which
+// catches typos that would otherwise silently fall back to a default.
+#include "daemon/service/config.hpp"
+
+#include <toml++/toml.h>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "daemon/service/bus_addresses.hpp"
+#include "daemon/service/scan_types.hpp"
+#include "io/object_model_file.hpp"
+#include "io/toml_file.hpp"
+
+namespace rangefit::daemon {
+namespace {
+
+// line: where in the file the field (or, when it is missing, its table) stands; 0 = unknown.
+struct FieldError : std::runtime_error {
+  explicit FieldError(const std::string& what, std::uint32_t at_line = 0)
+      : std::runtime_error(what), line(at_line) {}
+  std::uint32_t line;
+};
+
+class FieldReader {
+ public:
+  FieldReader(const toml::table& table, std::string path) : table_(table), path_(std::move(path)) {}
+
+  std::string field(std::string_view key) const {
+    return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+  }
+  [[noreturn]] void fail(std::string_view key, const std::string& why) const {
+    const toml::node* n = table_.get(key);
+    throw FieldError(field(key) + ": " + why, (n ? n->source() : table_.source()).begin.line);
+  }
+
+  const toml::node* find(std::string_view key) {
+    used_.insert(std::string(key));
+    return table_.get(key);
+  }
+
+  void read(std::string_view key, std::string& out) {
+    if (const auto* n = find(key)) {
+      if (!n->is_string()) fail(key, "must be a string");
+      out = n->as_string()->get();
+    }
+  }
+  void read(std::string_view key, double& out, double lo, double hi) {
+    if (const auto* n = find(key)) {
+      if (n->is_integer()) {
+        out = static_cast<double>(n->as_integer()->get());
+      } else if (n->is_floating_point()) {
+        out = n->as_floating_point()->get();
+      } else {
+        fail(key, "must be a number");
+      }
+      if (!std::isfinite(out) || out < lo || out > hi) {
+        std::ostringstream s;
+        s << "must be in [" << lo << ", " << hi << "], got " << out;
+        fail(key, s.str());
+      }
+    }
+  }
+  void read(std::string_view key, bool& out) {
+    if (const auto* n = find(key)) {
+      if (!n->is_boolean()) fail(key, "must be true or false");
+      out = n->as_boolean()->get();
+    }
+  }
+  void read(std::string_view key, std::int64_t& out, std::int64_t lo, std::int64_t hi) {
+    if (const auto* n = find(key)) {
+      if (!n->is_integer()) fail(key, "must be an integer");
+      out = n->as_integer()->get();
+      if (out < lo || out > hi) {
+        fail(key, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
+                      std::to_string(out));
+      }
+    }
+  }
+  template <std::size_t N>
+  void read(std::string_view key, std::array<double, N>& out, double lo, double hi) {
+    if (const auto* n = find(key)) {
+      const auto* arr = n->as_array();
+      if (arr == nullptr || arr->size() != N)
+        fail(key, "must be an array of " + std::to_string(N) + " numbers");
+      for (std::size_t i = 0; i < N; ++i) {
+        const auto v = (*arr)[i].value<double>();
+        if (!v || !std::isfinite(*v) || *v < lo || *v > hi) {
+          std::ostringstream s;
+          s << "element " << i << " must be a number in [" << lo << ", " << hi << "]";
+          fail(key, s.str());
+        }
+        out[i] = *v;
+      }
+    }
+  }
+  const toml::table* sub_table(std::string_view key) {
+    const auto* n = find(key);
+    if (n == nullptr) return nullptr;
+    if (!n->is_table()) fail(key, "must be a table");
+    return n->as_table();
+  }
+  const toml::array* table_array(std::string_view key) {
+    const auto* n = find(key);
+    if (n == nullptr) return nullptr;
+    if (!n->is_array_of_tables()) fail(key, "must be an array of tables ([[" + field(key) + "]])");
+    return n->as_array();
+  }
+  // Call after reading: any key not read is a typo or a field this version does not know.
+  void reject_unknown() const {
+    for (const auto& [k, v] : table_) {
+      if (!used_.contains(std::string(k.str()))) fail(k.str(), "unknown field");
+    }
+  }
+
+ private:
+  const toml::table& table_;
+  std::string path_;
+  std::set<std::string> used_;
+};
+
+constexpr double kMaxRotarySweepRad = 6.283185307179586;  // one turn
+constexpr double kMaxLinearSweepMm = 1e4;
+constexpr double kPi = 3.14159265358979323846;
+
+void read_service(FieldReader& r, ServiceConfig& s) {
+  std::int64_t capacity = static_cast<std::int64_t>(s.queue_capacity);
+  r.read("queue_capacity", capacity, 1, 1024);
+  s.queue_capacity = static_cast<std::size_t>(capacity);
+  r.read("scan_timeout_s", s.scan_timeout_s, 0.1, 3600.0);
+  r.read("stall_timeout_s", s.stall_timeout_s, 0.1, 3600.0);
+  r.read("log_level", s.log_level);
+  static const std::set<std::string> kLevels{"trace", "debug", "info", "warn", "error"};
+  if (!kLevels.contains(s.log_level))
+    r.fail("log_level", "must be trace, debug, info, warn or error");
+  r.read("bore_sensor", s.bore_sensor);
+  r.read("object_sensor", s.object_sensor);
+  r.reject_unknown();
+}
+
+// Paths go into Cyclone's configuration, a comma-separated list of URIs and XML: no commas.
+void read_path(FieldReader& r, std::string_view key, std::filesystem::path& out) {
+  std::string path = out.string();
+  r.read(key, path);
+  if (path.find(',') != std::string::npos) r.fail(key, "must not contain ','");
+  out = path;
+}
+
+void read_dds_security(FieldReader& r, DdsSecurityConfig& s) {
+  for (const auto& [key, path] : DdsSecurityConfig::documents(s)) {
+    read_path(r, key, *path);
+    if (path->empty()) r.fail(key, "is required in [dds.security]");
+  }
+  read_path(r, "plugin_dir", s.plugin_dir);
+  if (s.plugin_dir.empty()) r.fail("plugin_dir", "must not be empty");
+  r.reject_unknown();
+}
+
+void read_dds(FieldReader& r, DdsConfig& d) {
+  std::int64_t domain = d.domain_id;
+  r.read("domain_id", domain, 0, 232);  // the DDSI port mapping allows domains 0..232
+  d.domain_id = static_cast<std::uint32_t>(domain);
+  r.read("config_uri", d.config_uri);
+  r.read("diagnostics_period_s", d.diagnostics_period_s, 0.05, 60.0);
+  std::int64_t depth = d.cloud_depth;
+  r.read("cloud_depth", depth, 1, 100);
+  d.cloud_depth = static_cast<int>(depth);
+  depth = d.request_depth;
+  r.read("request_depth", depth, 1, 1000);
+  d.request_depth = static_cast<int>(depth);
+  if (const auto* t = r.sub_table("security")) {
+    FieldReader sub(*t, r.field("security"));
+    read_dds_security(sub, d.security);
+  }
+  r.reject_unknown();
+}
+
+void read_spool(FieldReader& r, SpoolConfig& s) {
+  std::string dir = s.directory.string();
+  r.read("directory", dir);
+  if (dir.empty()) r.fail("directory", "must not be empty");
+  s.directory = dir;
+  std::int64_t bytes = static_cast<std::int64_t>(s.max_bytes);
+  r.read("max_bytes", bytes, 1 << 20, std::numeric_limits<std::int64_t>::max());
+  s.max_bytes = static_cast<std::uint64_t>(bytes);
+  r.read("max_age_hours", s.max_age_hours, 0.001, 24.0 * 3650);
+  r.reject_unknown();
+}
+
+void read_detection(FieldReader& r, DetectionConfig& d) {
+  std::int64_t seed = static_cast<std::int64_t>(d.seed);
+  r.read("seed", seed, 0, std::numeric_limits<std::int64_t>::max());
+  d.seed = static_cast<std::uint64_t>(seed);
+  r.read("timeout_s", d.timeout_s, 0.01, 3600.0);
+  r.reject_unknown();
+}
+
+void read_sim(FieldReader& r, SimConfig& s) {
+  std::string scene = s.scene.string();
+  r.read("scene", scene);
+  s.scene = scene;
+  r.read("time_scale", s.time_scale, 0.0, 1000.0);
+  std::int64_t seed = static_cast<std::int64_t>(s.seed);
+  r.read("seed", seed, 0, std::numeric_limits<std::int64_t>::max());
+  s.seed = static_cast<std::uint64_t>(seed);
+  r.read("noise", s.noise);
+  r.reject_unknown();
+}
+
+void read_sim_fault(FieldReader& r, SimFaultConfig& f) {
+  r.read("disconnect_after_s", f.disconnect_after_s, -1.0, 1e6);
+  r.read("disconnect_for_s", f.disconnect_for_s, 0.0, 1e6);
+  std::int64_t scan = f.on_scan;
+  r.read("on_scan", scan, 0, 1000000);
+  f.on_scan = static_cast<int>(scan);
+  r.reject_unknown();
+}
+
+std::string describe(const CanNodeUse& u) {
+  return std::to_string(u.node) + (u.is_default ? " (the default)" : "");
+}
+
+// CANopen node ids are 1..127; Modbus unit ids 1..247 (0 is broadcast, 248.. reserved).
+void read_bus_addresses(FieldReader& r, DeviceConfig& d) {
+  struct Address {
+    const char* key;
+    int* out;
+    std::int64_t max;
+    bool applies;
+    const char* kinds;
+  };
+  const bool ranger = d.kind == "stripe" || d.kind == "pan_tilt";
+  for (const Address& a :
+       {Address{"can_node", &d.can_node, 127, d.kind == "robot" || ranger,
+                "robot, stripe or pan_tilt"},
+        Address{"pan_node", &d.pan_node, 127, d.kind == "pan_tilt", "pan_tilt"},
+        Address{"tilt_node", &d.tilt_node, 127, d.kind == "pan_tilt", "pan_tilt"},
+        Address{"modbus_unit", &d.modbus_unit, 247, d.kind == "axis", "axis"}}) {
+    std::int64_t v = 0;
+    r.read(a.key, v, 1, a.max);
+    if (v != 0 && !a.applies) r.fail(a.key, std::string("only for kind ") + a.kinds);
+    *a.out = static_cast<int>(v);
+  }
+  // The head's three nodes share its interface.
+  const auto nodes = can_nodes(d);
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (nodes[i].node == nodes[j].node) {
+        r.fail(nodes[i].field,
+               "CAN node " + describe(nodes[i]) + " is also this device's " + nodes[j].field);
+      }
+    }
+  }
+}
+
+// Real devices on one CAN interface must not share a node id (their frames would mix); the
+// error names both devices and the fields that set the ids (defaults count too).
+void check_can_nodes(const std::vector<DeviceConfig>& devices, std::size_t i, FieldReader& r) {
+  const DeviceConfig& d = devices[i];
+  if (d.driver != DriverKind::kReal) return;
+  for (const CanNodeUse& mine : can_nodes(d)) {
+    for (std::size_t k = 0; k < i; ++k) {
+      const DeviceConfig& other = devices[k];
+      if (other.driver != DriverKind::kReal || other.transport != d.transport) continue;
+      for (const CanNodeUse& theirs : can_nodes(other)) {
+        if (theirs.node != mine.node) continue;
+        r.fail(mine.field, "CAN node " + describe(mine) + " on " + d.transport +
+                               " is also used by device \"" + other.name + "\" (devices[" +
+                               std::to_string(k) + "]." + theirs.field + ")");
+      }
+    }
+  }
+}
+
+void read_device(FieldReader& r, DeviceConfig& d) {
+  r.read("name", d.name);
+  if (d.name.empty()) r.fail("name", "is required");
+  r.read("kind", d.kind);
+  static const std::set<std::string> kKinds{"css", "stripe", "axis", "robot", "pan_tilt"};
+  if (!kKinds.contains(d.kind)) r.fail("kind", "must be one of css, stripe, axis, robot, pan_tilt");
+  std::string driver = "sim";
+  r.read("driver", driver);
+  if (driver == "sim") {
+    d.driver = DriverKind::kSim;
+  } else if (driver == "real") {
+    d.driver = DriverKind::kReal;
+  } else if (driver == "replay") {
+    d.driver = DriverKind::kReplay;
+  } else {
+    r.fail("driver", "must be one of sim, real, replay");
+  }
+  r.read("transport", d.transport);
+  if (d.driver == DriverKind::kReal && d.transport.empty()) {
+    r.fail("transport", "is required for driver = \"real\" (e.g. \"can0\" or \"10.0.0.5:502\")");
+  }
+  std::string replay;
+  r.read("replay_file", replay);
+  d.replay_file = replay;
+  if (d.driver == DriverKind::kReplay && replay.empty()) {
+    r.fail("replay_file", "is required for driver = \"replay\"");
+  }
+  r.read("xyz_mm", d.xyz_mm, -1e5, 1e5);
+  r.read("rpy_rad", d.rpy_rad, -2 * kPi, 2 * kPi);
+  // The sweep decides how many points a scan produces (sensor rate x sweep time): a CSS sweep of
+  // +-30 rad fused 3.6 M points. Rotary sweeps stay within one turn each way, linear ones within
+  // 10 m; a slow speed is bounded by scan_timeout_s.
+  const double sweep_limit = sweep_is_linear(d.kind) ? kMaxLinearSweepMm : kMaxRotarySweepRad;
+  r.read("sweep_start", d.sweep_start, -sweep_limit, sweep_limit);
+  r.read("sweep_end", d.sweep_end, -sweep_limit, sweep_limit);
+  r.read("sweep_speed", d.sweep_speed, 0.0, sweep_is_linear(d.kind) ? 1e5 : 100.0);
+  r.read("motion", d.motion);
+  std::string protocol;
+  r.read("protocol", protocol);
+  if (!protocol.empty()) {
+    if (d.kind != "robot") r.fail("protocol", "only for kind robot");
+    if (protocol == "cia402") {
+      d.protocol = JointProtocol::kCia402;
+    } else if (protocol == "powercube") {
+      d.protocol = JointProtocol::kPowerCube;
+    } else {
+      r.fail("protocol", "must be cia402 or powercube");
+    }
+  }
+  read_bus_addresses(r, d);
+  if (d.protocol == JointProtocol::kPowerCube && d.can_node > 31) {
+    r.fail("can_node", "a PowerCube module id is 1 .. 31");
+  }
+  std::string scene;
+  r.read("scene", scene);
+  d.scene = scene;
+  if (const auto* t = r.sub_table("sim_fault")) {
+    FieldReader sub(*t, r.field("sim_fault"));
+    read_sim_fault(sub, d.sim_fault);
+  }
+  r.reject_unknown();
+}
+
+std::filesystem::path resolve(const std::filesystem::path& p, const std::filesystem::path& base) {
+  return p.empty() || p.is_absolute() || base.empty() ? p : base / p;
+}
+
+void read_object(FieldReader& r, ObjectModelConfig& o, const std::filesystem::path& base_dir) {
+  r.read("name", o.name);
+  std::string file;
+  r.read("model", file);
+  o.model_file = resolve(file, base_dir);
+  if (!file.empty()) {
+    for (const char* inline_key : {"scale_mm", "shape", "taper"}) {
+      if (r.find(inline_key) != nullptr) {
+        r.fail(inline_key, "is for inline models; the model file (model) gives the parts");
+      }
+    }
+    try {
+      o.model = io::read_object_model(o.model_file);
+    } catch (const std::exception& e) {
+      r.fail("model", e.what());
+    }
+    if (o.name.empty()) o.name = o.model.name;
+  } else {
+    if (o.name.empty()) r.fail("name", "is required (or give a model file: model = \"x.toml\")");
+    r.read("scale_mm", o.scale_mm, 0.1, 1e5);
+    if (o.scale_mm == std::array<double, 3>{})
+      r.fail("scale_mm", "is required (three half-sizes, mm), or a model file (model)");
+    r.read("shape", o.shape, 0.1, 2.0);
+    r.read("taper", o.taper, -1.0, 1.0);
+    o.model = inline_object(o.name, o.scale_mm, o.shape, o.taper).model;
+  }
+  if (o.name.empty()) r.fail("name", "is required (the model file has no name)");
+  std::string mesh;
+  r.read("mesh", mesh);
+  o.mesh = mesh;
+  r.reject_unknown();
+}
+
+// The [fusion] table belongs to fusion/ (fusion/config.hpp), which validates it the same way.
+struct FusionTableError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+DaemonConfig read_root(const toml::table& root, std::string_view source_name,
+                       const std::filesystem::path& base_dir) {
+  DaemonConfig c;
+  FieldReader r(root, "");
+  if (const auto* t = r.sub_table("fusion")) {
+    auto fusion = fusion::parse_fusion_config(*t, source_name);
+    if (!fusion.config) throw FusionTableError(fusion.error);
+    c.fusion = *fusion.config;
+  }
+  if (const auto* t = r.sub_table("sim")) {
+    FieldReader sub(*t, "sim");
+    read_sim(sub, c.sim);
+  }
+  c.sim.scene = resolve(c.sim.scene, base_dir);
+  if (const auto* t = r.sub_table("service")) {
+    FieldReader sub(*t, "service");
+    read_service(sub, c.service);
+  }
+  if (const auto* t = r.sub_table("dds")) {
+    FieldReader sub(*t, "dds");
+    read_dds(sub, c.dds);
+  }
+  for (const auto& [key, path] : DdsSecurityConfig::documents(c.dds.security)) {
+    *path = resolve(*path, base_dir);
+  }
+  if (const auto* t = r.sub_table("spool")) {
+    FieldReader sub(*t, "spool");
+    read_spool(sub, c.spool);
+  }
+  if (const auto* t = r.sub_table("detection")) {
+    FieldReader sub(*t, "detection");
+    read_detection(sub, c.detection);
+  }
+  std::set<std::string> names;
+  if (const auto* arr = r.table_array("devices")) {
+    for (std::size_t i = 0; i < arr->size(); ++i) {
+      const std::string path = "devices[" + std::to_string(i) + "]";
+      FieldReader sub(*(*arr)[i].as_table(), path);
+      DeviceConfig& d = c.devices.emplace_back();
+      read_device(sub, d);
+      if (!names.insert(d.name).second) sub.fail("name", "duplicate device name");
+      check_can_nodes(c.devices, i, sub);
+      d.scene = resolve(d.scene, base_dir);
+      if (d.driver == DriverKind::kSim && d.scene.empty()) d.scene = c.sim.scene;
+      const bool scans = d.kind == "css" || d.kind == "stripe" || d.kind == "pan_tilt";
+      if (d.driver == DriverKind::kSim && scans && d.scene.empty()) {
+        sub.fail("scene", "is required for a simulated " + d.kind + " (or set sim.scene)");
+      }
+    }
+  }
+  for (std::size_t i = 0; i < c.devices.size(); ++i) {
+    const std::string& m = c.devices[i].motion;
+    if (!m.empty() && c.device(m) == nullptr) {
+      throw FieldError("devices[" + std::to_string(i) + "].motion: no device named \"" + m + "\"");
+    }
+  }
+  names.clear();
+  if (const auto* arr = r.table_array("objects")) {
+    for (std::size_t i = 0; i < arr->size(); ++i) {
+      const std::string path = "objects[" + std::to_string(i) + "]";
+      FieldReader sub(*(*arr)[i].as_table(), path);
+      read_object(sub, c.objects.emplace_back(), base_dir);
+      if (!names.insert(c.objects.back().name).second) sub.fail("name", "duplicate object name");
+    }
+  }
+  r.reject_unknown();
+  for (const auto* key : {"bore_sensor", "object_sensor"}) {
+    const std::string& sensor =
+        std::string_view(key) == "bore_sensor" ? c.service.bore_sensor : c.service.object_sensor;
+    if (!sensor.empty() && c.device(sensor) == nullptr) {
+      throw FieldError(std::string("service.") + key + ": no device named \"" + sensor + "\"");
+    }
+  }
+  return c;
+}
+
+}  // namespace
+
+ObjectModelConfig inline_object(std::string name, std::array<double, 3> scale_mm,
+                                std::array<double, 2> shape, std::array<double, 2> taper) {
+  ObjectModelConfig o;
+  o.name = std::move(name);
+  o.scale_mm = scale_mm;
+  o.shape = shape;
+  o.taper = taper;
+  o.model.name = o.name;
+  o.model.parts.push_back({o.name, Superquadric{scale_mm[0], scale_mm[1], scale_mm[2], shape[0],
+                                                shape[1], taper[0], taper[1]}});
+  return o;
+}
+
+const char* to_string(DriverKind k) {
+  switch (k) {
+    case DriverKind::kSim:
+      return "sim";
+    case DriverKind::kReal:
+      return "real";
+    case DriverKind::kReplay:
+      return "replay";
+  }
+  return "?";
+}
+
+const DeviceConfig* CellConfig::device(std::string_view name) const {
+  for (const auto& d : devices) {
+    if (d.name == name) return &d;
+  }
+  return nullptr;
+}
+
+const ObjectModelConfig* DetectorConfig::object(std::string_view name) const {
+  for (const auto& o : objects) {
+    if (o.name == name) return &o;
+  }
+  return nullptr;
+}
+
+ConfigResult parse_config(std::string_view toml_text, std::string_view source_name,
+                          const std::filesystem::path& base_dir) {
+  ConfigResult result;
+  try {
+    const toml::table root = io::parse_toml(toml_text, source_name);
+    result.config = read_root(root, source_name, base_dir);
+  } catch (const io::TomlError& e) {
+    result.error = e.what();
+  } catch (const FieldError& e) {
+    result.error = std::string(source_name) +
+                   (e.line > 0 ? ":" + std::to_string(e.line) : std::string()) + ": " + e.what();
+  } catch (const FusionTableError& e) {
+    result.error = e.what();  // already "<source>: fusion.<table>.<field>: <problem>"
+  }
+  return result;
+}
+
+ConfigResult load_config(const std::filesystem::path& path) {
+  std::string text;
+  try {
+    text = io::read_toml_file(path);
+  } catch (const io::TomlError& e) {
+    return {std::nullopt, e.what()};
+  }
+  return parse_config(text, path.string(), path.parent_path());
+}
+
+}  // namespace rangefit::daemon

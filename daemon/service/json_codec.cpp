@@ -1,0 +1,121 @@
+#include "daemon/service/json_codec.hpp"
+
+namespace rangefit::daemon {
+namespace {
+
+nlohmann::json to_array(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+Eigen::Vector3d vec(const nlohmann::json& j) {
+  return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
+}
+DetectKind kind(const std::string& s) {
+  if (s == "bore") return DetectKind::kBore;
+  if (s == "object") return DetectKind::kObject;
+  throw std::invalid_argument("kind must be \"bore\" or \"object\"");
+}
+
+}  // namespace
+
+nlohmann::json to_json(const ScanRequest& r) {
+  nlohmann::json j = {{"id", r.id},
+                      {"kind", to_string(r.kind)},
+                      {"model", r.model},
+                      {"bore",
+                       {{"position_mm", to_array(r.bore.position_mm)},
+                        {"axis", to_array(r.bore.axis)},
+                        {"radius_mm", r.bore.radius_mm}}},
+                      {"sensor", r.sensor},
+                      {"sweep", {r.sweep_start, r.sweep_end, r.sweep_speed}},
+                      {"instances", r.instances},
+                      {"hypotheses", r.hypotheses},
+                      {"trials", r.trials},
+                      {"seed", r.seed}};
+  if (r.bore.plane_normal) j["bore"]["plane_normal"] = to_array(*r.bore.plane_normal);
+  return j;
+}
+
+nlohmann::json to_json(const DetectionResult& r) {
+  nlohmann::json parts = nlohmann::json::array();
+  for (const auto& p : r.parts) {
+    const Eigen::Quaterniond q(p.T_world_part.rotation());
+    parts.push_back({{"name", p.name},
+                     {"translation_mm", to_array(p.T_world_part.translation())},
+                     {"quaternion_wxyz", {q.w(), q.x(), q.y(), q.z()}},
+                     {"score", p.score},
+                     {"instance", p.instance}});
+  }
+  return {{"request_id", r.request_id},
+          {"kind", to_string(r.kind)},
+          {"model", r.model},
+          {"found", r.found},
+          {"reason", r.reason},
+          {"parts", parts},
+          {"bore_radius_mm", r.bore_radius_mm},
+          {"num_points", r.num_points},
+          {"scan_seconds", r.scan_seconds},
+          {"detect_seconds", r.detect_seconds},
+          {"spool_entry", r.spool_entry},
+          {"acquired_wall_ns", r.acquired_wall_ns}};
+}
+
+bool from_json(const nlohmann::json& j, ScanRequest& out, std::string* error) {
+  try {
+    out.id = j.at("id").get<std::string>();
+    out.kind = kind(j.at("kind").get<std::string>());
+    out.model = j.at("model").get<std::string>();
+    out.bore.position_mm = vec(j.at("bore").at("position_mm"));
+    out.bore.axis = vec(j.at("bore").at("axis"));
+    out.bore.radius_mm = j.at("bore").at("radius_mm").get<double>();
+    out.sensor = j.at("sensor").get<std::string>();
+    out.sweep_start = j.at("sweep").at(0).get<double>();
+    out.sweep_end = j.at("sweep").at(1).get<double>();
+    out.sweep_speed = j.at("sweep").at(2).get<double>();
+    // Absent in entries spooled before these fields existed.
+    if (j.at("bore").contains("plane_normal")) {
+      out.bore.plane_normal = vec(j.at("bore").at("plane_normal"));
+    }
+    out.instances = j.value("instances", 1);
+    out.hypotheses = j.value("hypotheses", 0);
+    out.trials = j.value("trials", 0);
+    out.seed = j.value("seed", std::uint64_t{0});
+    return true;
+  } catch (const std::exception& e) {
+    *error = std::string("request: ") + e.what();
+    return false;
+  }
+}
+
+bool from_json(const nlohmann::json& j, DetectionResult& out, std::string* error) {
+  try {
+    out.request_id = j.at("request_id").get<std::string>();
+    out.kind = kind(j.at("kind").get<std::string>());
+    out.model = j.at("model").get<std::string>();
+    out.found = j.at("found").get<bool>();
+    out.reason = j.at("reason").get<std::string>();
+    out.parts.clear();
+    for (const auto& p : j.at("parts")) {
+      PartPose part;
+      part.name = p.at("name").get<std::string>();
+      const auto& q = p.at("quaternion_wxyz");
+      part.T_world_part.linear() = Eigen::Quaterniond(q.at(0).get<double>(), q.at(1).get<double>(),
+                                                      q.at(2).get<double>(), q.at(3).get<double>())
+                                       .normalized()
+                                       .toRotationMatrix();
+      part.T_world_part.translation() = vec(p.at("translation_mm"));
+      part.score = p.at("score").get<double>();
+      part.instance = p.value("instance", std::uint32_t{0});
+      out.parts.push_back(std::move(part));
+    }
+    out.bore_radius_mm = j.at("bore_radius_mm").get<double>();
+    out.num_points = j.at("num_points").get<std::size_t>();
+    out.scan_seconds = j.at("scan_seconds").get<double>();
+    out.detect_seconds = j.at("detect_seconds").get<double>();
+    out.spool_entry = j.at("spool_entry").get<std::string>();
+    out.acquired_wall_ns = j.value("acquired_wall_ns", std::int64_t{0});
+    return true;
+  } catch (const std::exception& e) {
+    *error = std::string("result: ") + e.what();
+    return false;
+  }
+}
+
+}  // namespace rangefit::daemon

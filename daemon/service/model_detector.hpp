@@ -1,0 +1,26 @@
+#pragma once
+// The Detector rangefitd and `rangefit replay` run with: the thesis detectors of detect/ with the
+// options the detection adapter (daemon/service/detection_adapter.hpp) makes of the request, the
+// configured model and what the scan's sensor knows; their found/reason are reported unchanged
+// (no gate of its own).
+
+#include "daemon/service/config.hpp"
+#include "daemon/service/pipeline.hpp"
+
+namespace rangefit::daemon {
+
+class ModelDetector final : public Detector {
+ public:
+  explicit ModelDetector(DetectorConfig config) : config_(std::move(config)) {}
+  DetectionResult detect(const PointCloud& cloud, const ScanRequest& request,
+                         const ScanSensor& sensor) override;
+
+ private:
+  DetectionResult detect_object_request(const PointCloud& cloud, const ScanRequest& request,
+                                        const ScanSensor& sensor);
+  DetectionResult detect_bore_request(const PointCloud& cloud, const ScanRequest& request,
+                                      const ScanSensor& sensor);
+  DetectorConfig config_;
+};
+
+}  // namespace rangefit::daemon

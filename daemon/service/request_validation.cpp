@@ -1,0 +1,75 @@
+#include "daemon/service/request_validation.hpp"
+
+#include <cmath>
+
+#include "daemon/service/scan_types.hpp"
+
+namespace rangefit::daemon {
+
+std::string check_name(std::string_view text, std::string_view what, std::size_t max_length) {
+  if (text.empty()) return std::string(what) + " is empty";
+  if (text.size() > max_length) {
+    return std::string(what) + " longer than " + std::to_string(max_length) + " characters (" +
+           std::to_string(text.size()) + ")";
+  }
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c < 0x20 || c > 0x7e) {
+      return std::string(what) + " has a non-printable character at " + std::to_string(i) +
+             " (only printable ASCII)";
+    }
+  }
+  return "";
+}
+
+std::string validate_request(ScanRequest& request, const DaemonConfig& config) {
+  if (auto why = check_name(request.id, "request_id", kMaxRequestIdLength); !why.empty())
+    return why;
+  if (request.kind == DetectKind::kObject) {
+    if (auto why = check_name(request.model, "model", kMaxNameLength); !why.empty()) return why;
+  }
+  if (!request.sensor.empty()) {  // empty: the configured default
+    if (auto why = check_name(request.sensor, "sensor", kMaxNameLength); !why.empty()) return why;
+  }
+  if (request.kind == DetectKind::kBore) {
+    if (!(request.bore.radius_mm > 0.0)) return "bore_radius must be > 0";
+    if (!(request.bore.axis.norm() > 1e-9)) return "bore_axis must not be zero";
+    request.bore.axis.normalize();
+    if (request.bore.plane_normal) request.bore.plane_normal->normalize();
+  } else if (config.object(request.model) == nullptr) {
+    std::string known;
+    for (const auto& o : config.objects) known += (known.empty() ? "" : ", ") + o.name;
+    return "unknown object model \"" + request.model +
+           "\" (configured: " + (known.empty() ? "none" : known) + ")";
+  }
+  if (request.instances == 0) request.instances = 1;
+  if (request.instances < 1 || request.instances > 1000) return "instances must be in 1 .. 1000";
+  if (request.hypotheses < 0 || request.hypotheses > 10000) {
+    return "hypotheses must be in 0 .. 10000 (0: the detector's default)";
+  }
+  if (request.trials < 0 || request.trials > 10000) {
+    return "trials must be in 0 .. 10000 (0: the detector's default)";
+  }
+  if (request.sensor.empty()) {
+    request.sensor = request.kind == DetectKind::kBore ? config.service.bore_sensor
+                                                       : config.service.object_sensor;
+  }
+  const DeviceConfig* device = config.device(request.sensor);
+  if (device == nullptr) {
+    return request.sensor.empty() ? std::string("no sensor given and no default configured")
+                                  : "unknown sensor \"" + request.sensor + "\"";
+  }
+  if (!std::isfinite(request.sweep_start) || !std::isfinite(request.sweep_end) ||
+      !std::isfinite(request.sweep_speed) || request.sweep_speed < 0.0) {
+    return "sweep values must be finite and sweep_speed >= 0";
+  }
+  convert_sweep_units(request, sweep_is_linear(device->kind), /*to_wire=*/false);
+  if (request.sweep_start == request.sweep_end) {  // the device's configured sweep
+    request.sweep_start = device->sweep_start;
+    request.sweep_end = device->sweep_end;
+  }
+  if (request.sweep_speed == 0.0) request.sweep_speed = device->sweep_speed;
+  return "";
+}
+
+}  // namespace rangefit::daemon

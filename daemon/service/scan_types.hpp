@@ -1,0 +1,83 @@
+#pragma once
+// What flows through rangefitd: a scan request in, a detection result out. Internal units are
+// mm and rad (the DDS layer converts to and from SI metres at the wire, see messages.hpp).
+
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rangefit::daemon {
+
+enum class DetectKind { kBore, kObject };
+const char* to_string(DetectKind k);
+
+struct BorePrior {                                        // from CAD
+  Eigen::Vector3d position_mm = Eigen::Vector3d::Zero();  // a point on the bore axis, world
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();        // bore axis direction, world
+  double radius_mm = 0.0;                                 // nominal radius
+  // Normal of the surface around the bore, world; none: the axis (a perpendicular bore).
+  std::optional<Eigen::Vector3d> plane_normal;
+};
+
+struct ScanRequest {
+  std::string id;
+  DetectKind kind = DetectKind::kBore;
+  std::string model;       // object model name (kind = object)
+  BorePrior bore;          // kind = bore
+  std::string sensor;      // device name; empty = the configured default for the kind
+  double sweep_start = 0;  // sweep axis: mm (linear sensors) or rad (rotary); start == end: default
+  double sweep_end = 0;
+  double sweep_speed = 0;  // per second, same unit; 0 = device default
+  // Detector overrides (0: the detector's defaults, the configured seed).
+  int instances = 1;       // K object instances wanted, best first (kind = object)
+  int hypotheses = 0;      // m pose hypotheses per part (kind = object)
+  int trials = 0;          // n RANSAC trials per hypothesis (kind = object)
+  std::uint64_t seed = 0;  // seed of the detector's random sampling
+};
+
+struct PartPose {
+  std::string name;
+  Eigen::Isometry3d T_world_part = Eigen::Isometry3d::Identity();  // translation in mm
+  double score = 0.0;                                              // 0..1, higher is better
+  std::uint32_t instance = 0;  // which detected instance the part belongs to (0: the best)
+};
+
+struct DetectionResult {
+  std::string request_id;
+  DetectKind kind = DetectKind::kBore;
+  std::string model;
+  bool found = false;
+  std::string reason;  // empty when found
+  std::vector<PartPose> parts;
+  double bore_radius_mm = 0.0;
+  std::size_t num_points = 0;
+  double scan_seconds = 0.0;
+  double detect_seconds = 0.0;
+  std::string spool_entry;  // empty when the scan was not spooled (e.g. rejected request)
+  // When the scan's last sample was taken, wall clock (ns since the Unix epoch); 0: unknown.
+  std::int64_t acquired_wall_ns = 0;
+
+  static DetectionResult error(const ScanRequest& req, std::string why) {
+    DetectionResult r;
+    r.request_id = req.id;
+    r.kind = req.kind;
+    r.model = req.model;
+    r.reason = std::move(why);
+    return r;
+  }
+};
+
+constexpr double kMetresPerMm = 1e-3;  // SI metres on the DDS wire
+
+// Linear sensors sweep along an axis in mm (metres on the wire); the others rotate, in rad.
+inline bool sweep_is_linear(const std::string& device_kind) {
+  return device_kind == "stripe" || device_kind == "axis";
+}
+
+// The wire carries sweep positions in metres for linear sensors; internally they are mm.
+void convert_sweep_units(ScanRequest& req, bool linear_sweep, bool to_wire);
+
+}  // namespace rangefit::daemon
