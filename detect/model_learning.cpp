@@ -15,6 +15,8 @@
 namespace rangefit {
 namespace {
 
+constexpr double kMinRetryResidualMm = 0.1;  // below this a fit is never retried
+
 // At most `target` points spread evenly over the surface the points cover.
 std::vector<Eigen::Vector3d> spread(std::span<const Eigen::Vector3d> points, std::size_t target) {
   std::vector<std::uint32_t> all(points.size());
@@ -96,8 +98,9 @@ PartFit learn_part(std::span<const Eigen::Vector3d> object_points,
   if (object_points.size() < 20) return out;
   const std::vector<Eigen::Vector3d> coarse = spread(object_points, options.start_points);
   const std::vector<Eigen::Vector3d> fine = spread(object_points, options.fit_points);
-  static constexpr StartShape kShapes[] = {
-      {1.0, 1.0}, {0.3, 1.0}, {0.3, 0.3}, {0.3, 1.0, -0.6}, {1.0, 1.0, -0.6}};
+  // Ellipsoid, cylinder-like, box-like and pinched (eps > 1) starts; tapered ones standing.
+  static constexpr StartShape kShapes[] = {{1.0, 1.0}, {0.3, 1.0},       {0.3, 0.3},
+                                           {1.6, 1.6}, {0.3, 1.0, -0.6}, {1.0, 1.0, -0.6}};
   std::vector<PosedSuperquadric> starts = learn_starts(coarse, plane, kShapes);
   if (options.parts > 1 && plane) {
     // A part of a compound object need not reach down to the table (a mallet's shaft).
@@ -118,12 +121,24 @@ PartFit learn_part(std::span<const Eigen::Vector3d> object_points,
             [](const ShapeFitResult& a, const ShapeFitResult& b) {
               return a.ok != b.ok ? a.ok : a.cost < b.cost;
             });
-  const int kept = std::min<int>(options.kept_starts, static_cast<int>(short_fits.size()));
-  for (int k = 0; k < kept; ++k) {
-    if (!short_fits[k].ok) continue;
-    ShapeFitResult f =
-        fit_superquadric(fine, short_fits[k].part, fit_options(options, v0, options.iterations));
-    if (f.ok && (!out.fit.ok || f.cost < out.fit.cost)) out.fit = f;
+  const int n = static_cast<int>(short_fits.size());
+  auto finish = [&](int from, int to) {
+    for (int k = from; k < to; ++k) {
+      if (!short_fits[k].ok) continue;
+      ShapeFitResult f =
+          fit_superquadric(fine, short_fits[k].part, fit_options(options, v0, options.iterations));
+      if (f.ok && (!out.fit.ok || f.cost < out.fit.cost)) out.fit = f;
+    }
+  };
+  const int kept = std::min(options.kept_starts, n);
+  finish(0, kept);
+  // A short fit's cost can rank a start that leads into a local minimum first. When the best
+  // fit leaves its points farther off the surface than the scan's noise explains, every other
+  // start is fitted to convergence as well.
+  if (out.fit.ok && options.retry_residual_mm > 0.0 &&
+      radial_rms_mm(out.fit.part.shape, out.fit.part.T_world_part, fine) >
+          options.retry_residual_mm) {
+    finish(kept, n);
   }
   return out;
 }
@@ -149,10 +164,16 @@ LearnResult learn_model(std::span<const Eigen::Vector3d> points, const LearnOpti
   const std::vector<Eigen::Vector3d> object = gather(points, r.segment.object);
   std::optional<pca::Plane> plane;
   if (r.segment.plane.removed()) plane = r.segment.plane.plane;
+  LearnOptions o = options;
+  if (o.retry_residual_mm == 0.0) {
+    // The table's spread about its plane is the scan's noise.
+    const double noise = plane ? plane->rms : 0.0;
+    o.retry_residual_mm = std::max(options.retry_noise_factor * noise, kMinRetryResidualMm);
+  }
   const double gap = r.segment.gap_mm;
 
   if (options.parts == 1) {
-    const PartFit f = learn_part(object, plane, options);
+    const PartFit f = learn_part(object, plane, o);
     r.starts = f.starts;
     if (!f.fit.ok) {
       r.reason = LearnReason::kTooFewPoints;
@@ -169,7 +190,7 @@ LearnResult learn_model(std::span<const Eigen::Vector3d> points, const LearnOpti
                                                         gather(object, split.parts[1])};
     std::array<ShapeFitResult, 2> fits;
     for (int k = 0; k < 2; ++k) {
-      const PartFit f = learn_part(side[k], plane, options);
+      const PartFit f = learn_part(side[k], plane, o);
       r.starts += f.starts;
       if (!f.fit.ok) {
         r.reason = LearnReason::kTooFewPoints;

@@ -36,8 +36,13 @@ struct LearnOptions {
   int start_iterations = 30;       // LM iterations of each start
   int iterations = 150;            // LM iterations of the final fits
   int kept_starts = 2;             // the best starts fitted to convergence
-  double volume_weight = 0.05;     // the fit's volume term (ShapeFitOptions; 0: none)
-  bool radial = true;              // radial distance residual (ShapeFitOptions::radial)
+  // When the best of them leaves a radial rms above this (mm), all starts are fitted to
+  // convergence; 0: retry_noise_factor x the removed plane's rms (the scan's noise), at least
+  // 0.1 mm; negative: never.
+  double retry_residual_mm = 0.0;
+  double retry_noise_factor = 3.0;
+  double volume_weight = 0.05;  // the fit's volume term (ShapeFitOptions; 0: none)
+  bool radial = true;           // radial distance residual (ShapeFitOptions::radial)
   bool fit_taper = true;
   double max_taper = 1.0;
   double visible_tolerance_mm = 0;  // 0: 2 x the fit's radial rms + the segmentation gap / 2
