@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 #include <numeric>
+#include <utility>
 
 #include "detect/kdtree.hpp"
 
@@ -41,12 +42,12 @@ SegmentResult segment_object(std::span<const Eigen::Vector3d> points,
   pts.reserve(rest.size());
   for (std::uint32_t i : rest) pts.push_back(points[i]);
   const KdTree tree(pts);
-  out.gap_mm = options.gap_mm > 0.0 ? options.gap_mm : 4.0 * median_spacing(pts, tree);
+  out.gap_mm =
+      options.gap_mm > 0.0 ? options.gap_mm : std::max(4.0 * median_spacing(pts, tree), 0.01);
   // Flood fill over the radius graph.
   std::vector<int> label(pts.size(), -1);
   std::vector<std::uint32_t> queue, near;
-  double best_score = std::numeric_limits<double>::infinity();
-  std::vector<std::uint32_t> best;
+  std::vector<std::pair<double, std::vector<std::uint32_t>>> found;  // score, cluster
   int next = 0;
   for (std::size_t s = 0; s < pts.size(); ++s) {
     if (label[s] >= 0) continue;
@@ -70,12 +71,18 @@ SegmentResult segment_object(std::span<const Eigen::Vector3d> points,
       for (std::uint32_t j : queue) c += pts[j];
       score = (c / static_cast<double>(queue.size()) - *options.near).norm();
     }
-    if (score < best_score) {
-      best_score = score;
-      best = queue;
-    }
+    found.emplace_back(score, queue);
   }
-  for (std::uint32_t j : best) out.object.push_back(rest[j]);
+  std::stable_sort(found.begin(), found.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  const std::size_t keep = std::min<std::size_t>(found.size(), std::max(options.keep, 1));
+  for (std::size_t k = 0; k < keep; ++k) {
+    std::vector<std::uint32_t> cluster;
+    for (std::uint32_t j : found[k].second) cluster.push_back(rest[j]);
+    std::sort(cluster.begin(), cluster.end());
+    out.object.insert(out.object.end(), cluster.begin(), cluster.end());
+    out.kept.push_back(std::move(cluster));
+  }
   std::sort(out.object.begin(), out.object.end());
   return out;
 }

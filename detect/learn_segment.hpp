@@ -21,13 +21,18 @@ struct SegmentOptions {
   double gap_mm = 0.0;
   std::size_t min_points = 50;          // smaller clusters are noise
   std::optional<Eigen::Vector3d> near;  // pick the cluster nearest this point (else the largest)
+  // Keep this many clusters, best first (a two-part object whose parts do not touch, e.g. a
+  // mallet whose shaft model ends short of the head, is two clusters).
+  int keep = 1;
 };
 
 struct SegmentResult {
   PlaneRemovalResult plane;
   std::vector<std::uint32_t> object;  // indices into the points, ascending; empty: no object
-  std::size_t clusters = 0;           // clusters of at least min_points
-  double gap_mm = 0.0;                // the gap used
+  // The kept clusters (object is their union), best first, each ascending.
+  std::vector<std::vector<std::uint32_t>> kept;
+  std::size_t clusters = 0;  // clusters of at least min_points
+  double gap_mm = 0.0;       // the gap used
 };
 
 SegmentResult segment_object(std::span<const Eigen::Vector3d> points,

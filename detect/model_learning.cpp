@@ -16,6 +16,8 @@ namespace rangefit {
 namespace {
 
 constexpr double kMinRetryResidualMm = 0.1;  // below this a fit is never retried
+// A second cluster is a part of its own when it has at least 1/20 of the first one's points.
+constexpr std::size_t kMinSecondCluster = 20;
 
 // At most `target` points spread evenly over the surface the points cover.
 std::vector<Eigen::Vector3d> spread(std::span<const Eigen::Vector3d> points, std::size_t target) {
@@ -156,6 +158,7 @@ LearnResult learn_model(std::span<const Eigen::Vector3d> points, const LearnOpti
   if (points.empty()) return r;  // kEmptyCloud
   SegmentOptions seg = options.segment;
   seg.plane.seed = options.seed;
+  seg.keep = options.parts;
   r.segment = segment_object(points, seg);
   if (r.segment.object.empty()) {
     r.reason = LearnReason::kNoObject;
@@ -181,13 +184,21 @@ LearnResult learn_model(std::span<const Eigen::Vector3d> points, const LearnOpti
     }
     r.parts.push_back(describe("body", f.fit, object, options, gap));
   } else {
-    const TwoPartSplit split = split_two_parts(object, 20);
-    if (!split.ok) {
-      r.reason = LearnReason::kTooFewPoints;
-      return r;
+    std::array<std::vector<Eigen::Vector3d>, 2> side;
+    if (r.segment.kept.size() == 2 &&
+        r.segment.kept[1].size() * kMinSecondCluster >= r.segment.kept[0].size()) {
+      // Two separate clusters: the parts do not touch in the scan.
+      side = {gather(points, r.segment.kept[0]), gather(points, r.segment.kept[1])};
+    } else {
+      // One cluster (the largest, when the second is only a fragment): cut it in two.
+      const std::vector<Eigen::Vector3d> largest = gather(points, r.segment.kept[0]);
+      const TwoPartSplit split = split_two_parts(largest, 20);
+      if (!split.ok) {
+        r.reason = LearnReason::kTooFewPoints;
+        return r;
+      }
+      side = {gather(largest, split.parts[0]), gather(largest, split.parts[1])};
     }
-    std::array<std::vector<Eigen::Vector3d>, 2> side = {gather(object, split.parts[0]),
-                                                        gather(object, split.parts[1])};
     std::array<ShapeFitResult, 2> fits;
     for (int k = 0; k < 2; ++k) {
       const PartFit f = learn_part(side[k], plane, o);

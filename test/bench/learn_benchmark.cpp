@@ -65,7 +65,8 @@ void BM_LearnOnePart(benchmark::State& state) {
     benchmark::DoNotOptimize(r);
   }
   learn_ms /= runs;
-  state.counters["ms_per_part"] = learn_ms / std::max<std::size_t>(1, r.parts.size());
+  state.counters["ms_per_part"] =
+      learn_ms / static_cast<double>(std::max<std::size_t>(1, r.parts.size()));
   state.counters["pose_fit_ms"] = baseline_ms;
   state.counters["ratio_to_pose_fit"] = learn_ms / baseline_ms;
   state.counters["starts"] = r.starts;
