@@ -61,19 +61,19 @@ struct ThesisCase {
   double size_two, shape_two;  // what two views reach (the goal: 1 %, 0.05)
 };
 
-// The goals are met except where noted: a sphere seen from one side leaves its depth to the
-// volume term (2.7 %), and the cone (2.3 % from one view)'s tip, where the radial distance of a
-// taper of -1 is least exact, keeps its size at 2 % even from two views.
+// The goals are met except for the cone, whose tip (a taper of -1) is where the radial distance
+// is least exact: 2.3 % from one view and 1.4 % from two (measured; the limits below).
 const ThesisCase kThesis[] = {
     {"cylinder", sim::cylinder_model(), 0.02, 0.1, 0.01, 0.05},
     {"box", sim::box_model(), 0.02, 0.1, 0.01, 0.05},
-    {"sphere", sim::sphere_model(), 0.035, 0.1, 0.01, 0.05},
-    {"cone", sim::cone_model(), 0.025, 0.1, 0.02, 0.05},
+    {"sphere", sim::sphere_model(), 0.02, 0.1, 0.01, 0.05},
+    {"cone", sim::cone_model(), 0.025, 0.1, 0.015, 0.05},
 };
 
 TEST(LearnModel, LearnsTheThesisObjectsFromOneView) {
   for (const ThesisCase& c : kThesis) {
     const Learnt l = learn(c.truth, 3, 1);
+    std::printf("  %s, one view: %s\n", c.name, describe(l).c_str());
     ASSERT_TRUE(l.result.learnt()) << c.name << ": " << describe(l);
     EXPECT_LE(l.error.size, c.size_one) << c.name << ": " << describe(l);
     EXPECT_LE(l.error.shape, c.shape_one) << c.name << ": " << describe(l);
@@ -87,6 +87,7 @@ TEST(LearnModel, LearnsTheThesisObjectsFromOneView) {
 TEST(LearnModel, LearnsTheThesisObjectsFromTwoFusedViews) {
   for (const ThesisCase& c : kThesis) {
     const Learnt one = learn(c.truth, 3, 1), two = learn(c.truth, 3, 2);
+    std::printf("  %s, two views: %s\n", c.name, describe(two).c_str());
     ASSERT_TRUE(two.result.learnt()) << c.name << ": " << describe(two);
     EXPECT_LE(two.error.size, c.size_two) << c.name << ": " << describe(two);
     EXPECT_LE(two.error.shape, c.shape_two) << c.name << ": " << describe(two);
