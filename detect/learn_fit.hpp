@@ -1,17 +1,21 @@
 #pragma once
 // The full superquadric fit of model learning (thesis 2.1.3, 2.2): size a1..a3, shape eps1 eps2,
-// taper kx ky and the pose, all eleven (thirteen with the pose's six) by Levenberg-Marquardt
+// taper kx ky and the pose, thirteen parameters, by Levenberg-Marquardt
 // (detect/levenberg_marquardt.hpp, the loop the pose fit runs) on the residuals
 //
-//   r_i = sqrt(a1 a2 a3 / V0) (F^eps1(p_i) - 1)                        (Solina and Bajcsy [116])
+//   r_i = sqrt(1 + lambda a1 a2 a3 / V0) d_i,   d_i = |q_i| (1 - G(q_i)^-1/2)
 //
-// F^eps1 - 1 is the metric of eq. 5.1 (a distance-like measure for every shape); the volume
-// factor sqrt(a1 a2 a3) prefers the smallest superquadric that explains the points, which is
-// what keeps a single-view fit from growing into the unseen side (the note under eq. 5.1). V0
-// only scales the cost, so costs of different starts compare. Sizes move in log steps (a
-// mm-sized and a unitless parameter in one damped step), shape and taper additively, clamped to
-// their valid ranges; the pose by R <- R exp([w]x) as in the pose fit. The pose columns of the
-// Jacobian are analytic (the metric's gradient), the seven model columns forward differences.
+// d_i is the radial distance of the point q_i (part frame) from the surface, from the metric
+// G = F^eps1 of eq. 5.1 (thesis 2.2.1: the radial Euclidean distance fits better than the
+// algebraic one). The volume term after Solina and Bajcsy [116] (the note under eq. 5.1) prefers
+// the smaller of the superquadrics that explain the points equally, which keeps a single-view
+// fit from growing into the unseen side. It is 1 + lambda V / V0 rather than Solina's V / V0
+// because with a true distance that factor alone would let a part shrink to nothing (V -> 0
+// drives every residual to 0). V0 is common to all starts, so their costs compare. Sizes move
+// in log steps, shape and taper additively, clamped to their valid ranges; the pose by
+// R <- R exp([w]x) as in the pose fit. The pose columns of the Jacobian are analytic (the
+// metric's gradient), the seven model columns forward differences through the vectorised
+// metric (SuperquadricMetric::values).
 
 #include <Eigen/Geometry>
 #include <span>

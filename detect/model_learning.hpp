@@ -2,11 +2,12 @@
 // Learning an object model from a scan of the object alone (thesis ch. 6, "show the object
 // once"; ch. 7): the dominant plane is removed, the object segmented (detect/learn_segment), and
 // one tapered superquadric fitted to it (size, shape, taper and pose, detect/learn_fit: LM on
-// F^eps1 - 1 with Solina's volume factor against the single view's ambiguity, thesis 2.2) from
+// the radial distance with a volume term against the single view's ambiguity, thesis 2.2) from
 // several starts built from the moments (detect/learn_start); the best fit is kept. With two
-// parts the object is cut across its main axis where its width changes most (a mallet's head
-// and shaft), each side fitted as one part, points reassigned to the nearer part and refitted,
-// and the link between them (eq. 5.5-5.6: angle between the z-axes, centre distance) measured.
+// parts the two largest clusters are the parts when they do not touch; otherwise the object is
+// cut across its main axis where its width steps (detect/learn_split). Each side is fitted as
+// one part, points reassigned to the nearer part and refitted, and the link between them (eq.
+// 5.5-5.6: angle between the z-axes, centre distance) measured.
 //
 // Several views of the object (already in one world frame) are fused by passing all their
 // points: the fit's point budget is spread over the surface area (detect/spread_subset), so a
