@@ -2,8 +2,11 @@
 
 #include <toml++/toml.h>
 #include <cmath>
+#include <fstream>
+#include <iostream>
 #include <numbers>
 #include <sstream>
+#include <system_error>
 
 #include "io/io_error.hpp"
 #include "io/toml_file.hpp"
@@ -181,6 +184,77 @@ std::string format_object_model(const ObjectModel& model) {
         << "\ndistance = " << l.distance_mm << "\n";
   }
   return out.str();
+}
+
+namespace {
+
+// A name format_object_model can put between double quotes as it stands.
+bool plain_name(const std::string& name) {
+  if (name.empty()) return false;
+  for (const char c : name) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\' || u < 0x20 || u == 0x7f) return false;
+  }
+  return true;
+}
+
+void check_writable(const std::filesystem::path& path, const ObjectModel& model) {
+  if (!plain_name(model.name))
+    throw IoError(path, "model name '" + model.name + "' cannot be written");
+  if (model.parts.empty()) throw IoError(path, "a model needs at least one part");
+  if (model.parts.size() > kMaxParts) throw IoError(path, "at most 16 parts");
+  for (std::size_t i = 0; i < model.parts.size(); ++i) {
+    const ModelPart& p = model.parts[i];
+    if (!plain_name(p.name)) throw IoError(path, "part name '" + p.name + "' cannot be written");
+    if (!p.shape.valid()) throw IoError(path, "part '" + p.name + "' is not a valid superquadric");
+    for (std::size_t j = 0; j < i; ++j) {
+      if (model.parts[j].name == p.name)
+        throw IoError(path, "duplicate part name '" + p.name + "'");
+    }
+  }
+  for (const PartLink& l : model.links) {
+    if (l.first >= model.parts.size() || l.second >= model.parts.size() || l.first == l.second ||
+        !(l.angle_rad >= 0.0 && l.angle_rad <= std::numbers::pi) || !(l.distance_mm >= 0.0)) {
+      throw IoError(path, "invalid link");
+    }
+  }
+}
+
+}  // namespace
+
+void write_object_model(const std::filesystem::path& path, const ObjectModel& model,
+                        std::string_view comment) {
+  check_writable(path, model);
+  std::string text;
+  std::string_view rest = comment;
+  while (!rest.empty()) {
+    const std::size_t eol = rest.find('\n');
+    text += "# ";
+    text += rest.substr(0, eol);
+    text += "\n";
+    rest = eol == std::string_view::npos ? std::string_view{} : rest.substr(eol + 1);
+  }
+  text += format_object_model(model);
+  if (path == "-") {
+    std::cout << text << std::flush;
+    if (!std::cout) throw IoError(path, "cannot write to standard output");
+    return;
+  }
+  std::filesystem::path tmp = path;
+  tmp += ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw IoError(path, "cannot open " + tmp.string() + " for writing");
+    out << text;
+    out.flush();
+    if (!out) throw IoError(path, "cannot write " + tmp.string());
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    throw IoError(path, "cannot replace the file: " + ec.message());
+  }
 }
 
 }  // namespace rangefit::io

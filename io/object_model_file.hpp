@@ -31,4 +31,13 @@ ObjectModel parse_object_model(std::string_view text, const std::filesystem::pat
 // TOML text that parse_object_model reads back to the same model.
 std::string format_object_model(const ObjectModel& model);
 
+// Writes the model to `path` ("-": standard output) as format_object_model does, preceded by
+// `comment` as "# " lines (how the model was learnt: residual, visible share; readers skip
+// them). The file is written beside its destination and renamed over it, so a reader never sees
+// half a model. Throws IoError when the model would not read back (no parts, an invalid part,
+// a link to a missing part, a name with quotes, backslashes or control characters) or the file
+// cannot be written.
+void write_object_model(const std::filesystem::path& path, const ObjectModel& model,
+                        std::string_view comment = {});
+
 }  // namespace rangefit::io

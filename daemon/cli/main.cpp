@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   // Subcommands (one file each in daemon/cli/):
   rangefit::cli::add_bore_command(app, &exit_code);
   rangefit::cli::add_object_command(app, &exit_code);
+  rangefit::cli::add_learn_command(app, &exit_code);
   rangefit::cli::add_request_command(app, &exit_code);
   rangefit::cli::add_watch_command(app, &exit_code);
   rangefit::cli::add_replay_command(app, &exit_code);
