@@ -7,6 +7,8 @@
 #include <numbers>
 #include <vector>
 
+#include "detect/bore_refine.hpp"
+#include "detect/bore_region.hpp"
 #include "detect/normals.hpp"
 #include "detect/pca.hpp"
 #include "detect/spread_subset.hpp"
@@ -151,77 +153,11 @@ struct WallFit {
   Eigen::Vector3d entrance = Eigen::Vector3d::Zero(), axis = Eigen::Vector3d::UnitZ();
 };
 
-// Residual |distance from the axis - r| of every point.
-void residuals(std::span<const Eigen::Vector3d> pts, const Cylinder& c, std::vector<double>& out) {
-  out.clear();
-  out.reserve(pts.size());
-  for (const auto& p : pts) out.push_back(std::abs(axis_distance(c, p) - c.radius));
-}
-
-// 3 robust sigmas (MAD) of the residuals, at least 0.01 mm.
-double trim_limit(std::vector<double> abs_res) {
-  std::nth_element(abs_res.begin(), abs_res.begin() + abs_res.size() / 2, abs_res.end());
-  return std::max(3.0 * 1.4826 * abs_res[abs_res.size() / 2], 0.01);
-}
-
-// Beyond the thesis: geometric least squares on the band points, then again without those
-// beyond 3 robust sigmas: ghosts just in front of the wall and outliers just behind it pass
-// the normal test but bias a fit even under the Huber loss. Cost-bounded: the first fit
-// iterates on a spread sample of the band (every k-th point in scan order) until a step moves
-// the surface by less than 1e-4 mm, and the trimmed fit takes one step from there on every
-// full-resolution inlier.
-CylinderLsfResult refine_on_band(std::vector<Eigen::Vector3d>& band, const Cylinder& start,
-                                 const BoreOptions& o) {
-  CylinderLsfOptions lo = o.lsf;
-  if (o.cost_bounded) lo.step_tolerance = 1e-4;
-  std::vector<Eigen::Vector3d> sample;
-  std::span<const Eigen::Vector3d> first = band;
-  if (o.cost_bounded && o.refine_sample > 0 && band.size() > o.refine_sample) {
-    const std::size_t k = (band.size() + o.refine_sample - 1) / o.refine_sample;
-    sample.reserve(band.size() / k + 1);
-    for (std::size_t i = 0; i < band.size(); i += k) sample.push_back(band[i]);
-    first = sample;
-  }
-  // The sample's own noise is ~noise / sqrt(n) ~ 1e-3 mm: iterating it further is wasted when
-  // the full set's step follows.
-  CylinderLsfOptions first_lo = lo;
-  if (!sample.empty()) first_lo.step_tolerance = 1e-3;
-  CylinderLsfResult lsf = fit_cylinder_lsf(first, start, first_lo);
-  std::vector<double> abs_res;
-  residuals(first, lsf.cylinder, abs_res);
-  if (abs_res.size() > 10) {
-    const double limit = trim_limit(abs_res);
-    std::vector<Eigen::Vector3d> inliers;
-    inliers.reserve(band.size());
-    const Cylinder& c = lsf.cylinder;
-    const double r_lo = std::max(c.radius - limit, 0.0), r_hi = c.radius + limit;
-    for (const auto& p : band) {
-      const Eigen::Vector3d d = p - c.point;
-      const double h = d.dot(c.axis);
-      const double rho2 = d.squaredNorm() - h * h;  // squared bounds: no root per point
-      if (rho2 <= r_hi * r_hi && rho2 >= r_lo * r_lo) inliers.push_back(p);
-    }
-    band.swap(inliers);
-    const int done = lsf.iterations;
-    // From the sample's minimum, one Gauss-Newton step on every inlier is the full set's
-    // estimate to first order (the one-step estimator): the sample's error is noise / sqrt(n).
-    lo.single_unchecked_step = !sample.empty() && lo.method == LsfMethod::kLevenbergMarquardt;
-    lsf = fit_cylinder_lsf(band, lsf.cylinder, lo);
-    if (lsf.iterations == 0) lsf.iterations = done;  // already at the minimum
-  } else if (!sample.empty()) {
-    lo.max_iterations = std::min(lo.max_iterations, 1);
-    lsf = fit_cylinder_lsf(band, lsf.cylinder, lo);
-  }
-  return lsf;
-}
-
 // 4.1.3 and 4.1.4 for one wall: the sequential cylinder fit, the notch re-fit, the refinement
 // on the region points near the cylinder and the entrance where the axis meets the plane.
-WallFit fit_wall(std::span<const Eigen::Vector3d> pool, std::span<const std::uint32_t> roi,
-                 const Wall& wall, const pca::Plane& plane, const Eigen::Vector3d& view,
+WallFit fit_wall(const RefineInput& base, const Wall& wall, const Eigen::Vector3d& view,
                  const Eigen::Vector3d& a_cad, const BorePrior& prior, double r_cad,
-                 double normal_radius, const BoreOptions& o, std::uint64_t seed,
-                 Clock::time_point& t, BoreTimes& times) {
+                 const BoreOptions& o, std::uint64_t seed, Clock::time_point& t, BoreTimes& times) {
   WallFit w;
   const std::size_t min_wall = static_cast<std::size_t>(std::max(o.min_wall_points, 3));
   if (wall.points.size() < min_wall) {
@@ -259,62 +195,17 @@ WallFit fit_wall(std::span<const Eigen::Vector3d> pool, std::span<const std::uin
   // Every region point within the band counts, not only those whose normal passed eq. 4.6
   // (as PCL's fit does): the Gaussian image keeps a few hundred wall points, the band about
   // twice as many, and the axis error on the benchmark scan drops from 0.17 to 0.04 deg.
-  // Points within refine_plane_margin of the entrance plane (the plane near the rim) stay out.
   Cylinder cyl = rsf.cylinder;
   if (o.refine) {
-    std::vector<Eigen::Vector3d> band;
-    const Eigen::Vector3d up =
-        plane.normal.dot(view) < 0.0 ? Eigen::Vector3d(-plane.normal) : plane.normal;
-    // Squared distances from the axis against the band's squared limits: no root per point.
-    const double band_lo = std::max(cyl.radius - o.refine_band, 0.0),
-                 band_hi = cyl.radius + o.refine_band;
-    const Eigen::Vector3d cyl_axis = cyl.axis.normalized();
-    const auto near_wall = [&](const Eigen::Vector3d& p) {
-      const Eigen::Vector3d d = p - cyl.point;
-      const double h = d.dot(cyl_axis);
-      const double rho2 = d.squaredNorm() - h * h;
-      return rho2 <= band_hi * band_hi && rho2 >= band_lo * band_lo;
-    };
-    for (const auto& p : wall.points) {
-      if (near_wall(p)) band.push_back(p);
-    }
-    if (o.refine_all_region_points && band.size() >= 3) {
-      // Depth below the entrance plane: only as high as the segmented wall reaches (its 98th
-      // percentile) plus a share of the normal radius R. A chamfer or rounded rim passes the
-      // band near the wall but not the normal test, which fails within about R of any edge.
-      std::vector<double> heights;
-      heights.reserve(band.size());
-      for (const auto& p : band) heights.push_back((p - plane.point).dot(up));
-      const std::size_t k = (heights.size() - 1) * 98 / 100;
-      std::nth_element(heights.begin(), heights.begin() + static_cast<std::ptrdiff_t>(k),
-                       heights.end());
-      const double top = heights[k] + o.refine_above_wall * normal_radius;
-      // And above a blind bore's bottom where one is seen: its points pass the band inside
-      // the wall.
-      double bottom = -1e300;
-      if (wall.bottom.size() >= 10) {
-        std::vector<double> b;
-        b.reserve(wall.bottom.size());
-        for (const auto& p : wall.bottom) b.push_back((p - plane.point).dot(up));
-        std::nth_element(b.begin(), b.begin() + static_cast<std::ptrdiff_t>(b.size() / 2), b.end());
-        bottom = b[b.size() / 2] + o.refine_band;
-      }
-      band.clear();
-      band.reserve(roi.size() / 2);
-      for (const std::uint32_t i : roi) {
-        const Eigen::Vector3d& p = pool[i];
-        const double height = (p - plane.point).dot(up);
-        if (height <= top && height >= bottom && height < -o.refine_plane_margin && near_wall(p)) {
-          band.push_back(p);
-        }
-      }
-    }
-    const CylinderLsfResult lsf = refine_on_band(band, cyl, o);
-    w.refine_inliers = band.size();
+    RefineInput in = base;
+    in.wall = wall.points;
+    in.bottom = wall.bottom;
+    const RefineOutcome r = refine_wall(in, cyl, o);
+    w.refine_inliers = r.inliers;
     // Accept only a refinement that stays near the RSF answer (guards a runaway on bad data).
-    if (lsf.iterations > 0 && std::abs(lsf.cylinder.radius - cyl.radius) < 0.2 * cyl.radius &&
-        std::abs(lsf.cylinder.axis.dot(cyl.axis)) > std::cos(5.0 * kDeg)) {
-      cyl = lsf.cylinder;
+    if (r.lsf.iterations > 0 && std::abs(r.lsf.cylinder.radius - cyl.radius) < 0.2 * cyl.radius &&
+        std::abs(r.lsf.cylinder.axis.dot(cyl.axis)) > std::cos(5.0 * kDeg)) {
+      cyl = r.lsf.cylinder;
       w.refined = true;
     }
   }
@@ -326,6 +217,7 @@ WallFit fit_wall(std::span<const Eigen::Vector3d> pool, std::span<const std::uin
   if (o.sensor_position ? axis.dot(*o.sensor_position - cyl.point) < 0.0 : axis.dot(view) < 0.0) {
     axis = -axis;
   }
+  const pca::Plane& plane = base.plane;
   const double denom = plane.normal.dot(axis);
   if (std::abs(denom) < 0.1) {
     w.reason = BoreReason::kAxisParallelToPlane;
@@ -388,36 +280,26 @@ BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const Bo
   }
   // Below the CAD plane by more than the prior's offset can explain: not the entrance plane.
   const double below_margin = std::max(0.1 * r_min, 0.5);
-  const std::span<const Eigen::Vector3d> pts = cloud.points;
-  // Indices into the cloud (no copy of the points): the pool holds the normals' neighbours.
-  std::vector<std::uint32_t> pool, roi, near_wall, near_plane, other;
-  pool.reserve(cloud.size());
-  roi.reserve(cloud.size());
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const Eigen::Vector3d& p = cloud.points[i];
-    if (!finite(p)) {
-      ++res.counts.non_finite;
-      continue;
-    }
-    const Eigen::Vector3d d = p - prior.entrance;
-    const double d2 = d.squaredNorm();
-    if (d2 > pool_r * pool_r) continue;
-    const auto k = static_cast<std::uint32_t>(i);
-    pool.push_back(k);
-    if (d2 > roi_r * roi_r) continue;
-    roi.push_back(k);
-    if (!o.cost_bounded) continue;
-    const double h = d.dot(a_cad);
-    const double rho2 = d2 - h * h;
-    if (!(d.dot(n_cad) < -below_margin)) {
-      near_plane.push_back(k);
-    } else if (rho2 <= rho_hi * rho_hi && rho2 >= 0.64 * rho_lo * rho_lo) {
-      near_wall.push_back(k);
-    } else {
-      other.push_back(k);  // a pipe's other wall, a neighbouring bore, a blind bore's bottom
-    }
-  }
-  res.counts.roi = roi.size();
+  RegionShape shape;
+  shape.centre = prior.entrance;
+  shape.axis = a_cad;
+  shape.plane_normal = n_cad;
+  shape.roi_radius = roi_r;
+  shape.pool_radius = pool_r;
+  shape.rho_lo = rho_lo;
+  shape.rho_hi = rho_hi;
+  shape.below_margin = below_margin;
+  shape.split = o.cost_bounded;
+  const BoreRegion region =
+      select_region(cloud.points, shape, o.cost_bounded ? o.region_budget : 0);
+  const std::span<const Eigen::Vector3d> pts = region.points;
+  const std::span<const std::uint32_t> roi = region.roi;
+  const auto& near_wall = region.near_wall;
+  const auto& near_plane = region.near_plane;
+  const auto& other = region.other;
+  res.counts.non_finite = region.non_finite;
+  res.counts.stride = region.stride;
+  res.counts.roi = roi.size() * region.stride;
   res.time_ms.roi = ms_since(t);
   if (roi.empty()) return fail(res, BoreReason::kEmptyRoi, start);
 
@@ -446,13 +328,13 @@ BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const Bo
           std::min(no.radius, std::sqrt(o.normal_neighbours / (std::numbers::pi * density)));
     }
   } else {
-    queries = roi;
+    queries.assign(roi.begin(), roi.end());
   }
   queries = subsample_evenly(queries, o.normal_keep);
   // Exact R-neighbourhoods from a grid binned along the view, for organised and unorganised
   // scans alike (faster than the k-d tree or the scan-grid windows, and never misses a
   // neighbour the way a fixed window can where the scan is denser than its median spacing).
-  const NormalEstimate normals = estimate_normals_binned(pts, pool, queries, no);
+  const NormalEstimate normals = estimate_normals_binned(pts, queries, no);
   res.counts.normal_queries = queries.size();
   res.counts.normals = normals.kept;
   res.time_ms.normals = ms_since(t);
@@ -513,9 +395,15 @@ BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const Bo
   }
   res.time_ms.segmentation = ms_since(t);
 
+  RefineInput base;
+  base.cloud = cloud.points;
+  base.region = &region;
+  base.plane = plane;
+  base.up = plane.normal.dot(view) < 0.0 ? Eigen::Vector3d(-plane.normal) : plane.normal;
+  base.normal_radius = no.radius;
   const auto fit = [&](std::size_t k) {
-    return fit_wall(pts, roi, walls[k], plane, view, a_cad, prior, targets[k].radius, no.radius, o,
-                    o.seed, t, res.time_ms);
+    return fit_wall(base, walls[k], view, a_cad, prior, targets[k].radius, o, o.seed, t,
+                    res.time_ms);
   };
   const WallFit main = fit(0);
   res.counts.wall_final = main.wall_final;

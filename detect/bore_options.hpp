@@ -33,11 +33,18 @@ struct BoreOptions {
   // false: the session-1 pipeline (every region point, R as set, full-band iterations), kept as
   // the benchmark's baseline.
   bool cost_bounded = true;
+  // The region is read at the scan stride that leaves about this many of its points (a small
+  // bore's region, within the budget, is read whole); 0: every point (detect/bore_region.hpp).
+  std::size_t region_budget = 16000;
   std::size_t normal_wall_budget = 1200;  // normals near the expected wall (RSF needs ~1000)
   std::size_t normal_plane_budget = 400;  // normals elsewhere in the region (plane fit)
   double normal_neighbours = 60.0;        // points per normal patch aimed at on dense scans
   std::size_t refine_sample = 2000;       // band points the refinement iterates on
-  BoreWalls walls = BoreWalls::kInner;    // kOuter/kBoth: prior.outer_radius (else radius)
+  // A region read at a stride: the final fit takes back the skipped scan points next to each
+  // band point, up to about refine_budget points (full resolution where the band is smaller).
+  bool refine_full_resolution = true;
+  std::size_t refine_budget = 12000;
+  BoreWalls walls = BoreWalls::kInner;  // kOuter/kBoth: prior.outer_radius (else radius)
   // 4.1.1 region of interest and normals.
   double roi_radius_factor = 2.0;  // keep points within this * radius of the expected entrance
   double normal_keep = 1.0;        // share of ROI points that get a normal (thesis: 0.2)

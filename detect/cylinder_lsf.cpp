@@ -52,7 +52,7 @@ struct PointTerm {
 };
 
 bool point_term(const Eigen::Vector3d& q, const Cylinder& c, const Eigen::Vector3d& b1,
-                const Eigen::Vector3d& b2, double delta, PointTerm& t) {
+                const Eigen::Vector3d& b2, double delta, double trim, PointTerm& t) {
   const Eigen::Vector3d d = q - c.point;
   const double h = d.dot(c.axis);
   const Eigen::Vector3d w = d - h * c.axis;
@@ -62,21 +62,59 @@ bool point_term(const Eigen::Vector3d& q, const Cylinder& c, const Eigen::Vector
   t.r = dist - c.radius;
   t.j << -mb1, -mb2, -h * mb1, -h * mb2, -1.0;
   t.weight = delta <= 0.0 || std::abs(t.r) <= delta ? 1.0 : delta / std::abs(t.r);
-  return true;
+  return !(trim > 0.0 && std::abs(t.r) > trim);
 }
 
-// Gauss-Newton system J^T W J and gradient J^T W r.
+// Gauss-Newton system J^T W J and gradient J^T W r: the hot loop of the refinement. Each point
+// in the axis frame (x, y along b1, b2; h along the axis), the 15 distinct entries of the
+// symmetric J^T W J as scalars (no 5x5 outer product per point).
 void normal_equations(std::span<const Eigen::Vector3d> pts, const Cylinder& c, double delta,
-                      Matrix5d& jtj, Vector5d& jtr) {
+                      double trim, Matrix5d& jtj, Vector5d& jtr) {
   const Eigen::Vector3d b1 = c.axis.unitOrthogonal(), b2 = c.axis.cross(b1);
-  jtj.setZero();
-  jtr.setZero();
-  PointTerm t;
+  double a11 = 0, a12 = 0, a13 = 0, a14 = 0, a15 = 0, a22 = 0, a23 = 0, a24 = 0, a25 = 0;
+  double a33 = 0, a34 = 0, a35 = 0, a44 = 0, a45 = 0, a55 = 0;
+  double g1 = 0, g2 = 0, g3 = 0, g4 = 0, g5 = 0;
   for (const auto& q : pts) {
-    if (!point_term(q, c, b1, b2, delta, t)) continue;
-    jtj.noalias() += t.weight * t.j * t.j.transpose();
-    jtr.noalias() += t.weight * t.r * t.j;
+    const Eigen::Vector3d d = q - c.point;
+    const double x = d.dot(b1), y = d.dot(b2), h = d.dot(c.axis);
+    const double dist2 = x * x + y * y;
+    if (dist2 < 1e-24) continue;  // on the axis: no direction, no gradient
+    const double dist = std::sqrt(dist2);
+    const double r = dist - c.radius, ar = std::abs(r);
+    if (trim > 0.0 && ar > trim) continue;
+    const double w = delta <= 0.0 || ar <= delta ? 1.0 : delta / ar;
+    // J = (-m1, -m2, -h m1, -h m2, -1) with m = (x, y) / dist.
+    const double inv = 1.0 / dist;
+    const double m1 = x * inv, m2 = y * inv;
+    const double wm1 = w * m1, wm2 = w * m2, hh = h * h;
+    a11 += wm1 * m1;
+    a12 += wm1 * m2;
+    a22 += wm2 * m2;
+    a13 += wm1 * m1 * h;
+    a14 += wm1 * m2 * h;
+    a24 += wm2 * m2 * h;
+    a33 += wm1 * m1 * hh;
+    a34 += wm1 * m2 * hh;
+    a44 += wm2 * m2 * hh;
+    a15 += wm1;
+    a25 += wm2;
+    a35 += wm1 * h;
+    a45 += wm2 * h;
+    a55 += w;
+    const double wr = w * r;
+    g1 += wr * m1;
+    g2 += wr * m2;
+    g3 += wr * m1 * h;
+    g4 += wr * m2 * h;
+    g5 += wr;
   }
+  a23 = a14;                       // (m2)(m1 h)
+  jtj << a11, a12, a13, a14, a15,  //
+      a12, a22, a23, a24, a25,     //
+      a13, a23, a33, a34, a35,     //
+      a14, a24, a34, a44, a45,     //
+      a15, a25, a35, a45, a55;
+  jtr << -g1, -g2, -g3, -g4, -g5;
 }
 
 // Gradient J^T W r alone: all a steepest-descent step needs (no 5x5 outer products).
@@ -85,7 +123,7 @@ Vector5d gradient(std::span<const Eigen::Vector3d> pts, const Cylinder& c, doubl
   Vector5d g = Vector5d::Zero();
   PointTerm t;
   for (const auto& q : pts) {
-    if (point_term(q, c, b1, b2, delta, t)) g.noalias() += t.weight * t.r * t.j;
+    if (point_term(q, c, b1, b2, delta, 0.0, t)) g.noalias() += t.weight * t.r * t.j;
   }
   return g;
 }
@@ -136,9 +174,25 @@ CylinderLsfResult fit_cylinder_lsf(std::span<const Eigen::Vector3d> pts, const C
   Vector5d jtr;
   for (res.iterations = 0; res.iterations < o.max_iterations; ++res.iterations) {
     if (o.method == LsfMethod::kLevenbergMarquardt) {
-      normal_equations(pts, c, o.huber_delta, jtj, jtr);
+      normal_equations(pts, c, o.huber_delta, o.trim, jtj, jtr);
     } else {
       jtr = gradient(pts, c, o.huber_delta);
+    }
+    if (o.single_unchecked_step && o.method == LsfMethod::kLevenbergMarquardt) {
+      Matrix5d a = jtj;
+      a.diagonal() += lambda * (jtj.diagonal().array() + 1e-9).matrix();
+      const Vector5d d = -a.ldlt().solve(jtr);
+      c = recentre(centroid, apply(c, d));
+      // A step below the step tolerance: at the minimum, no cost to evaluate.
+      const bool small = std::max({d.head<2>().norm(), d.segment<2>(2).norm() * half_length,
+                                   std::abs(d(4))}) < o.step_tolerance;
+      if (small || res.iterations + 1 >= o.max_iterations) {
+        res.cylinder = c;
+        res.converged = small || o.max_iterations == 1;
+        res.iterations += 1;
+        return res;
+      }
+      continue;
     }
     bool improved = false;
     double f_new = f;
@@ -149,13 +203,6 @@ CylinderLsfResult fit_cylinder_lsf(std::span<const Eigen::Vector3d> pts, const C
         a.diagonal() += lambda * (jtj.diagonal().array() + 1e-9).matrix();
         const Vector5d d = -a.ldlt().solve(jtr);
         next = recentre(centroid, apply(c, d));
-        // A Gauss-Newton step below the step tolerance: at the minimum, no cost to evaluate.
-        if (o.single_unchecked_step) {
-          res.cylinder = next;
-          res.converged = true;
-          res.iterations = 1;
-          return res;
-        }
         if (o.step_tolerance > 0.0 && tries == 0 &&
             std::max({d.head<2>().norm(), d.segment<2>(2).norm() * half_length, std::abs(d(4))}) <
                 o.step_tolerance) {

@@ -223,11 +223,21 @@ const std::vector<CssFixture>& css_fixtures() {
   return f;
 }
 
-BoreResult css_run(const CssFixture& f, bool baseline) {
+// The pipelines compared: the default (region read at a stride within its budget), the same
+// reading every region point (the pipeline before the region budget), and session 1's
+// (BoreOptions::cost_bounded = false).
+enum class CssMode { kDefault, kFullRegion, kSession1 };
+
+BoreResult css_run(const sim::SyntheticBoreScan& scan, const BorePrior& prior, CssMode mode) {
   BoreOptions opt;
-  opt.view_dir = f.scan.truth.view_dir;
-  opt.cost_bounded = !baseline;
-  return detect_bore(f.scan.cloud, f.prior, opt);
+  opt.view_dir = scan.truth.view_dir;
+  opt.cost_bounded = mode != CssMode::kSession1;
+  if (mode == CssMode::kFullRegion) opt.region_budget = 0;
+  return detect_bore(scan.cloud, prior, opt);
+}
+
+BoreResult css_run(const CssFixture& f, bool baseline) {
+  return css_run(f.scan, f.prior, baseline ? CssMode::kSession1 : CssMode::kDefault);
 }
 
 void BM_Css(benchmark::State& state) {
@@ -282,38 +292,100 @@ double cpu_ms() {
   return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
 }
 
+// Per-stage medians of the runs' own (steady clock) stage times.
+BoreTimes median_stages(std::vector<BoreTimes> v) {
+  BoreTimes m;
+  const auto med = [&](double BoreTimes::*f) {
+    std::vector<double> x;
+    for (const auto& t : v) x.push_back(t.*f);
+    std::nth_element(x.begin(), x.begin() + x.size() / 2, x.end());
+    m.*f = x[x.size() / 2];
+  };
+  for (auto f : {&BoreTimes::roi, &BoreTimes::normals, &BoreTimes::segmentation, &BoreTimes::rsf,
+                 &BoreTimes::refine, &BoreTimes::entrance, &BoreTimes::total}) {
+    med(f);
+  }
+  return m;
+}
+
 void css_table(int runs) {
-  std::printf("\nCSS density, whole pipeline, %d runs each (thread CPU ms)\n", runs);
-  std::printf("%-9s %6s %6s %7s %7s %9s %9s %7s %7s %7s %7s\n", "case", "points", "roi", "median",
-              "worst", "base med", "base wst", "x med", "x worst", "err mm", "err deg");
+  std::printf(
+      "\nCSS density, whole pipeline, %d runs each (thread CPU ms; 'full': every region\n"
+      "point, the pipeline before the region budget; 's1': session 1's)\n",
+      runs);
+  std::printf("%-9s %6s %6s %7s %7s %8s %8s %7s %7s %8s %7s %7s\n", "case", "points", "roi",
+              "median", "worst", "full med", "s1 med", "x full", "x s1", "x s1 wst", "err mm",
+              "err deg");
   for (const auto& f : css_fixtures()) {
-    double ms[2][2];
+    double ms[3][2];
     BoreResult r;
-    for (int mode = 0; mode < 2; ++mode) {
+    std::vector<BoreTimes> stages;
+    for (int mode = 0; mode < 3; ++mode) {
       std::vector<double> t;
-      const int n = mode == 0 ? runs : std::max(3, runs / 4);
+      const int n = mode == 2 ? std::max(3, runs / 4) : runs;
       for (int i = 0; i < n; ++i) {
         const double t0 = cpu_ms();
-        const BoreResult x = css_run(f, mode == 1);
+        const BoreResult x = css_run(f.scan, f.prior, static_cast<CssMode>(mode));
         t.push_back(cpu_ms() - t0);
-        if (mode == 0) r = x;
+        if (mode == 0) r = x, stages.push_back(x.time_ms);
       }
       std::sort(t.begin(), t.end());
       ms[mode][0] = t[t.size() / 2];
       ms[mode][1] = t.back();
     }
-    std::printf("%-9s %6zu %6zu %7.3f %7.3f %9.2f %9.2f %7.1f %7.1f %7.4f %7.4f\n", f.name.c_str(),
-                r.counts.input, r.counts.roi, ms[0][0], ms[0][1], ms[1][0], ms[1][1],
-                ms[1][0] / ms[0][0], ms[1][1] / ms[0][1],
+    std::printf("%-9s %6zu %6zu %7.3f %7.3f %8.3f %8.2f %7.1f %7.1f %8.1f %7.4f %7.4f\n",
+                f.name.c_str(), r.counts.input, r.counts.roi, ms[0][0], ms[0][1], ms[1][0],
+                ms[2][0], ms[1][0] / ms[0][0], ms[2][0] / ms[0][0], ms[2][1] / ms[0][1],
                 (r.entrance - f.scan.truth.entrance).norm(),
                 std::acos(std::min(1.0, std::abs(r.axis.dot(f.scan.truth.axis)))) * 180.0 /
                     std::numbers::pi);
-    const BoreTimes& s = r.time_ms;
+    const BoreTimes s = median_stages(stages);
     std::printf(
-        "          stages (wall ms, last run): roi %.3f normals %.3f segmentation %.3f "
-        "rsf %.3f refine %.3f; %zu queries, %zu wall, %zu refine points\n",
-        s.roi, s.normals, s.segmentation, s.rsf, s.refine, r.counts.normal_queries, r.counts.wall,
-        r.counts.refine_inliers);
+        "          stages (median wall ms): roi %.3f normals %.3f segmentation %.3f "
+        "rsf %.3f refine %.3f; stride %zu, %zu queries, %zu wall, %zu refine points\n",
+        s.roi, s.normals, s.segmentation, s.rsf, s.refine, r.counts.stride, r.counts.normal_queries,
+        r.counts.wall, r.counts.refine_inliers);
+  }
+}
+
+// Accuracy per CSS case over `seeds` held-out seeds (1001, 1002, ...: never those of the tests
+// or of the timed cases), the three pipelines of CssMode on the same scans: median and worst
+// entrance distance, axis angle and |radius error| against the ground truth.
+void css_accuracy(int seeds) {
+  const char* names[] = {"default", "full region", "session 1"};
+  std::printf("\nCSS density, accuracy over %d held-out seeds (median / worst)\n", seeds);
+  std::printf("%-9s %-12s %17s %17s %17s %5s\n", "case", "pipeline", "entrance mm", "axis deg",
+              "|radius| mm", "found");
+  for (const auto& c : bench::css_bore_cases()) {
+    std::vector<double> e[3], a[3], r[3];
+    int found[3] = {0, 0, 0};
+    for (int s = 0; s < seeds; ++s) {
+      sim::SyntheticBoreOptions so = c.scan;
+      so.seed = 1001 + static_cast<std::uint64_t>(s);
+      const sim::SyntheticBoreScan scan = sim::make_synthetic_bore(so);
+      const BorePrior prior = bench::css_prior(scan.truth);
+      for (int m = 0; m < 3; ++m) {
+        const BoreResult x = css_run(scan, prior, static_cast<CssMode>(m));
+        if (!x.found) continue;
+        ++found[m];
+        e[m].push_back((x.entrance - scan.truth.entrance).norm());
+        a[m].push_back(std::acos(std::min(1.0, std::abs(x.axis.dot(scan.truth.axis)))) * 180.0 /
+                       std::numbers::pi);
+        r[m].push_back(std::abs(x.radius - scan.truth.radius));
+      }
+    }
+    const auto mw = [](std::vector<double> v) {
+      if (v.empty()) return std::pair<double, double>{NAN, NAN};
+      std::sort(v.begin(), v.end());
+      return std::pair<double, double>{v[v.size() / 2], v.back()};
+    };
+    for (int m = 0; m < 3; ++m) {
+      const auto [em, ew] = mw(e[m]);
+      const auto [am, aw] = mw(a[m]);
+      const auto [rm, rw] = mw(r[m]);
+      std::printf("%-9s %-12s %8.4f %8.4f %8.4f %8.4f %8.4f %8.4f %2d/%-2d\n", m == 0 ? c.name : "",
+                  names[m], em, ew, am, aw, rm, rw, found[m], seeds);
+    }
   }
 }
 
@@ -321,19 +393,23 @@ void css_table(int runs) {
 }  // namespace rangefit
 
 int main(int argc, char** argv) {
-  int table_runs = 0;
+  int table_runs = 0, accuracy_seeds = 0;
   for (int i = 1; i < argc; ++i) {
-    if (std::strncmp(argv[i], "--css_table", 11) == 0) {
-      table_runs = argv[i][11] == '=' ? std::atoi(argv[i] + 12) : 40;
-      for (int j = i; j + 1 < argc; ++j) argv[j] = argv[j + 1];
-      --argc;
-      --i;
-    }
+    int* value = nullptr;
+    std::size_t len = 0;
+    if (std::strncmp(argv[i], "--css_table", 11) == 0) value = &table_runs, len = 11;
+    if (std::strncmp(argv[i], "--css_accuracy", 14) == 0) value = &accuracy_seeds, len = 14;
+    if (!value) continue;
+    *value = argv[i][len] == '=' ? std::atoi(argv[i] + len + 1) : (len == 11 ? 40 : 10);
+    for (int j = i; j + 1 < argc; ++j) argv[j] = argv[j + 1];
+    --argc;
+    --i;
   }
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
   if (table_runs > 0) rangefit::css_table(table_runs);
+  if (accuracy_seeds > 0) rangefit::css_accuracy(accuracy_seeds);
   benchmark::Shutdown();
   return 0;
 }
