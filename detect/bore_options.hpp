@@ -38,12 +38,14 @@ struct BoreOptions {
   std::size_t region_budget = 16000;
   std::size_t normal_wall_budget = 1200;  // normals near the expected wall (RSF needs ~1000)
   std::size_t normal_plane_budget = 400;  // normals elsewhere in the region (plane fit)
-  double normal_neighbours = 60.0;        // points per normal patch aimed at on dense scans
+  double normal_neighbours = 40.0;        // points per normal patch aimed at on dense scans
   std::size_t refine_sample = 2000;       // band points the refinement iterates on
-  // A region read at a stride: the final fit takes back the skipped scan points next to each
-  // band point, up to about refine_budget points (full resolution where the band is smaller).
+  // The final fit as Gauss-Newton steps that trim around every new estimate, and, on a region
+  // read at a stride, with the skipped scan points next to each band point taken back, up to
+  // about refine_budget points; false: one step on the band trimmed around the sample's fit
+  // (the pipeline before; biased on a narrow arc).
   bool refine_full_resolution = true;
-  std::size_t refine_budget = 12000;
+  std::size_t refine_budget = 10000;
   BoreWalls walls = BoreWalls::kInner;  // kOuter/kBoth: prior.outer_radius (else radius)
   // 4.1.1 region of interest and normals.
   double roi_radius_factor = 2.0;  // keep points within this * radius of the expected entrance

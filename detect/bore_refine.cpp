@@ -99,7 +99,9 @@ Band collect_band(const RefineInput& in, const Cylinder& start, const BoreOption
 // Every q-th of the scan points skipped after each band point is taken back (q = stride: none),
 // so that about refine_budget points are fitted.
 std::size_t fill_step(const Band& b, std::size_t stride, const BoreOptions& o) {
-  if (b.source.empty() || o.refine_budget <= b.points.size()) return stride;
+  if (b.source.empty() || !o.refine_full_resolution || o.refine_budget <= b.points.size()) {
+    return stride;
+  }
   return std::max<std::size_t>(1, b.points.size() * stride / o.refine_budget + 1);
 }
 
@@ -163,20 +165,22 @@ RefineOutcome refine_wall(const RefineInput& in, const Cylinder& start, const Bo
   const std::size_t q = fill_step(band, in.region->stride, o);
   const int done = out.lsf.iterations;
   std::vector<Eigen::Vector3d> kept;
-  if (q < in.region->stride) {
-    // The full-resolution set (several times the band's points): a narrow arc (a large bore
-    // seen through a strip) leaves its radius and offset poorly determined on the sample, and
-    // a trim made once around the sample's answer would hold the fit there. Gauss-Newton steps
-    // that trim around every new estimate, on the band's wide shell, one pass each.
+  const bool sampled = !sample.empty() && lo.method == LsfMethod::kLevenbergMarquardt;
+  if (sampled && o.refine_full_resolution) {
+    // A narrow arc (a large bore seen through a strip) leaves its radius and offset poorly
+    // determined on the sample (0.1 mm off on a 50 mm bore), and a trim made once around the
+    // sample's answer holds the fit there: Gauss-Newton steps that trim around every new
+    // estimate, on the band's wide shell (with the skipped scan points taken back), one pass
+    // over the points each.
     kept = inliers(in, band, heights, start, o.refine_band, q);
     lo.single_unchecked_step = true;
     lo.trim = limit;
     lo.max_iterations = std::min(lo.max_iterations, 4);
   } else {
     kept = inliers(in, band, heights, out.lsf.cylinder, limit, q);
-    // From the sample's minimum, one Gauss-Newton step on every inlier is the full set's
-    // estimate to first order (the one-step estimator).
-    if (!sample.empty() && lo.method == LsfMethod::kLevenbergMarquardt) {
+    // The pipeline before: from the sample's minimum, one Gauss-Newton step on every inlier
+    // (the one-step estimator).
+    if (sampled) {
       lo.single_unchecked_step = true;
       lo.max_iterations = 1;
     }

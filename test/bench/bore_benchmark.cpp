@@ -223,16 +223,20 @@ const std::vector<CssFixture>& css_fixtures() {
   return f;
 }
 
-// The pipelines compared: the default (region read at a stride within its budget), the same
-// reading every region point (the pipeline before the region budget), and session 1's
-// (BoreOptions::cost_bounded = false).
+// The pipelines compared: the default (region read at a stride within its budget), the one
+// before the region budget (every region point read, one-step refinement, 60-point normal
+// patches: the same results as before), and session 1's (BoreOptions::cost_bounded = false).
 enum class CssMode { kDefault, kFullRegion, kSession1 };
 
 BoreResult css_run(const sim::SyntheticBoreScan& scan, const BorePrior& prior, CssMode mode) {
   BoreOptions opt;
   opt.view_dir = scan.truth.view_dir;
   opt.cost_bounded = mode != CssMode::kSession1;
-  if (mode == CssMode::kFullRegion) opt.region_budget = 0;
+  if (mode == CssMode::kFullRegion) {  // the options before the region budget
+    opt.region_budget = 0;
+    opt.refine_full_resolution = false;
+    opt.normal_neighbours = 60.0;
+  }
   return detect_bore(scan.cloud, prior, opt);
 }
 
