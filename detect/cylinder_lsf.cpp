@@ -137,119 +137,152 @@ Cylinder recentre(const Eigen::Vector3d& m, Cylinder c) {
 
 }  // namespace
 
+namespace {
+
+// The state of a fit between iterations.
+struct Search {
+  Cylinder c;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  double half_length = 0.0;  // of the data along the axis, for the step tolerance
+  double f = -1.0;           // cost at c; < 0: not evaluated yet
+  double lambda = 1e-3;      // Levenberg-Marquardt damping
+  double step = 1e-4;        // steepest descent step length, adapted
+};
+
+// The centroid (the axis point is kept at its foot) and, for the step tolerance, the data's
+// half-length along the axis in the same pass (sqrt(3) sigma: that of evenly spread points).
+void data_extent(std::span<const Eigen::Vector3d> pts, const CylinderLsfOptions& o, Search& s) {
+  if (!(o.step_tolerance > 0.0)) {
+    s.centroid = pca::centroid(pts);
+    return;
+  }
+  double sh = 0.0, shh = 0.0;
+  for (const auto& q : pts) {
+    s.centroid += q;
+    const double h = (q - s.c.point).dot(s.c.axis);
+    sh += h;
+    shh += h * h;
+  }
+  const double n = static_cast<double>(pts.size());
+  s.centroid /= n;
+  s.half_length = std::sqrt(3.0 * std::max(shh / n - (sh / n) * (sh / n), 0.0));
+}
+
+Vector5d damped_step(const Matrix5d& jtj, const Vector5d& jtr, double lambda) {
+  Matrix5d a = jtj;
+  a.diagonal() += lambda * (jtj.diagonal().array() + 1e-9).matrix();
+  return -a.ldlt().solve(jtr);
+}
+
+// How far a step moves the surface: axis shift, tilt times the half-length, radius change.
+double surface_move(const Vector5d& d, double half_length) {
+  return std::max({d.head<2>().norm(), d.segment<2>(2).norm() * half_length, std::abs(d(4))});
+}
+
+enum class Outcome { kImproved, kConverged, kStuck };
+
+// One Levenberg-Marquardt iteration's damping search: a cheaper cost or, with the step
+// tolerance, a first step too small to matter (at the minimum: no cost to evaluate).
+Outcome lm_search(std::span<const Eigen::Vector3d> pts, const CylinderLsfOptions& o,
+                  const Matrix5d& jtj, const Vector5d& jtr, Search& s, Cylinder& next,
+                  double& f_new) {
+  for (int tries = 0; tries < 10; ++tries) {
+    const Vector5d d = damped_step(jtj, jtr, s.lambda);
+    next = recentre(s.centroid, apply(s.c, d));
+    if (o.step_tolerance > 0.0 && tries == 0 && surface_move(d, s.half_length) < o.step_tolerance) {
+      s.c = next;
+      return Outcome::kConverged;
+    }
+    if (s.f < 0.0) s.f = cost(pts, s.c, o.huber_delta);
+    f_new = cost(pts, next, o.huber_delta);
+    const bool improved = f_new < s.f;
+    s.lambda = improved ? std::max(s.lambda / 3.0, 1e-12) : s.lambda * 4.0;
+    if (improved) return Outcome::kImproved;
+  }
+  return Outcome::kStuck;
+}
+
+// Steepest descent with a backtracking step, as the thesis's baseline (4.2.4).
+Outcome sd_search(std::span<const Eigen::Vector3d> pts, const CylinderLsfOptions& o,
+                  const Vector5d& jtr, Search& s, Cylinder& next, double& f_new) {
+  if (s.f < 0.0) s.f = cost(pts, s.c, o.huber_delta);
+  for (int tries = 0; tries < 20; ++tries) {
+    next = recentre(s.centroid, apply(s.c, -s.step * jtr));
+    f_new = cost(pts, next, o.huber_delta);
+    const bool improved = f_new < s.f;
+    s.step = improved ? s.step * 1.5 : s.step * 0.5;
+    if (improved) return Outcome::kImproved;
+  }
+  return Outcome::kStuck;
+}
+
+// Takes the improved step; true when it ends the fit (relative decrease or surface move below
+// the tolerances).
+bool accept(const Cylinder& next, double f_new, const CylinderLsfOptions& o, Search& s) {
+  const double decrease = (s.f - f_new) / std::max(s.f, 1e-300);
+  const Eigen::Vector3d shift = next.point - s.c.point;
+  const double moved =
+      std::max({(shift - shift.dot(s.c.axis) * s.c.axis).norm(),
+                (next.axis - s.c.axis).norm() * s.half_length, std::abs(next.radius - s.c.radius)});
+  s.c = next;
+  s.f = f_new;
+  return decrease < o.tolerance || moved < o.step_tolerance;
+}
+
+}  // namespace
+
 CylinderLsfResult fit_cylinder_lsf(std::span<const Eigen::Vector3d> pts, const Cylinder& initial,
                                    const CylinderLsfOptions& o) {
   CylinderLsfResult res;
   res.cylinder = initial;
   if (pts.size() < 5 || !(initial.radius > 0.0) || !(initial.axis.norm() > 0.0)) return res;
-  Cylinder c = initial;
-  c.axis.normalize();
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  double half_length = 0.0;  // of the data along the axis, for the step tolerance
-  if (o.step_tolerance > 0.0) {
-    // One pass: the centroid and the spread along the axis (sqrt(3) sigma: the half-length of
-    // evenly spread points).
-    double sh = 0.0, shh = 0.0;
-    for (const auto& q : pts) {
-      centroid += q;
-      const double h = (q - c.point).dot(c.axis);
-      sh += h;
-      shh += h * h;
-    }
-    const double n = static_cast<double>(pts.size());
-    centroid /= n;
-    half_length = std::sqrt(3.0 * std::max(shh / n - (sh / n) * (sh / n), 0.0));
-  } else {
-    centroid = pca::centroid(pts);
-  }
-  c = recentre(centroid, c);
+  Search s;
+  s.c = initial;
+  s.c.axis.normalize();
+  data_extent(pts, o, s);
+  s.c = recentre(s.centroid, s.c);
   // The starting cost only once a step has to be judged: a fit that starts at its minimum
   // (the polish of a converged fit) ends on the first step, under the step tolerance.
-  double f = o.step_tolerance > 0.0 ? -1.0 : cost(pts, c, o.huber_delta);
+  if (!(o.step_tolerance > 0.0)) s.f = cost(pts, s.c, o.huber_delta);
   // The unchecked step is a Gauss-Newton step: damping would shorten it along the poorly
   // determined directions (a narrow arc's radius and offset), which it has to cross in one go.
-  double lambda = o.single_unchecked_step ? 1e-12 : 1e-3;
-  double step = 1e-4;  // steepest descent step length, adapted
+  if (o.single_unchecked_step) s.lambda = 1e-12;
+  const bool lm = o.method == LsfMethod::kLevenbergMarquardt;
   Matrix5d jtj;
   Vector5d jtr;
   for (res.iterations = 0; res.iterations < o.max_iterations; ++res.iterations) {
-    if (o.method == LsfMethod::kLevenbergMarquardt) {
-      normal_equations(pts, c, o.huber_delta, o.trim, jtj, jtr);
+    if (lm) {
+      normal_equations(pts, s.c, o.huber_delta, o.trim, jtj, jtr);
     } else {
-      jtr = gradient(pts, c, o.huber_delta);
+      jtr = gradient(pts, s.c, o.huber_delta);
     }
-    if (o.single_unchecked_step && o.method == LsfMethod::kLevenbergMarquardt) {
-      Matrix5d a = jtj;
-      a.diagonal() += lambda * (jtj.diagonal().array() + 1e-9).matrix();
-      const Vector5d d = -a.ldlt().solve(jtr);
-      c = recentre(centroid, apply(c, d));
-      // A step below the step tolerance: at the minimum, no cost to evaluate.
-      const bool small = std::max({d.head<2>().norm(), d.segment<2>(2).norm() * half_length,
-                                   std::abs(d(4))}) < o.step_tolerance;
+    if (o.single_unchecked_step && lm) {
+      const Vector5d d = damped_step(jtj, jtr, s.lambda);
+      s.c = recentre(s.centroid, apply(s.c, d));
+      const bool small = surface_move(d, s.half_length) < o.step_tolerance;
       if (small || res.iterations + 1 >= o.max_iterations) {
-        res.cylinder = c;
+        res.cylinder = s.c;
         res.converged = small || o.max_iterations == 1;
         res.iterations += 1;
-        return res;
+        return res;  // no rms: the polish's caller does not need it
       }
       continue;
     }
-    bool improved = false;
-    double f_new = f;
-    Cylinder next = c;
-    if (o.method == LsfMethod::kLevenbergMarquardt) {
-      for (int tries = 0; tries < 10 && !improved; ++tries) {
-        Matrix5d a = jtj;
-        a.diagonal() += lambda * (jtj.diagonal().array() + 1e-9).matrix();
-        const Vector5d d = -a.ldlt().solve(jtr);
-        next = recentre(centroid, apply(c, d));
-        if (o.step_tolerance > 0.0 && tries == 0 &&
-            std::max({d.head<2>().norm(), d.segment<2>(2).norm() * half_length, std::abs(d(4))}) <
-                o.step_tolerance) {
-          c = next;
-          res.converged = true;
-          break;
-        }
-        if (f < 0.0) f = cost(pts, c, o.huber_delta);
-        f_new = cost(pts, next, o.huber_delta);
-        improved = f_new < f;
-        lambda = improved ? std::max(lambda / 3.0, 1e-12) : lambda * 4.0;
-      }
-    } else {
-      // Steepest descent with a backtracking step, as the thesis's baseline (4.2.4).
-      if (f < 0.0) f = cost(pts, c, o.huber_delta);
-      for (int tries = 0; tries < 20 && !improved; ++tries) {
-        next = recentre(centroid, apply(c, -step * jtr));
-        f_new = cost(pts, next, o.huber_delta);
-        improved = f_new < f;
-        step = improved ? step * 1.5 : step * 0.5;
-      }
-    }
+    Cylinder next = s.c;
+    double f_new = s.f;
+    const Outcome out =
+        lm ? lm_search(pts, o, jtj, jtr, s, next, f_new) : sd_search(pts, o, jtr, s, next, f_new);
+    // No descent step left: at a minimum within precision.
+    res.converged = out != Outcome::kImproved || accept(next, f_new, o, s);
     if (res.converged) {
-      ++res.iterations;
-      break;
-    }
-    if (!improved) {
-      res.converged = true;  // no descent step left: at a minimum within precision
-      break;
-    }
-    const double decrease = (f - f_new) / std::max(f, 1e-300);
-    const Eigen::Vector3d shift = next.point - c.point;
-    const double moved =
-        std::max({(shift - shift.dot(c.axis) * c.axis).norm(),
-                  (next.axis - c.axis).norm() * half_length, std::abs(next.radius - c.radius)});
-    c = next;
-    f = f_new;
-    if (decrease < o.tolerance || moved < o.step_tolerance) {
-      res.converged = true;
-      ++res.iterations;
+      if (out != Outcome::kStuck) ++res.iterations;
       break;
     }
   }
   double ss = 0.0;
-  for (const auto& q : pts) ss += std::pow(radial(q, c) - c.radius, 2);
+  for (const auto& q : pts) ss += std::pow(radial(q, s.c) - s.c.radius, 2);
   res.rms = std::sqrt(ss / static_cast<double>(pts.size()));
-  res.cylinder = c;
+  res.cylinder = s.c;
   return res;
 }
 
