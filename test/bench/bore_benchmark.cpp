@@ -1,11 +1,17 @@
-// Bore detection speed. BM_Css and --css_table: the hardest realistic input, scans at the CSS's
-// real density with double coverage (bench::css_bore_cases: a 4 mm blind bore, 12 mm, 25 mm with
-// a 55,000-point region, 50 mm seen through a strip), the whole pipeline against the previous one
-// (BoreOptions::cost_bounded = false) in the same run. Dense regions are where a pipeline whose
-// cost follows the point count is slowest, and the small bore is where a budgeted subset could
-// lose the few wall points it has. The table prints median and worst thread-CPU time per case,
-// the speed-up and the errors against the ground truth:
+// Bore detection speed. BM_Css, --css_table and --css_accuracy: the hardest realistic input,
+// scans at the CSS's real density with double coverage (bench::css_bore_cases: a 4 mm blind
+// bore whose few wall points a budget must not lose, 12 mm, 25 mm with a 55,000-point region,
+// 50 mm seen through a strip, whose narrow arc leaves radius and offset barely determined),
+// 60k-94k points per scan: where a pipeline whose cost follows the point count is slowest. The
+// default pipeline (region read at a stride within BoreOptions::region_budget, refinement
+// polished on the full-resolution band) against, in the same run, the pipeline before the
+// region budget ('full': every region point read, one-step refinement; its results are those of
+// that pipeline) and session 1's (cost_bounded = false). The table prints median and worst
+// thread-CPU time per case, the speed-ups, the stage times and the errors against the truth;
+// --css_accuracy=N the median and worst entrance, axis and radius errors of the three
+// pipelines over N held-out seeds (1001...):
 //   taskset -c 0 build/test/bench/bore_benchmark --benchmark_filter=BM_Css --css_table=40
+//   taskset -c 0 build/test/bench/bore_benchmark --benchmark_filter=NONE --css_accuracy=10
 // The rest: a ~75,000-point scan with a ~7,500-point region (5 mm bore, 0.2 mm spacing): the
 // whole pipeline, the RSF step and the LSF baselines in one run, each with its accuracy against
 // the ground truth as counters (axis_deg, radius_mm, entrance_mm); the session-1 k-d tree
@@ -201,9 +207,9 @@ void BM_LsfLevenbergMarquardtFromCad(benchmark::State& s) {
 }
 
 // The CSS-density cases of bench::css_bore_cases() (see there why they are the hardest
-// realistic input): the whole pipeline per case, cost-bounded (mode 0, the default) and the
-// session-1 pipeline (mode 1, BoreOptions::cost_bounded = false) as the in-run baseline, with
-// the accuracy counters. --css_table prints median, worst and the ratios per case after the run.
+// realistic input): the whole pipeline per case in each CssMode (0 the default, 1 the pipeline
+// before the region budget, 2 session 1's) with the accuracy counters. --css_table prints median,
+// worst and the ratios per case after the run.
 struct CssFixture {
   std::string name;
   sim::SyntheticBoreScan scan;
@@ -240,17 +246,14 @@ BoreResult css_run(const sim::SyntheticBoreScan& scan, const BorePrior& prior, C
   return detect_bore(scan.cloud, prior, opt);
 }
 
-BoreResult css_run(const CssFixture& f, bool baseline) {
-  return css_run(f.scan, f.prior, baseline ? CssMode::kSession1 : CssMode::kDefault);
-}
-
 void BM_Css(benchmark::State& state) {
   const CssFixture& f = css_fixtures()[static_cast<std::size_t>(state.range(0))];
-  const bool baseline = state.range(1) != 0;
-  state.SetLabel(f.name + (baseline ? " baseline" : ""));
+  const auto mode = static_cast<CssMode>(state.range(1));
+  const char* labels[] = {"", " full region", " session 1"};
+  state.SetLabel(f.name + labels[state.range(1)]);
   BoreResult r;
   for (auto _ : state) {
-    r = css_run(f, baseline);
+    r = css_run(f.scan, f.prior, mode);
     benchmark::DoNotOptimize(r);
   }
   const auto& t = f.scan.truth;
@@ -267,7 +270,7 @@ void BM_Css(benchmark::State& state) {
   state.counters["refine_ms"] = r.time_ms.refine;
 }
 BENCHMARK(BM_Css)
-    ->ArgsProduct({{0, 1, 2, 3}, {0, 1}})
+    ->ArgsProduct({{0, 1, 2, 3}, {0, 1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->ComputeStatistics("max", [](const std::vector<double>& v) {
       return *std::max_element(v.begin(), v.end());
