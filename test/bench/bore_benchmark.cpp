@@ -12,6 +12,8 @@
 // pipelines over N held-out seeds (1001...):
 //   taskset -c 0 build/test/bench/bore_benchmark --benchmark_filter=BM_Css --css_table=40
 //   taskset -c 0 build/test/bench/bore_benchmark --benchmark_filter=NONE --css_accuracy=10
+// --thesis_tables=N: the thesis's tables 4.1-4.4 (RSF samples vs accuracy, RSF vs LSF circle
+// per resolution, pipeline time per resolution) beside its figures (bore_thesis_tables.hpp).
 // The rest: a ~75,000-point scan with a ~7,500-point region (5 mm bore, 0.2 mm spacing): the
 // whole pipeline, the RSF step and the LSF baselines in one run, each with its accuracy against
 // the ground truth as counters (axis_deg, radius_mm, entrance_mm); the session-1 k-d tree
@@ -36,6 +38,7 @@
 #include "detect/normals.hpp"
 #include "sim/synthetic_bore.hpp"
 #include "test/bench/bore_bench_scan.hpp"
+#include "test/bench/bore_thesis_tables.hpp"
 
 namespace rangefit {
 namespace {
@@ -355,6 +358,14 @@ void css_table(int runs) {
   }
 }
 
+// Tables 4.1-4.4 of the thesis on the benchmark scan (test/bench/bore_thesis_tables.hpp).
+void thesis_tables(int trials) {
+  const Fixture& f = fixture(false);
+  bench::thesis_tables_41_42(f.wall, f.wall_normals, f.prior, f.scan.truth, trials);
+  bench::thesis_table_43(f.wall, f.wall_normals, f.prior, trials);
+  bench::thesis_table_44(std::max(3, trials / 10));
+}
+
 // Accuracy per CSS case over `seeds` held-out seeds (1001, 1002, ...: never those of the tests
 // or of the timed cases), the three pipelines of CssMode on the same scans: median and worst
 // entrance distance, axis angle and |radius error| against the ground truth.
@@ -400,14 +411,18 @@ void css_accuracy(int seeds) {
 }  // namespace rangefit
 
 int main(int argc, char** argv) {
-  int table_runs = 0, accuracy_seeds = 0;
+  int table_runs = 0, accuracy_seeds = 0, thesis_trials = 0;
   for (int i = 1; i < argc; ++i) {
     int* value = nullptr;
     std::size_t len = 0;
     if (std::strncmp(argv[i], "--css_table", 11) == 0) value = &table_runs, len = 11;
     if (std::strncmp(argv[i], "--css_accuracy", 14) == 0) value = &accuracy_seeds, len = 14;
+    if (std::strncmp(argv[i], "--thesis_tables", 15) == 0) value = &thesis_trials, len = 15;
     if (!value) continue;
-    *value = argv[i][len] == '=' ? std::atoi(argv[i] + len + 1) : (len == 11 ? 40 : 10);
+    *value = argv[i][len] == '=' ? std::atoi(argv[i] + len + 1)
+                                 : (len == 11   ? 40
+                                    : len == 14 ? 10
+                                                : 100);
     for (int j = i; j + 1 < argc; ++j) argv[j] = argv[j + 1];
     --argc;
     --i;
@@ -417,6 +432,7 @@ int main(int argc, char** argv) {
   benchmark::RunSpecifiedBenchmarks();
   if (table_runs > 0) rangefit::css_table(table_runs);
   if (accuracy_seeds > 0) rangefit::css_accuracy(accuracy_seeds);
+  if (thesis_trials > 0) rangefit::thesis_tables(thesis_trials);
   benchmark::Shutdown();
   return 0;
 }
