@@ -33,11 +33,20 @@ struct BoreOptions {
   // false: the session-1 pipeline (every region point, R as set, full-band iterations), kept as
   // the benchmark's baseline.
   bool cost_bounded = true;
+  // The region is read at the scan stride that leaves about this many of its points (a small
+  // bore's region, within the budget, is read whole); 0: every point (detect/bore_region.hpp).
+  std::size_t region_budget = 16000;
   std::size_t normal_wall_budget = 1200;  // normals near the expected wall (RSF needs ~1000)
   std::size_t normal_plane_budget = 400;  // normals elsewhere in the region (plane fit)
-  double normal_neighbours = 60.0;        // points per normal patch aimed at on dense scans
+  double normal_neighbours = 40.0;        // points per normal patch aimed at on dense scans
   std::size_t refine_sample = 2000;       // band points the refinement iterates on
-  BoreWalls walls = BoreWalls::kInner;    // kOuter/kBoth: prior.outer_radius (else radius)
+  // The final fit as Gauss-Newton steps that trim around every new estimate, and, on a region
+  // read at a stride, with the skipped scan points next to each band point taken back, up to
+  // about refine_budget points; false: one step on the band trimmed around the sample's fit
+  // (the pipeline before; biased on a narrow arc).
+  bool refine_full_resolution = true;
+  std::size_t refine_budget = 10000;
+  BoreWalls walls = BoreWalls::kInner;  // kOuter/kBoth: prior.outer_radius (else radius)
   // 4.1.1 region of interest and normals.
   double roi_radius_factor = 2.0;  // keep points within this * radius of the expected entrance
   double normal_keep = 1.0;        // share of ROI points that get a normal (thesis: 0.2)
@@ -67,7 +76,7 @@ struct BoreOptions {
   // Beyond: the refinement takes every region point in the band that lies deeper than
   // refine_plane_margin below the entrance plane; false: only the segmented wall points.
   bool refine_all_region_points = true;
-  double refine_plane_margin = 0.5;  // mm
+  double refine_plane_margin = 0.2;  // mm (3.3 sigma of 0.06 mm noise on a sharp rim)
   double refine_above_wall = 0.5;    // share of R above the wall (98th pct height) still taken
   CylinderLsfOptions lsf;
   std::uint64_t seed = 1;

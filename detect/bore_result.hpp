@@ -21,8 +21,9 @@ std::string_view to_string(BoreReason r);
 
 struct BoreCounts {
   std::size_t input = 0;           // points in the cloud
-  std::size_t non_finite = 0;      // NaN/Inf points skipped
-  std::size_t roi = 0;             // points in the region of interest
+  std::size_t non_finite = 0;      // NaN/Inf points skipped (among those read)
+  std::size_t stride = 1;          // every stride-th scan point was read (a dense region)
+  std::size_t roi = 0;             // points in the region of interest (read ones x stride)
   std::size_t normal_queries = 0;  // after sub-sampling
   std::size_t normals = 0;         // normals kept by eq. 4.4
   std::size_t plane = 0;           // plane points (eq. 4.5), before the robust refit

@@ -22,10 +22,14 @@ struct CylinderLsfOptions {
   // Beyond: stop when no point of the surface moves more than this (mm) in a step (axis shift,
   // tilt times the data's axial half-length, radius change); 0: off.
   double step_tolerance = 0.0;
-  // Beyond: one Levenberg-Marquardt step taken without checking the cost, and no rms: the
-  // polish of a fit that starts at the minimum of a sample of the same points (two passes
-  // over the points instead of five).
+  // Beyond: Gauss-Newton steps taken without checking the cost (up to max_iterations, ending
+  // early on the step tolerance), and no rms: the polish of a fit that starts near the minimum
+  // of a sample of the same points (one pass over the points per step instead of three).
   bool single_unchecked_step = false;
+  // Beyond: > 0, points whose residual is beyond this (mm) get no weight in a step, so a
+  // trimmed fit selects its inliers again around every new estimate (a trim made once around
+  // a start that is off biases the fit toward that start); 0: every point counts.
+  double trim = 0.0;
 };
 
 struct CylinderLsfResult {

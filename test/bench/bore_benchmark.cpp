@@ -1,11 +1,19 @@
-// Bore detection speed. BM_Css and --css_table: the hardest realistic input, scans at the CSS's
-// real density with double coverage (bench::css_bore_cases: a 4 mm blind bore, 12 mm, 25 mm with
-// a 55,000-point region, 50 mm seen through a strip), the whole pipeline against the previous one
-// (BoreOptions::cost_bounded = false) in the same run. Dense regions are where a pipeline whose
-// cost follows the point count is slowest, and the small bore is where a budgeted subset could
-// lose the few wall points it has. The table prints median and worst thread-CPU time per case,
-// the speed-up and the errors against the ground truth:
+// Bore detection speed. BM_Css, --css_table and --css_accuracy: the hardest realistic input,
+// scans at the CSS's real density with double coverage (bench::css_bore_cases: a 4 mm blind
+// bore whose few wall points a budget must not lose, 12 mm, 25 mm with a 55,000-point region,
+// 50 mm seen through a strip, whose narrow arc leaves radius and offset barely determined),
+// 60k-94k points per scan: where a pipeline whose cost follows the point count is slowest. The
+// default pipeline (region read at a stride within BoreOptions::region_budget, refinement
+// polished on the full-resolution band) against, in the same run, the pipeline before the
+// region budget ('full': every region point read, one-step refinement; its results are those of
+// that pipeline) and session 1's (cost_bounded = false). The table prints median and worst
+// thread-CPU time per case, the speed-ups, the stage times and the errors against the truth;
+// --css_accuracy=N the median and worst entrance, axis and radius errors of the three
+// pipelines over N held-out seeds (1001...):
 //   taskset -c 0 build/test/bench/bore_benchmark --benchmark_filter=BM_Css --css_table=40
+//   taskset -c 0 build/test/bench/bore_benchmark --benchmark_filter=NONE --css_accuracy=10
+// --thesis_tables=N: the thesis's tables 4.1-4.4 (RSF samples vs accuracy, RSF vs LSF circle
+// per resolution, pipeline time per resolution) beside its figures (bore_thesis_tables.hpp).
 // The rest: a ~75,000-point scan with a ~7,500-point region (5 mm bore, 0.2 mm spacing): the
 // whole pipeline, the RSF step and the LSF baselines in one run, each with its accuracy against
 // the ground truth as counters (axis_deg, radius_mm, entrance_mm); the session-1 k-d tree
@@ -30,6 +38,7 @@
 #include "detect/normals.hpp"
 #include "sim/synthetic_bore.hpp"
 #include "test/bench/bore_bench_scan.hpp"
+#include "test/bench/bore_thesis_tables.hpp"
 
 namespace rangefit {
 namespace {
@@ -201,9 +210,9 @@ void BM_LsfLevenbergMarquardtFromCad(benchmark::State& s) {
 }
 
 // The CSS-density cases of bench::css_bore_cases() (see there why they are the hardest
-// realistic input): the whole pipeline per case, cost-bounded (mode 0, the default) and the
-// session-1 pipeline (mode 1, BoreOptions::cost_bounded = false) as the in-run baseline, with
-// the accuracy counters. --css_table prints median, worst and the ratios per case after the run.
+// realistic input): the whole pipeline per case in each CssMode (0 the default, 1 the pipeline
+// before the region budget, 2 session 1's) with the accuracy counters. --css_table prints median,
+// worst and the ratios per case after the run.
 struct CssFixture {
   std::string name;
   sim::SyntheticBoreScan scan;
@@ -223,20 +232,31 @@ const std::vector<CssFixture>& css_fixtures() {
   return f;
 }
 
-BoreResult css_run(const CssFixture& f, bool baseline) {
+// The pipelines compared: the default (region read at a stride within its budget), the one
+// before the region budget (every region point read, one-step refinement, 60-point normal
+// patches: the same results as before), and session 1's (BoreOptions::cost_bounded = false).
+enum class CssMode { kDefault, kFullRegion, kSession1 };
+
+BoreResult css_run(const sim::SyntheticBoreScan& scan, const BorePrior& prior, CssMode mode) {
   BoreOptions opt;
-  opt.view_dir = f.scan.truth.view_dir;
-  opt.cost_bounded = !baseline;
-  return detect_bore(f.scan.cloud, f.prior, opt);
+  opt.view_dir = scan.truth.view_dir;
+  opt.cost_bounded = mode != CssMode::kSession1;
+  if (mode == CssMode::kFullRegion) {  // the options before the region budget
+    opt.region_budget = 0;
+    opt.refine_full_resolution = false;
+    opt.normal_neighbours = 60.0;
+  }
+  return detect_bore(scan.cloud, prior, opt);
 }
 
 void BM_Css(benchmark::State& state) {
   const CssFixture& f = css_fixtures()[static_cast<std::size_t>(state.range(0))];
-  const bool baseline = state.range(1) != 0;
-  state.SetLabel(f.name + (baseline ? " baseline" : ""));
+  const auto mode = static_cast<CssMode>(state.range(1));
+  const char* labels[] = {"", " full region", " session 1"};
+  state.SetLabel(f.name + labels[state.range(1)]);
   BoreResult r;
   for (auto _ : state) {
-    r = css_run(f, baseline);
+    r = css_run(f.scan, f.prior, mode);
     benchmark::DoNotOptimize(r);
   }
   const auto& t = f.scan.truth;
@@ -253,7 +273,7 @@ void BM_Css(benchmark::State& state) {
   state.counters["refine_ms"] = r.time_ms.refine;
 }
 BENCHMARK(BM_Css)
-    ->ArgsProduct({{0, 1, 2, 3}, {0, 1}})
+    ->ArgsProduct({{0, 1, 2, 3}, {0, 1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->ComputeStatistics("max", [](const std::vector<double>& v) {
       return *std::max_element(v.begin(), v.end());
@@ -282,38 +302,108 @@ double cpu_ms() {
   return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
 }
 
+// Per-stage medians of the runs' own (steady clock) stage times.
+BoreTimes median_stages(std::vector<BoreTimes> v) {
+  BoreTimes m;
+  const auto med = [&](double BoreTimes::*f) {
+    std::vector<double> x;
+    for (const auto& t : v) x.push_back(t.*f);
+    std::nth_element(x.begin(), x.begin() + x.size() / 2, x.end());
+    m.*f = x[x.size() / 2];
+  };
+  for (auto f : {&BoreTimes::roi, &BoreTimes::normals, &BoreTimes::segmentation, &BoreTimes::rsf,
+                 &BoreTimes::refine, &BoreTimes::entrance, &BoreTimes::total}) {
+    med(f);
+  }
+  return m;
+}
+
 void css_table(int runs) {
-  std::printf("\nCSS density, whole pipeline, %d runs each (thread CPU ms)\n", runs);
-  std::printf("%-9s %6s %6s %7s %7s %9s %9s %7s %7s %7s %7s\n", "case", "points", "roi", "median",
-              "worst", "base med", "base wst", "x med", "x worst", "err mm", "err deg");
+  std::printf(
+      "\nCSS density, whole pipeline, %d runs each (thread CPU ms; 'full': every region\n"
+      "point, the pipeline before the region budget; 's1': session 1's)\n",
+      runs);
+  std::printf("%-9s %6s %6s %7s %7s %8s %8s %7s %7s %8s %7s %7s\n", "case", "points", "roi",
+              "median", "worst", "full med", "s1 med", "x full", "x s1", "x s1 wst", "err mm",
+              "err deg");
   for (const auto& f : css_fixtures()) {
-    double ms[2][2];
+    double ms[3][2];
     BoreResult r;
-    for (int mode = 0; mode < 2; ++mode) {
+    std::vector<BoreTimes> stages;
+    for (int mode = 0; mode < 3; ++mode) {
       std::vector<double> t;
-      const int n = mode == 0 ? runs : std::max(3, runs / 4);
+      const int n = mode == 2 ? std::max(3, runs / 4) : runs;
       for (int i = 0; i < n; ++i) {
         const double t0 = cpu_ms();
-        const BoreResult x = css_run(f, mode == 1);
+        const BoreResult x = css_run(f.scan, f.prior, static_cast<CssMode>(mode));
         t.push_back(cpu_ms() - t0);
-        if (mode == 0) r = x;
+        if (mode == 0) r = x, stages.push_back(x.time_ms);
       }
       std::sort(t.begin(), t.end());
       ms[mode][0] = t[t.size() / 2];
       ms[mode][1] = t.back();
     }
-    std::printf("%-9s %6zu %6zu %7.3f %7.3f %9.2f %9.2f %7.1f %7.1f %7.4f %7.4f\n", f.name.c_str(),
-                r.counts.input, r.counts.roi, ms[0][0], ms[0][1], ms[1][0], ms[1][1],
-                ms[1][0] / ms[0][0], ms[1][1] / ms[0][1],
+    std::printf("%-9s %6zu %6zu %7.3f %7.3f %8.3f %8.2f %7.1f %7.1f %8.1f %7.4f %7.4f\n",
+                f.name.c_str(), r.counts.input, r.counts.roi, ms[0][0], ms[0][1], ms[1][0],
+                ms[2][0], ms[1][0] / ms[0][0], ms[2][0] / ms[0][0], ms[2][1] / ms[0][1],
                 (r.entrance - f.scan.truth.entrance).norm(),
                 std::acos(std::min(1.0, std::abs(r.axis.dot(f.scan.truth.axis)))) * 180.0 /
                     std::numbers::pi);
-    const BoreTimes& s = r.time_ms;
+    const BoreTimes s = median_stages(stages);
     std::printf(
-        "          stages (wall ms, last run): roi %.3f normals %.3f segmentation %.3f "
-        "rsf %.3f refine %.3f; %zu queries, %zu wall, %zu refine points\n",
-        s.roi, s.normals, s.segmentation, s.rsf, s.refine, r.counts.normal_queries, r.counts.wall,
-        r.counts.refine_inliers);
+        "          stages (median wall ms): roi %.3f normals %.3f segmentation %.3f "
+        "rsf %.3f refine %.3f; stride %zu, %zu queries, %zu wall, %zu refine points\n",
+        s.roi, s.normals, s.segmentation, s.rsf, s.refine, r.counts.stride, r.counts.normal_queries,
+        r.counts.wall, r.counts.refine_inliers);
+  }
+}
+
+// Tables 4.1-4.4 of the thesis on the benchmark scan (test/bench/bore_thesis_tables.hpp).
+void thesis_tables(int trials) {
+  const Fixture& f = fixture(false);
+  bench::thesis_tables_41_42(f.wall, f.wall_normals, f.prior, f.scan.truth, trials);
+  bench::thesis_table_43(f.wall, f.wall_normals, f.prior, trials);
+  bench::thesis_table_44(std::max(3, trials / 10));
+}
+
+// Accuracy per CSS case over `seeds` held-out seeds (1001, 1002, ...: never those of the tests
+// or of the timed cases), the three pipelines of CssMode on the same scans: median and worst
+// entrance distance, axis angle and |radius error| against the ground truth.
+void css_accuracy(int seeds) {
+  const char* names[] = {"default", "full region", "session 1"};
+  std::printf("\nCSS density, accuracy over %d held-out seeds (median / worst)\n", seeds);
+  std::printf("%-9s %-12s %17s %17s %17s %5s\n", "case", "pipeline", "entrance mm", "axis deg",
+              "|radius| mm", "found");
+  for (const auto& c : bench::css_bore_cases()) {
+    std::vector<double> e[3], a[3], r[3];
+    int found[3] = {0, 0, 0};
+    for (int s = 0; s < seeds; ++s) {
+      sim::SyntheticBoreOptions so = c.scan;
+      so.seed = 1001 + static_cast<std::uint64_t>(s);
+      const sim::SyntheticBoreScan scan = sim::make_synthetic_bore(so);
+      const BorePrior prior = bench::css_prior(scan.truth);
+      for (int m = 0; m < 3; ++m) {
+        const BoreResult x = css_run(scan, prior, static_cast<CssMode>(m));
+        if (!x.found) continue;
+        ++found[m];
+        e[m].push_back((x.entrance - scan.truth.entrance).norm());
+        a[m].push_back(std::acos(std::min(1.0, std::abs(x.axis.dot(scan.truth.axis)))) * 180.0 /
+                       std::numbers::pi);
+        r[m].push_back(std::abs(x.radius - scan.truth.radius));
+      }
+    }
+    const auto mw = [](std::vector<double> v) {
+      if (v.empty()) return std::pair<double, double>{NAN, NAN};
+      std::sort(v.begin(), v.end());
+      return std::pair<double, double>{v[v.size() / 2], v.back()};
+    };
+    for (int m = 0; m < 3; ++m) {
+      const auto [em, ew] = mw(e[m]);
+      const auto [am, aw] = mw(a[m]);
+      const auto [rm, rw] = mw(r[m]);
+      std::printf("%-9s %-12s %8.4f %8.4f %8.4f %8.4f %8.4f %8.4f %2d/%-2d\n", m == 0 ? c.name : "",
+                  names[m], em, ew, am, aw, rm, rw, found[m], seeds);
+    }
   }
 }
 
@@ -321,19 +411,28 @@ void css_table(int runs) {
 }  // namespace rangefit
 
 int main(int argc, char** argv) {
-  int table_runs = 0;
+  int table_runs = 0, accuracy_seeds = 0, thesis_trials = 0;
   for (int i = 1; i < argc; ++i) {
-    if (std::strncmp(argv[i], "--css_table", 11) == 0) {
-      table_runs = argv[i][11] == '=' ? std::atoi(argv[i] + 12) : 40;
-      for (int j = i; j + 1 < argc; ++j) argv[j] = argv[j + 1];
-      --argc;
-      --i;
-    }
+    int* value = nullptr;
+    std::size_t len = 0;
+    if (std::strncmp(argv[i], "--css_table", 11) == 0) value = &table_runs, len = 11;
+    if (std::strncmp(argv[i], "--css_accuracy", 14) == 0) value = &accuracy_seeds, len = 14;
+    if (std::strncmp(argv[i], "--thesis_tables", 15) == 0) value = &thesis_trials, len = 15;
+    if (!value) continue;
+    *value = argv[i][len] == '=' ? std::atoi(argv[i] + len + 1)
+                                 : (len == 11   ? 40
+                                    : len == 14 ? 10
+                                                : 100);
+    for (int j = i; j + 1 < argc; ++j) argv[j] = argv[j + 1];
+    --argc;
+    --i;
   }
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
   if (table_runs > 0) rangefit::css_table(table_runs);
+  if (accuracy_seeds > 0) rangefit::css_accuracy(accuracy_seeds);
+  if (thesis_trials > 0) rangefit::thesis_tables(thesis_trials);
   benchmark::Shutdown();
   return 0;
 }
