@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <vector>
 
 namespace rangefit {
@@ -116,10 +118,16 @@ Continuation surface_continuation(const Superquadric& sq, const Eigen::Isometry3
     for (std::size_t k = 0; k < ext.size(); ++k) {
       const double u = outwards(sq, q, ext[k].along);
       const double size = size_along(sq, ext[k].along);
-      // Past the face, short of the stretched part's own end, on its extended surface.
-      if (u <= 1.0 || u * size > r * size - 2.0 * o.band_mm) continue;
+      // Past the face by more than twice the band and 2 % of the size (a noisy point by an edge,
+      // or the edge of a part posed a millimetre off, is not past it), short of the stretched
+      // part's own end, on its extended surface.
+      const double past = 2.0 * o.band_mm + 0.02 * size;
+      if (u * size <= size + past || u * size > r * size - 2.0 * o.band_mm) continue;
       if (std::abs(surface_distance(stretched[k], q)) <= o.band_mm) {
         ++c.continuing;
+        if (std::getenv("CONTDBG"))
+          std::fprintf(stderr, "cont mode %zu q %.1f %.1f %.1f p %.1f %.1f %.1f\n", k, q.x(), q.y(),
+                       q.z(), p.x(), p.y(), p.z());
         break;
       }
     }

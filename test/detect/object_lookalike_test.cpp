@@ -37,13 +37,13 @@ sim::ScenePart part(const std::string& name, const Superquadric& sq, const Eigen
 
 // The parts scanned by a stripe cell of the given geometry, the sweep over them and 30 mm around.
 sim::VariedScene scan(std::vector<sim::ScenePart> parts, std::vector<int> target, ObjectModel model,
-                      const Geometry& g, std::uint64_t seed) {
+                      const Geometry& g, std::uint64_t seed, double noise_mm = 0.1) {
   sim::VariedScene::Factors f;
   f.scan.triangulation_deg = g.triangulation_deg;
   f.scan.camera_side = g.side;
   f.scan.laser_height_mm = 600.0;
   f.scan.step_mm = 1.0;
-  f.scan.noise_mm = 0.1;
+  f.scan.noise_mm = noise_mm;
   f.scan.max_points = 60000;
   const Eigen::AlignedBox3d cover(Eigen::Vector3d(-130, -130, 0), Eigen::Vector3d(130, 260, 120));
   return sim::scan_varied_scene(std::move(parts), std::move(target), std::move(model),
@@ -71,14 +71,14 @@ std::string describe(const ObjectDetectResult& r) {
 const Superquadric kLongCan{30, 30, 57.5, 0.1, 1, 0, 0};  // the cylinder 15 % longer
 const Superquadric kBlock{35, 25, 20, 0.1, 0.1, 0, 0};
 
-// A can 15 % longer than the cylinder model, lying: every part of it fits the model, so only
-// the scan going on past the model's cap shows it is not the cylinder.
+// A can 15 % longer than the cylinder model, lying, scanned with 0.5 mm noise: every part of it
+// fits the model, so only the scan going on past the model's cap shows it is not the cylinder.
 TEST(ObjectLookAlike, ALongerCanIsNotTakenForTheCylinder) {
   for (const Geometry& g : kGeometries) {
     const sim::VariedScene s =
         scan({part("long can", kLongCan, {0, 0, 30}, Eigen::Vector3d::UnitX()),
               part("block", kBlock, {-60, 150, 20}, Eigen::Vector3d::UnitZ())},
-             {}, test::single("cylinder", test::cylinder_model()), g, 11);
+             {}, test::single("cylinder", test::cylinder_model()), g, 11, 0.5);
     const ObjectDetectResult r = detect(s, 11);
     EXPECT_FALSE(r.found()) << g.triangulation_deg << " deg, side " << g.side << ": "
                             << describe(r);
@@ -138,7 +138,7 @@ TEST(ObjectLookAlike, ContinuationSeesTheSideWallGoOnPastTheCap) {
   const Continuation past = surface_continuation(model, at_end, longer, longer_tree);
   EXPECT_GT(own.surface, 1000);
   EXPECT_LT(own.share, 0.005);
-  EXPECT_GT(past.share, 0.1);  // 20 of 110 mm of wall beyond the cap, less the bands
+  EXPECT_GT(past.share, 0.05);  // 20 of 110 mm of wall beyond the cap, less the margins
 }
 
 }  // namespace
