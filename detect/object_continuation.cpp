@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <vector>
 
 namespace rangefit {
@@ -125,9 +123,6 @@ Continuation surface_continuation(const Superquadric& sq, const Eigen::Isometry3
       if (u * size <= size + past || u * size > r * size - 2.0 * o.band_mm) continue;
       if (std::abs(surface_distance(stretched[k], q)) <= o.band_mm) {
         ++c.continuing;
-        if (std::getenv("CONTDBG"))
-          std::fprintf(stderr, "cont mode %zu q %.1f %.1f %.1f p %.1f %.1f %.1f\n", k, q.x(), q.y(),
-                       q.z(), p.x(), p.y(), p.z());
         break;
       }
     }
