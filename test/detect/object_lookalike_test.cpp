@@ -24,11 +24,9 @@ struct Geometry {
   double triangulation_deg;
   int side;
 };
-#if defined(__SANITIZE_ADDRESS__)
+// Both camera sides and both triangulation angles in two scans (the suite stays fast; each of
+// these scenes failed under all four combinations before).
 constexpr Geometry kGeometries[] = {{20.0, +1}, {45.0, -1}};
-#else
-constexpr Geometry kGeometries[] = {{20.0, +1}, {20.0, -1}, {45.0, +1}, {45.0, -1}};
-#endif
 
 sim::ScenePart part(const std::string& name, const Superquadric& sq, const Eigen::Vector3d& c,
                     const Eigen::Vector3d& axis) {
