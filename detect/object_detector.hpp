@@ -63,15 +63,17 @@ struct ObjectDetectOptions {
   double max_seen_through = 0.05;
   // And it shows the sensor at least this many of the coverage's surface samples, and this share
   // of those facing it (a part hidden behind others, under the table or inside a measured
-  // object leaves too little to judge it by), and it does not reach
-  // farther than max(plane_margin, 10 % of its smallest size) through the removed plane (parts
-  // rest on the table, they do not sink into it).
+  // object leaves too little to judge it by), and it does not reach farther than the table
+  // margin through the removed plane (parts rest on the table, they do not sink into it).
   int min_measurable_samples = 10;
   // Parts rest on the removed plane (the table): the lowest point of a single part, or of a
-  // compound object's parts together, is within max(plane_margin, 10 % of the smallest size)
-  // plus three times the table's noise of it. Off for scenes of stacked parts.
+  // compound object's parts together, is within the table margin of it. Off for scenes of
+  // stacked parts.
   bool rest_on_plane = true;
   double min_measurable_share = 0.4;
+  // The table margin, one for sinking into the table (RANSAC trials and the below-plane check)
+  // and for standing above it: max(plane_margin, 10 % of the part's smallest size) plus three
+  // times the table's noise (object_hypotheses.hpp table_margin_mm).
   double plane_margin_mm = 5.0;
   // And, where its points determine it, the size the points want is the model's within this
   // share (object_hypotheses.hpp size_evidence): a sphere 4 % larger or smaller is not it; a box
@@ -82,6 +84,11 @@ struct ObjectDetectOptions {
   // plane plus max_residual_floor_mm (a part fitted across fragments of other objects is not).
   double residual_noise_factor = 2.0;
   double max_residual_floor_mm = 0.3;
+  // And little of the scan carries on past its flat faces (object_continuation.hpp): the points
+  // outside it on one of its faces extended by up to 25 %, as a share of its surface points (at
+  // most 0.003 on the true objects of the tuning scenes, 0.013-0.16 on longer look-alikes).
+  // Rejects a part posed on one end of a longer or wider look-alike.
+  double max_continuation = 0.01;
   int max_candidates = 20;            // candidates checked for coverage before giving up
   double neighbourhood_factor = 1.2;  // r = factor * max(a) for refinement and verification
   Selection selection = Selection::kRankedVote;
@@ -129,6 +136,8 @@ enum class Check {
                    // or less than min_measurable_share of the facing ones (value: the share)
   kBelowPlane,     // reaches through the removed plane by more than its margin (mm)
   kFloating,       // rest_on_plane: its lowest point is farther above the plane than the margin
+  kContinues,      // the scan carries on past its flat faces (share of its surface points)
+  kLink,           // compound: after the joint refinement a link's A (rad) or D (mm) is off
 };
 
 const char* to_string(Check check);
@@ -145,6 +154,7 @@ struct PartScores {
   bool size_determined = false;  // the points determine the part's size (size_evidence)
   double size_scale = 1.0;       // the scale of the model they want
   double residual_mm = 0.0;      // robust spread of their distances from the surface
+  double continuation = 0.0;     // share of them the scan carries on past (object_continuation)
 };
 
 // Why a candidate was not confirmed: the first check it failed, its value and the limit.

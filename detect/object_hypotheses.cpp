@@ -139,6 +139,10 @@ Eigen::Isometry3d refine(const HypothesisContext& ctx, const Superquadric& part,
 
 }  // namespace
 
+double table_margin_mm(const ObjectDetectOptions& o, double min_size_mm, double noise_mm) {
+  return std::max(o.plane_margin_mm, 0.1 * min_size_mm) + 3.0 * noise_mm;
+}
+
 std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t a, std::uint64_t b) {
   std::uint64_t s = seed;
   s ^= splitmix64(s) + a * 0x632BE59BD9B4E019ull;
@@ -285,6 +289,7 @@ PartHypothesis generate_hypothesis(const HypothesisContext& ctx, const Superquad
   init.viewpoint = o.viewpoint;
   const ExplainedBy none({}, o);
   const ExplainedBy set_aside(ctx.seed_excluded, o);
+  const double table_margin = table_margin_mm(o, part.min_size(), ctx.table_noise_mm);
   double best_measure = std::numeric_limits<double>::infinity();
   for (int trial = 0; trial < o.trials; ++trial) {
     // A random seed point and a random patch within the smallest size parameter (5.1.2); seeds
@@ -304,7 +309,7 @@ PartHypothesis generate_hypothesis(const HypothesisContext& ctx, const Superquad
     }
     const PoseFitResult fit = fit_pose_from_moments(part, sample, init);
     if (!fit.ok()) continue;
-    if (ctx.table && sinks_by(part, fit.T_world_part, *ctx.table) > ctx.table_margin_mm) continue;
+    if (ctx.table && sinks_by(part, fit.T_world_part, *ctx.table) > table_margin) continue;
     Eigen::Isometry3d T = fit.T_world_part;
     double measure = fit.measure;
     if (o.refine_each_trial) {

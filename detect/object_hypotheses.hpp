@@ -32,10 +32,15 @@ struct HypothesisContext {
   // explain (G < 1 + refine_trim), so new hypotheses go elsewhere.
   std::span<const PlacedPart> seed_excluded;
   // The removed table plane, its normal towards the objects (rest_on_plane): RANSAC trials whose
-  // part sinks into it by more than `table_margin_mm` are not taken.
+  // part sinks into it by more than table_margin_mm() are not taken.
   std::optional<pca::Plane> table;
-  double table_margin_mm = 0.0;
+  double table_noise_mm = 0.0;  // the scan's range noise, as the table shows it
 };
+
+// How far a part of this smallest size may reach through the table, or stand above it, and still
+// rest on it: max(plane_margin, 10 % of the size) plus three times the table's noise. One margin
+// for the RANSAC trials, the below-plane check and the rest-on-plane check.
+double table_margin_mm(const ObjectDetectOptions& options, double min_size_mm, double noise_mm);
 
 // A part already placed (another part of the same compound object): the points it explains
 // (G < 1 + refine_trim of its own, or 1 + gamma without trimming) stay out of the refinement

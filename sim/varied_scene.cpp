@@ -223,6 +223,15 @@ const char* to_string(VariedTarget t) {
   return "?";
 }
 
+std::optional<VariedTarget> varied_target_from(const std::string& name) {
+  for (VariedTarget t :
+       {VariedTarget::kSphere, VariedTarget::kCylinder, VariedTarget::kBox, VariedTarget::kCone,
+        VariedTarget::kMallet, VariedTarget::kThreeSpheres, VariedTarget::kNone}) {
+    if (name == to_string(t)) return t;
+  }
+  return std::nullopt;
+}
+
 VariedScene make_varied_scene(const VariedSceneOptions& o, std::uint64_t seed) {
   Draw d(seed);
   VariedScene::Factors f;

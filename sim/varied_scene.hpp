@@ -14,6 +14,7 @@
 // (1000001) on are held out: look at their results only to report them, never to tune.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,7 @@ inline constexpr std::uint64_t kHeldOutSeedBase = 1000001;  // held out: 1000001
 
 enum class VariedTarget { kSphere, kCylinder, kBox, kCone, kMallet, kThreeSpheres, kNone };
 const char* to_string(VariedTarget target);
+std::optional<VariedTarget> varied_target_from(const std::string& name);  // to_string's inverse
 
 // Every factor is drawn uniformly from [min, max]; min == max fixes it.
 struct VariedSceneOptions {

@@ -11,6 +11,9 @@
 //                                         TP, wrong, missed and false positives on seeded varied
 //                                         stripe scans (object_varied_report.hpp), per target
 //                                         and per factor; tuning seeds, or the held-out ones
+//   object_benchmark --varied-case TARGET SEED [--pan-tilt] [--no-sensor]
+//                                         one varied scene in detail: drawn parts, result,
+//                                         rejections and the scene part each place is on
 #include <benchmark/benchmark.h>
 
 #include <unsupported/Eigen/LevenbergMarquardt>
@@ -20,6 +23,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <numbers>
 #include <random>
@@ -403,6 +407,8 @@ int main(int argc, char** argv) {
   bool tp = false, methods = false, noise = false, varied = false;
   bool per_factor = false, pan_tilt = false, sensor_known = true, held_out = false;
   std::vector<char*> rest = {argv[0]};
+  std::string case_target;
+  std::uint64_t case_seed = 0;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--tp")) {
       tp = true;
@@ -420,6 +426,9 @@ int main(int argc, char** argv) {
       sensor_known = false;
     } else if (!std::strcmp(argv[i], "--held-out")) {
       held_out = true;
+    } else if (!std::strcmp(argv[i], "--varied-case") && i + 2 < argc) {
+      case_target = argv[++i];
+      case_seed = std::strtoull(argv[++i], nullptr, 10);
     } else if (!std::strcmp(argv[i], "--seeds") && i + 1 < argc) {
       seeds = std::max(1, std::atoi(argv[++i]));
     } else {
@@ -430,6 +439,15 @@ int main(int argc, char** argv) {
   if (methods) rangefit::print_methods(seeds);
   if (noise) rangefit::print_noise(seeds);
   if (varied) rangefit::bench::print_varied(seeds, per_factor, pan_tilt, sensor_known, held_out);
+  if (!case_target.empty()) {
+    const auto target = rangefit::sim::varied_target_from(case_target);
+    if (!target) {
+      std::fprintf(stderr, "unknown target %s\n", case_target.c_str());
+      return 2;
+    }
+    rangefit::bench::print_varied_case(*target, pan_tilt, case_seed, sensor_known);
+    return 0;
+  }
   if (tp || methods || noise || varied) return 0;
   int rest_argc = static_cast<int>(rest.size());
   benchmark::Initialize(&rest_argc, rest.data());
