@@ -9,9 +9,9 @@ namespace rangefit::daemon {
 DdsClient::DdsClient(std::uint32_t domain_id)
     : participant_(domain_id),
       requests_(participant_, topics::kRequest, &rangefit_msgs_msg_dds__DetectRequest__desc,
-                topics::request_qos()),
+                topics::request_qos(1024)),
       detections_(participant_, topics::kDetections, &rangefit_msgs_msg_dds__Detection__desc,
-                  {true, true, 16}),
+                  topics::result_reader_qos()),
       diagnostics_(participant_, topics::kDiagnostics,
                    &diagnostic_msgs_msg_dds__DiagnosticArray__desc, topics::diagnostics_qos()),
       clouds_(participant_, topics::kCloud, &sensor_msgs_msg_dds__PointCloud2__desc,
@@ -20,10 +20,16 @@ DdsClient::DdsClient(std::uint32_t domain_id)
               topics::latched_qos()) {}
 
 bool DdsClient::wait_for_daemon(std::chrono::milliseconds timeout) {
+  // Both directions: the daemon's request reader (or the request would go nowhere) and its
+  // result writer (or the answer would), polled with a backoff so that many clients starting at
+  // once do not spin while discovery catches up.
   const auto deadline = std::chrono::steady_clock::now() + timeout;
-  while (requests_.matched() == 0) {
-    if (std::chrono::steady_clock::now() >= deadline) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  auto pause = std::chrono::milliseconds(5);
+  while (requests_.matched() == 0 || detections_.matched() == 0) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= deadline) return false;
+    std::this_thread::sleep_for(std::min<std::chrono::nanoseconds>(pause, deadline - now));
+    pause = std::min(pause * 2, std::chrono::milliseconds(200));
   }
   return true;
 }

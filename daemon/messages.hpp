@@ -38,7 +38,8 @@ builtin_interfaces_msg_dds__Time_ wall_time(std::int64_t ns_since_epoch);
 class CloudOut {
  public:
   // x, y, z as FLOAT32 metres (plus normal_x/y/z when the cloud has normals); unorganised.
-  explicit CloudOut(const PointCloud& cloud);
+  // frame: the header's frame id; empty: the cloud's own.
+  explicit CloudOut(const PointCloud& cloud, const std::string& frame = "");
   CloudOut(const CloudOut&) = delete;
   CloudOut& operator=(const CloudOut&) = delete;
   const sensor_msgs_msg_dds__PointCloud2_& msg() const { return msg_; }
@@ -57,7 +58,7 @@ PointCloud from_msg(const sensor_msgs_msg_dds__PointCloud2_& msg);
 
 class DetectionOut {
  public:
-  explicit DetectionOut(const DetectionResult& r);
+  explicit DetectionOut(const DetectionResult& r, std::string frame = "world");
   DetectionOut(const DetectionOut&) = delete;
   DetectionOut& operator=(const DetectionOut&) = delete;
   const rangefit_msgs_msg_dds__Detection_& msg() const { return msg_; }
@@ -67,7 +68,7 @@ class DetectionOut {
 
  private:
   DetectionResult r_;
-  std::string frame_ = "world", kind_;
+  std::string frame_, kind_;
   std::vector<char*> names_;
   std::vector<geometry_msgs_msg_dds__Pose_> poses_;
   std::vector<double> scores_;
@@ -98,7 +99,8 @@ void convert_sweep_units(ScanRequest& req, bool linear_sweep, bool to_wire);
 
 class StateOut {
  public:
-  StateOut(LifecycleState s, std::string detail, std::string active_id, std::uint32_t depth);
+  StateOut(LifecycleState s, std::string detail, std::string active_id, std::uint32_t depth,
+           std::string frame = "world");
   StateOut(const StateOut&) = delete;
   StateOut& operator=(const StateOut&) = delete;
   const rangefit_msgs_msg_dds__State_& msg() const { return msg_; }
