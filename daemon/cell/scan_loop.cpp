@@ -4,16 +4,6 @@
 
 namespace rangefit::daemon {
 
-Eigen::Isometry3d device_extrinsics(const DeviceConfig& d) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.translation() = Eigen::Vector3d(d.xyz_mm[0], d.xyz_mm[1], d.xyz_mm[2]);
-  T.linear() = (Eigen::AngleAxisd(d.rpy_rad[2], Eigen::Vector3d::UnitZ()) *
-                Eigen::AngleAxisd(d.rpy_rad[1], Eigen::Vector3d::UnitY()) *
-                Eigen::AngleAxisd(d.rpy_rad[0], Eigen::Vector3d::UnitX()))
-                   .toRotationMatrix();
-  return T;
-}
-
 std::int64_t wall_ns(hal::Timestamp t, const hal::Clock& clock) {
   const auto wall = std::chrono::duration_cast<std::chrono::nanoseconds>(
       std::chrono::system_clock::now().time_since_epoch());

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "daemon/service/config.hpp"
+#include "daemon/service/device_extrinsics.hpp"
 #include "daemon/service/pipeline.hpp"
 #include "daemon/service/scan_sensor.hpp"
 #include "fusion/fused_scan.hpp"
@@ -92,8 +93,6 @@ struct SweepEdges {
   }
 };
 
-// T(xyz_mm, rpy_rad) of a device: roll about x, then pitch about y, then yaw about z (fixed axes).
-Eigen::Isometry3d device_extrinsics(const DeviceConfig& d);
 
 // The fused scan in the world frame, p_world = device_extrinsics(device) * T_mount_sensor *
 // p_sensor, with the sensor (given in fusion's frame) moved along; a scan fusion marked bad is an

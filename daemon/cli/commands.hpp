@@ -14,6 +14,7 @@ inline constexpr int kExitNotFound = 2;
 // in *exit_code.
 void add_request_command(CLI::App& app, int* exit_code);  // request_command.cpp
 void add_watch_command(CLI::App& app, int* exit_code);  // watch_command.cpp
+void add_models_command(CLI::App& app, int* exit_code);  // models_command.cpp
 void add_replay_command(CLI::App& app, int* exit_code);  // replay_command.cpp
 void add_simulate_command(CLI::App& app, int* exit_code);  // simulate_command.cpp
 void add_bore_command(CLI::App& app, int* exit_code);  // bore_command.cpp

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   rangefit::cli::add_learn_command(app, &exit_code);
   rangefit::cli::add_request_command(app, &exit_code);
   rangefit::cli::add_watch_command(app, &exit_code);
+  rangefit::cli::add_models_command(app, &exit_code);
   rangefit::cli::add_replay_command(app, &exit_code);
   rangefit::cli::add_simulate_command(app, &exit_code);
   rangefit::cli::add_render_command(app, &exit_code);

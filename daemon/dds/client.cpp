@@ -8,18 +8,23 @@ namespace rangefit::daemon {
 
 DdsClient::DdsClient(std::uint32_t domain_id)
     : participant_(domain_id),
-      requests_(participant_, topics::request()),
-      // Keeps more results than the daemon's depth 1, so none is lost between two waits.
-      detections_(participant_, topics::detections(16)),
+      requests_(participant_, topics::request(1024)),
+      detections_(participant_, topics::detections_reader()),
       diagnostics_(participant_, topics::diagnostics()),
       clouds_(participant_, topics::cloud()),
       states_(participant_, topics::state()) {}
 
 bool DdsClient::wait_for_daemon(std::chrono::milliseconds timeout) {
+  // Both directions: the daemon's request reader (or the request would go nowhere) and its
+  // result writer (or the answer would), polled with a backoff so that many clients starting at
+  // once do not spin while discovery catches up.
   const auto deadline = std::chrono::steady_clock::now() + timeout;
-  while (requests_.matched() == 0) {
-    if (std::chrono::steady_clock::now() >= deadline) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  auto pause = std::chrono::milliseconds(5);
+  while (requests_.matched() == 0 || detections_.matched() == 0) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= deadline) return false;
+    std::this_thread::sleep_for(std::min<std::chrono::nanoseconds>(pause, deadline - now));
+    pause = std::min(pause * 2, std::chrono::milliseconds(200));
   }
   return true;
 }

@@ -7,7 +7,17 @@ Qos::Qos(const QosSpec& spec) : qos_(dds_create_qos()) {
                        DDS_SECS(1));
   dds_qset_durability(
       qos_, spec.transient_local ? DDS_DURABILITY_TRANSIENT_LOCAL : DDS_DURABILITY_VOLATILE);
-  dds_qset_history(qos_, DDS_HISTORY_KEEP_LAST, spec.depth);
+  if (spec.keep_all) {
+    dds_qset_history(qos_, DDS_HISTORY_KEEP_ALL, DDS_LENGTH_UNLIMITED);
+    dds_qset_resource_limits(qos_, spec.max_samples, DDS_LENGTH_UNLIMITED, spec.max_samples);
+  } else {
+    dds_qset_history(qos_, DDS_HISTORY_KEEP_LAST, spec.depth);
+  }
+  if (spec.transient_local) {
+    // What a late-joining reader gets: the last `depth` samples, also for keep-all writers.
+    dds_qset_durability_service(qos_, 0, DDS_HISTORY_KEEP_LAST, spec.depth, DDS_LENGTH_UNLIMITED,
+                                DDS_LENGTH_UNLIMITED, DDS_LENGTH_UNLIMITED);
+  }
   // ROS 2 (rmw_cyclonedds_cpp) only speaks XCDR1; pin it so a newer default cannot change it.
   dds_data_representation_id_t xcdr1 = DDS_DATA_REPRESENTATION_XCDR1;
   dds_qset_data_representation(qos_, 1, &xcdr1);

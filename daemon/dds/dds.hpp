@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace rangefit::dds {
 
@@ -17,6 +18,12 @@ struct QosSpec {
   bool reliable = true;
   bool transient_local = false;
   int depth = 1;  // keep-last history depth
+  // Keep-all history bounded by max_samples (resource limits): a reliable writer keeps every
+  // unacknowledged sample (Cyclone drops unacknowledged ones beyond a keep-last depth) and a full
+  // reader makes the writer resend instead of losing a sample. Transient-local topics still
+  // replay only the last `depth` samples to late joiners (durability service history).
+  bool keep_all = false;
+  int max_samples = 256;
 };
 
 // One topic as both sides open it: name, wire type (the idlc descriptor of T) and QoS.
@@ -155,14 +162,27 @@ class Reader {
     }
     return count;
   }
+  // wait() also returns when `other` (another reader of the participant) has data.
+  void also_wake_on(dds_entity_t other) {
+    others_.emplace_back(dds_create_readcondition(other, DDS_ANY_STATE));
+    dds_waitset_attach(waitset_.get(), others_.back().get(), 0);
+  }
   void wake() { dds_waitset_set_trigger(waitset_.get(), true); }
   void clear_wake() { dds_waitset_set_trigger(waitset_.get(), false); }
+  // Number of matched writers (for clients that want to wait for the daemon).
+  int matched() const {
+    dds_subscription_matched_status_t st{};
+    return dds_get_subscription_matched_status(entity_.get(), &st) >= 0
+               ? static_cast<int>(st.current_count)
+               : 0;
+  }
   dds_entity_t get() const { return entity_.get(); }
 
  private:
   Entity entity_;
   Entity waitset_;
   Entity condition_;
+  std::vector<Entity> others_;
 };
 
 }  // namespace rangefit::dds

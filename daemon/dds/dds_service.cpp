@@ -3,6 +3,8 @@
 #include <cstdlib>
 
 #include "daemon/dds/dds_security.hpp"
+#include "daemon/dds/models_msg.hpp"
+#include "daemon/dds/ros_frames.hpp"
 
 namespace rangefit::daemon {
 
@@ -28,25 +30,49 @@ DdsService::DdsService(const DdsConfig& config)
       pose_(participant_, topics::pose()),
       state_(participant_, topics::state()),
       diagnostics_(participant_, topics::diagnostics()),
-      requests_(participant_, topics::request(config.request_depth)) {}
+      requests_(participant_, topics::request(config.request_depth)),
+      poses_(participant_, topics::poses()),
+      tf_(participant_, topics::tf()),
+      tf_static_(participant_, topics::tf_static()),
+      models_(participant_, topics::models()),
+      service_(participant_) {
+  requests_.also_wake_on(service_.reader());
+}
+
+void DdsService::publish_frames(const DaemonConfig& config) {
+  std::lock_guard lock(mutex_);
+  frames_ = config.frames;
+  const TfOut out(wall_time_now(), frames_.world, sensor_mounts(config));
+  count(tf_static_.write(out.msg()));
+  const ModelsOut models(config, frames_.world);
+  count(models_.write(models.msg()));
+}
 
 void DdsService::on_cloud(const ScanRequest&, const PointCloud& cloud) {
-  const CloudOut out(cloud);
   std::lock_guard lock(mutex_);
+  const CloudOut out(cloud, frames_.world);  // fused clouds are in the world frame
   count(cloud_.write(out.msg()));
 }
 
 void DdsService::on_result(const DetectionResult& result) {
-  const DetectionOut out(result);
   std::lock_guard lock(mutex_);
+  const DetectionOut out(result, frames_.world);
   count(detections_.write(out.msg()));
-  if (result.found && !result.parts.empty()) count(pose_.write(out.first_pose()));
+  if (result.found && !result.parts.empty()) {
+    count(pose_.write(out.first_pose()));
+    const PoseArrayOut poses(result, frames_.world);
+    count(poses_.write(poses.msg()));
+    const TfOut tf(result_stamp(result), frames_.world, part_frames(result));
+    count(tf_.write(tf.msg()));
+  }
+  service_.answer(result, frames_.world);
 }
 
 void DdsService::on_state(LifecycleState state, const std::string& detail,
                           const std::string& active_id, std::size_t queue_depth) {
-  const StateOut out(state, detail, active_id, static_cast<std::uint32_t>(queue_depth));
   std::lock_guard lock(mutex_);
+  const StateOut out(state, detail, active_id, static_cast<std::uint32_t>(queue_depth),
+                     frames_.world);
   count(state_.write(out.msg()));
 }
 
@@ -59,11 +85,12 @@ void DdsService::publish_diagnostics(std::vector<DiagStatus> statuses) {
 int DdsService::poll_requests(std::chrono::nanoseconds timeout,
                               const std::function<void(ScanRequest, const std::string&)>& handle) {
   if (!requests_.wait(timeout)) return 0;
-  return requests_.take_each([&](const rangefit_msgs_msg_dds__DetectRequest_& msg) {
+  const int topic = requests_.take_each([&](const rangefit_msgs_msg_dds__DetectRequest_& msg) {
     std::string error;
     ScanRequest req = from_msg(msg, &error);
     handle(std::move(req), error);
   });
+  return topic + service_.take(handle);
 }
 
 }  // namespace rangefit::daemon

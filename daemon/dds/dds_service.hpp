@@ -11,6 +11,7 @@
 
 #include "daemon/dds/dds.hpp"
 #include "daemon/dds/messages.hpp"
+#include "daemon/dds/ros_service.hpp"
 #include "daemon/dds/topics.hpp"
 #include "daemon/service/config.hpp"
 #include "daemon/service/pipeline.hpp"
@@ -29,13 +30,16 @@ class DdsService final : public ResultSink {
   void on_state(LifecycleState state, const std::string& detail, const std::string& active_id,
                 std::size_t queue_depth) override;
   void publish_diagnostics(std::vector<DiagStatus> statuses);
+  // The frames of `config` ([frames]) for every header from now on, its sensors' mounts on
+  // rt/tf_static and its object models on rt/rangefit/models. At start-up and after each reload.
+  void publish_frames(const DaemonConfig& config);
 
   // Waits up to timeout for requests and calls handle(request, error) for each one taken; error
   // is non-empty when the message is malformed. Returns the number handled.
   int poll_requests(std::chrono::nanoseconds timeout,
                     const std::function<void(ScanRequest, const std::string&)>& handle);
 
-  std::uint64_t write_failures() const { return write_failures_; }
+  std::uint64_t write_failures() const { return write_failures_ + service_.write_failures(); }
 
  private:
   void count(bool ok) { write_failures_ += ok ? 0 : 1; }
@@ -48,6 +52,12 @@ class DdsService final : public ResultSink {
   topics::Writer<topics::State> state_;
   topics::Writer<topics::Diagnostics> diagnostics_;
   topics::Reader<topics::Request> requests_;
+  topics::Writer<topics::Poses> poses_;
+  topics::Writer<topics::Tf> tf_;
+  topics::Writer<topics::Tf> tf_static_;
+  topics::Writer<topics::Models> models_;
+  RosDetectService service_;
+  FramesConfig frames_;  // guarded by mutex_
   std::uint64_t write_failures_ = 0;
 };
 

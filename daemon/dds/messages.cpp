@@ -31,7 +31,8 @@ builtin_interfaces_msg_dds__Time_ wall_time_now() {
                        .count());
 }
 
-CloudOut::CloudOut(const PointCloud& cloud) : frame_(cloud.frame_id) {
+CloudOut::CloudOut(const PointCloud& cloud, const std::string& frame)
+    : frame_(frame.empty() ? cloud.frame_id : frame) {
   names_ = {"x", "y", "z"};
   if (cloud.has_normals()) names_.insert(names_.end(), {"normal_x", "normal_y", "normal_z"});
   for (std::size_t i = 0; i < names_.size(); ++i) {
@@ -77,8 +78,10 @@ PointCloud from_msg(const sensor_msgs_msg_dds__PointCloud2_& msg) {
     }
   }
   const std::uint64_t n = std::uint64_t{msg.width} * msg.height;
+  // n * point_step can wrap around 2^64 (width = height = 2^31, point_step 16 gives 0), so the
+  // check divides instead of multiplying; a buffer too short for n points is no cloud.
   if (offset[0] < 0 || offset[1] < 0 || offset[2] < 0 || msg.point_step == 0 ||
-      std::uint64_t{msg.data._length} < n * msg.point_step) {
+      n > std::uint64_t{msg.data._length} / msg.point_step) {
     return cloud;
   }
   for (int k = 0; k < 3; ++k) {
@@ -109,7 +112,8 @@ PointCloud from_msg(const sensor_msgs_msg_dds__PointCloud2_& msg) {
   return cloud;
 }
 
-DetectionOut::DetectionOut(const DetectionResult& r) : r_(r), kind_(to_string(r.kind)) {
+DetectionOut::DetectionOut(const DetectionResult& r, std::string frame)
+    : r_(r), frame_(std::move(frame)), kind_(to_string(r.kind)) {
   for (const auto& part : r_.parts) {
     names_.push_back(c_str(part.name));
     const Eigen::Vector3d t = part.T_world_part.translation() * kMetresPerMm;
@@ -235,8 +239,17 @@ ScanRequest from_msg(const rangefit_msgs_msg_dds__DetectRequest_& msg, std::stri
   return req;
 }
 
-StateOut::StateOut(LifecycleState s, std::string detail, std::string active_id, std::uint32_t depth)
-    : frame_("world"), detail_(std::move(detail)), active_(std::move(active_id)) {
+void convert_sweep_units(ScanRequest& req, bool linear_sweep, bool to_wire) {
+  if (!linear_sweep) return;
+  const double f = to_wire ? kMetresPerMm : 1.0 / kMetresPerMm;
+  req.sweep_start *= f;
+  req.sweep_end *= f;
+  req.sweep_speed *= f;
+}
+
+StateOut::StateOut(LifecycleState s, std::string detail, std::string active_id, std::uint32_t depth,
+                   std::string frame)
+    : frame_(std::move(frame)), detail_(std::move(detail)), active_(std::move(active_id)) {
   msg_.header = header(frame_);
   msg_.state = static_cast<std::uint8_t>(s);
   msg_.detail = c_str(detail_);

@@ -24,7 +24,8 @@ builtin_interfaces_msg_dds__Time_ wall_time(std::int64_t ns_since_epoch);
 class CloudOut {
  public:
   // x, y, z as FLOAT32 metres (plus normal_x/y/z when the cloud has normals); unorganised.
-  explicit CloudOut(const PointCloud& cloud);
+  // frame: the header's frame id; empty: the cloud's own.
+  explicit CloudOut(const PointCloud& cloud, const std::string& frame = "");
   CloudOut(const CloudOut&) = delete;
   CloudOut& operator=(const CloudOut&) = delete;
   const sensor_msgs_msg_dds__PointCloud2_& msg() const { return msg_; }
@@ -43,7 +44,7 @@ PointCloud from_msg(const sensor_msgs_msg_dds__PointCloud2_& msg);
 
 class DetectionOut {
  public:
-  explicit DetectionOut(const DetectionResult& r);
+  explicit DetectionOut(const DetectionResult& r, std::string frame = "world");
   DetectionOut(const DetectionOut&) = delete;
   DetectionOut& operator=(const DetectionOut&) = delete;
   const rangefit_msgs_msg_dds__Detection_& msg() const { return msg_; }
@@ -53,7 +54,7 @@ class DetectionOut {
 
  private:
   DetectionResult r_;
-  std::string frame_ = "world", kind_;
+  std::string frame_, kind_;
   std::vector<char*> names_;
   std::vector<geometry_msgs_msg_dds__Pose_> poses_;
   std::vector<double> scores_;
@@ -82,7 +83,8 @@ ScanRequest from_msg(const rangefit_msgs_msg_dds__DetectRequest_& msg, std::stri
 
 class StateOut {
  public:
-  StateOut(LifecycleState s, std::string detail, std::string active_id, std::uint32_t depth);
+  StateOut(LifecycleState s, std::string detail, std::string active_id, std::uint32_t depth,
+           std::string frame = "world");
   StateOut(const StateOut&) = delete;
   StateOut& operator=(const StateOut&) = delete;
   const rangefit_msgs_msg_dds__State_& msg() const { return msg_; }

@@ -3,23 +3,36 @@
 namespace rangefit::daemon::topics {
 
 dds::QosSpec cloud_qos(int depth) { return {true, false, depth}; }
-dds::QosSpec latched_qos(int depth) { return {true, true, depth}; }
+dds::QosSpec latched_qos() { return {true, true, 1}; }
 dds::QosSpec diagnostics_qos() { return {true, false, 10}; }
-dds::QosSpec request_qos(int depth) { return {true, false, depth}; }
+dds::QosSpec request_qos(int max_samples) { return {true, false, 1, true, max_samples}; }
+// A keep-last writer replaces answers not yet acknowledged (a burst of "bad request" answers lost
+// 5 of 300); keep-all keeps them until every matched reader has them. Late joiners get the last.
+dds::QosSpec result_qos() { return {true, true, 1, true, 1024}; }
+dds::QosSpec result_reader_qos() { return {true, true, 1, true, 4096}; }
+dds::QosSpec tf_qos() { return {true, false, 100}; }
+dds::QosSpec tf_static_qos() { return {true, true, 1}; }
 
 Cloud cloud(int depth) {
   return {kCloud, &sensor_msgs_msg_dds__PointCloud2__desc, cloud_qos(depth)};
 }
-Detections detections(int depth) {
-  return {kDetections, &rangefit_msgs_msg_dds__Detection__desc, latched_qos(depth)};
+Detections detections() {
+  return {kDetections, &rangefit_msgs_msg_dds__Detection__desc, result_qos()};
+}
+Detections detections_reader() {
+  return {kDetections, &rangefit_msgs_msg_dds__Detection__desc, result_reader_qos()};
 }
 Pose pose() { return {kPose, &geometry_msgs_msg_dds__PoseStamped__desc, latched_qos()}; }
+Poses poses() { return {kPoses, &geometry_msgs_msg_dds__PoseArray__desc, latched_qos()}; }
 State state() { return {kState, &rangefit_msgs_msg_dds__State__desc, latched_qos()}; }
+Models models() { return {kModels, &rangefit_msgs_msg_dds__Models__desc, latched_qos()}; }
 Diagnostics diagnostics() {
   return {kDiagnostics, &diagnostic_msgs_msg_dds__DiagnosticArray__desc, diagnostics_qos()};
 }
-Request request(int depth) {
-  return {kRequest, &rangefit_msgs_msg_dds__DetectRequest__desc, request_qos(depth)};
+Request request(int max_samples) {
+  return {kRequest, &rangefit_msgs_msg_dds__DetectRequest__desc, request_qos(max_samples)};
 }
+Tf tf() { return {kTf, &tf2_msgs_msg_dds__TFMessage__desc, tf_qos()}; }
+Tf tf_static() { return {kTfStatic, &tf2_msgs_msg_dds__TFMessage__desc, tf_static_qos()}; }
 
 }  // namespace rangefit::daemon::topics

@@ -3,17 +3,25 @@
 // so both sides always match. All ROS 2-compatible (rt/ prefix, <pkg>::msg::dds_::<Name>_ types,
 // XCDR1):
 //   rt/rangefit/cloud           sensor_msgs/PointCloud2     reliable, volatile, keep last 2
-//   rt/rangefit/detections      rangefit_msgs/Detection     reliable, transient-local, depth 1
+//   rt/rangefit/detections      rangefit_msgs/Detection     reliable, transient-local (last 1),
+//                               keep-all (1024): every answer reaches every matched reader
 //   rt/rangefit/pose            geometry_msgs/PoseStamped   reliable, transient-local, depth 1
+//   rt/rangefit/poses           geometry_msgs/PoseArray     every part; reliable, transient-local
 //   rt/rangefit/state           rangefit_msgs/State         reliable, transient-local, depth 1
+//   rt/rangefit/models          rangefit_msgs/Models        reliable, transient-local, depth 1
 //   rt/diagnostics              diagnostic_msgs/DiagnosticArray  reliable, volatile, depth 10
-//   rt/rangefit/detect_request  rangefit_msgs/DetectRequest (read)  reliable, volatile
+//   rt/tf                       tf2_msgs/TFMessage          every part as a frame; depth 100
+//   rt/tf_static                tf2_msgs/TFMessage          the sensors' mounts; transient-local
+//   rt/rangefit/detect_request  rangefit_msgs/DetectRequest (read)  reliable, volatile, keep-all
+//                               (dds.request_depth unread requests; beyond, the sender resends)
+//   rq/rangefit/detectRequest, rr/rangefit/detectReply: the ROS 2 service (ros_service.hpp)
 
 #include "daemon/dds/dds.hpp"
 #include "diagnostic_msgs.h"
 #include "geometry_msgs.h"
 #include "rangefit_msgs.h"
 #include "sensor_msgs.h"
+#include "tf2_msgs.h"
 
 namespace rangefit::daemon::topics {
 
@@ -23,6 +31,10 @@ inline constexpr const char* kPose = "rt/rangefit/pose";
 inline constexpr const char* kState = "rt/rangefit/state";
 inline constexpr const char* kDiagnostics = "rt/diagnostics";
 inline constexpr const char* kRequest = "rt/rangefit/detect_request";
+inline constexpr const char* kPoses = "rt/rangefit/poses";
+inline constexpr const char* kModels = "rt/rangefit/models";
+inline constexpr const char* kTf = "rt/tf";
+inline constexpr const char* kTfStatic = "rt/tf_static";
 
 using Cloud = dds::Topic<sensor_msgs_msg_dds__PointCloud2_>;
 using Detections = dds::Topic<rangefit_msgs_msg_dds__Detection_>;
@@ -30,20 +42,31 @@ using Pose = dds::Topic<geometry_msgs_msg_dds__PoseStamped_>;
 using State = dds::Topic<rangefit_msgs_msg_dds__State_>;
 using Diagnostics = dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_>;
 using Request = dds::Topic<rangefit_msgs_msg_dds__DetectRequest_>;
+using Poses = dds::Topic<geometry_msgs_msg_dds__PoseArray_>;
+using Models = dds::Topic<rangefit_msgs_msg_dds__Models_>;
+using Tf = dds::Topic<tf2_msgs_msg_dds__TFMessage_>;
 
-// depth: keep-last history; a reader may keep more than the writer (a client catching up).
 Cloud cloud(int depth = 2);
-Detections detections(int depth = 1);
+Detections detections();         // the daemon's writer: keep-all, so no answer is replaced
+Detections detections_reader();  // the clients' reader: keep-all, deeper than the writer
 Pose pose();
+Poses poses();
 State state();
+Models models();
 Diagnostics diagnostics();
-Request request(int depth = 16);
+Request request(int max_samples = 64);  // keep-all up to max_samples unread requests
+Tf tf();                                // tf2's dynamic broadcaster: reliable, volatile, depth 100
+Tf tf_static();  // tf2's static broadcaster: reliable, transient-local, depth 1
 
 // The QoS alone (benchmarks and tests that open a topic by hand).
 dds::QosSpec cloud_qos(int depth = 2);
-dds::QosSpec latched_qos(int depth = 1);  // detections, pose, state
+dds::QosSpec latched_qos();  // pose, state, models
 dds::QosSpec diagnostics_qos();
-dds::QosSpec request_qos(int depth = 16);
+dds::QosSpec request_qos(int max_samples = 64);
+dds::QosSpec result_qos();         // rt/rangefit/detections, the daemon's writer
+dds::QosSpec result_reader_qos();  // rt/rangefit/detections, the clients' reader
+dds::QosSpec tf_qos();
+dds::QosSpec tf_static_qos();
 
 // Writer and reader of a topic row: topics::Writer<topics::Cloud>.
 template <class Row>

@@ -30,6 +30,7 @@ Service::Service(DaemonConfig config, hal::Clock& clock, std::unique_ptr<ScanBac
     backend_ = std::make_unique<DeviceBackend>(config_);
     detector_ = std::make_unique<ModelDetector>(config_);
   }
+  dds_.publish_frames(config_);
   build_pipeline();
 }
 
@@ -44,6 +45,7 @@ void Service::build_pipeline() {
 }
 
 void Service::step(std::chrono::milliseconds timeout) {
+  apply_pending_reload();
   dds_.poll_requests(timeout, [&](ScanRequest req, const std::string& error) {
     std::string why = error.empty() ? validate_request(req, config_) : error;
     if (!why.empty()) {
@@ -51,23 +53,27 @@ void Service::step(std::chrono::milliseconds timeout) {
       dds_.on_result(DetectionResult::error(req, "bad request: " + why));
       return;
     }
-    switch (pipeline_->submit(req)) {
-      case Submit::kAccepted:
-        spdlog::info("request {} ({}) queued", log_escape(req.id), to_string(req.kind));
-        break;
-      case Submit::kBusy:
-        spdlog::warn("request {} refused: busy", log_escape(req.id));
-        dds_.on_result(DetectionResult::error(
-            req, fmt::format("busy: {} requests queued", pipeline_->queue_depth())));
-        break;
-      case Submit::kStopping:
-        dds_.on_result(DetectionResult::error(req, "daemon stopping"));
-        break;
-    }
+    submit(std::move(req));
   });
   if (clock_.now() >= next_diagnostics_) {
     publish_diagnostics();
     next_diagnostics_ = clock_.now() + seconds(config_.dds.diagnostics_period_s);
+  }
+}
+
+void Service::submit(ScanRequest req) {
+  switch (pipeline_->submit(req)) {
+    case Submit::kAccepted:
+      spdlog::info("request {} ({}) queued", log_escape(req.id), to_string(req.kind));
+      break;
+    case Submit::kBusy:
+      spdlog::warn("request {} refused: busy", log_escape(req.id));
+      dds_.on_result(DetectionResult::error(
+          req, fmt::format("busy: {} requests queued", pipeline_->queue_depth())));
+      break;
+    case Submit::kStopping:
+      dds_.on_result(DetectionResult::error(req, "daemon stopping"));
+      break;
   }
 }
 
@@ -109,16 +115,31 @@ bool Service::reload(const DaemonConfig& next, std::string* why) {
       return false;
     }
   }
-  // Finish the running scan with the old configuration, then swap everything in.
-  pipeline_->stop(false);
-  config_ = next;
-  spool_ = std::move(spool);
+  // The running scan finishes with the old configuration; step() swaps the new one in as soon
+  // as the pipeline is between scans (at once when it is idle).
+  pending_ =
+      std::make_unique<PendingReload>(PendingReload{next, std::move(spool), std::move(backend)});
+  pipeline_->hold();
+  apply_pending_reload();
+  if (pending_) spdlog::info("new configuration waits for the running scan to finish");
+  return true;
+}
+
+void Service::apply_pending_reload() {
+  if (!pending_ || !pipeline_->idle()) return;
+  std::deque<ScanRequest> waiting = pipeline_->take_queue();
+  pipeline_->stop(false);  // between scans and nothing queued: returns at once
+  pipeline_.reset();
+  config_ = std::move(pending_->config);
+  spool_ = std::move(pending_->spool);
   if (own_backend_) {
-    backend_ = std::move(backend);
+    backend_ = std::move(pending_->backend);
     detector_ = std::make_unique<ModelDetector>(config_);
   }
+  pending_.reset();
+  dds_.publish_frames(config_);
   build_pipeline();
-  return true;
+  for (auto& request : waiting) submit(std::move(request));
 }
 
 }  // namespace rangefit::daemon

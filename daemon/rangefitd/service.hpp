@@ -26,9 +26,12 @@ class Service {
 
   // Takes requests (waiting up to timeout) and publishes diagnostics when due.
   void step(std::chrono::milliseconds timeout);
-  // SIGHUP: a config that changes nothing DDS-related is swapped in between scans (the running
-  // scan finishes with the old one). Returns false with *why when the new config is refused.
+  // SIGHUP: a config that changes nothing DDS-related is checked at once and swapped in between
+  // scans: the running scan finishes with the old one while step() goes on taking requests, and
+  // the waiting requests carry over to the new pipeline. Returns false with *why when the new
+  // config is refused (nothing changes), true when it is in force or will be after the scan.
   bool reload(const DaemonConfig& next, std::string* why);
+  bool reload_pending() const { return pending_ != nullptr; }
   void stop(bool abort) { pipeline_->stop(abort); }
 
   bool stalled() const;
@@ -39,6 +42,14 @@ class Service {
 
  private:
   void build_pipeline();
+  void submit(ScanRequest request);
+  void apply_pending_reload();  // once the held pipeline is between scans
+
+  struct PendingReload {
+    DaemonConfig config;
+    Spool spool;
+    std::unique_ptr<ScanBackend> backend;
+  };
 
   DaemonConfig config_;
   hal::Clock& clock_;
@@ -50,6 +61,7 @@ class Service {
   std::unique_ptr<Pipeline> pipeline_;
   DiagnosticsBuilder diagnostics_;
   hal::Timestamp next_diagnostics_{0};
+  std::unique_ptr<PendingReload> pending_;
 };
 
 }  // namespace rangefit::daemon

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "daemon/service/bus_addresses.hpp"
+#include "daemon/service/ros_env.hpp"
 #include "daemon/service/scan_types.hpp"
 #include "io/object_model_file.hpp"
 #include "io/toml_file.hpp"
@@ -375,6 +376,21 @@ void read_object(FieldReader& r, ObjectModelConfig& o, const std::filesystem::pa
   r.reject_unknown();
 }
 
+// [frames]: world = "<frame id>" and, per device, <device name> = "<frame id>".
+void read_frames(FieldReader& r, const toml::table& t, DaemonConfig& c) {
+  r.read("world", c.frames.world);
+  if (auto why = check_frame_id(c.frames.world); !why.empty()) r.fail("world", why);
+  for (const auto& [key, value] : t) {
+    const std::string name(key.str());
+    if (name == "world") continue;
+    if (c.device(name) == nullptr) r.fail(name, "is neither world nor a device name");
+    std::string id;
+    r.read(name, id);
+    if (auto why = check_frame_id(id); !why.empty()) r.fail(name, why);
+    c.frames.sensors[name] = id;
+  }
+}
+
 // The [fusion] table belongs to fusion/ (fusion/config.hpp), which validates it the same way.
 struct FusionTableError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -401,6 +417,14 @@ DaemonConfig read_root(const toml::table& root, std::string_view source_name,
   if (const auto* t = r.sub_table("dds")) {
     FieldReader sub(*t, "dds");
     read_dds(sub, c.dds);
+  }
+  const toml::table* dds = root["dds"].as_table();
+  if (dds == nullptr || !dds->contains("domain_id")) {
+    try {
+      c.dds.domain_id = ros_domain_id().value_or(c.dds.domain_id);  // as a ROS 2 node would
+    } catch (const std::invalid_argument& e) {
+      throw FieldError(std::string("dds.domain_id (not set): ") + e.what());
+    }
   }
   for (const auto& [key, path] : DdsSecurityConfig::documents(c.dds.security)) {
     *path = resolve(*path, base_dir);
@@ -435,6 +459,10 @@ DaemonConfig read_root(const toml::table& root, std::string_view source_name,
     if (!m.empty() && c.device(m) == nullptr) {
       throw FieldError("devices[" + std::to_string(i) + "].motion: no device named \"" + m + "\"");
     }
+  }
+  if (const auto* t = r.sub_table("frames")) {
+    FieldReader sub(*t, "frames");
+    read_frames(sub, *t, c);
   }
   names.clear();
   if (const auto* arr = r.table_array("objects")) {

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "daemon/service/frames_config.hpp"
 #include "detect/object_model.hpp"
 #include "fusion/config.hpp"
 
@@ -118,12 +119,13 @@ struct DdsSecurityConfig {
 };
 
 struct DdsConfig {
-  std::uint32_t domain_id = 0;        // 0 .. 232
+  std::uint32_t domain_id = 0;        // 0 .. 232; not in the config: ROS_DOMAIN_ID, else 0
   std::string config_uri;             // Cyclone XML (file://...); empty = CYCLONEDDS_URI/default
   double diagnostics_period_s = 1.0;  // rt/diagnostics period (REP 107 expects ~1 Hz)
   int cloud_depth = 2;                // keep-last depth of rt/rangefit/cloud
-  int request_depth = 16;             // keep-last depth of the request reader
-  DdsSecurityConfig security;         // [dds.security]; off when absent
+  int request_depth =
+      256;  // requests received, not yet taken (keep-all; the sender resends beyond)
+  DdsSecurityConfig security;  // [dds.security]; off when absent
 };
 
 struct SpoolConfig {
@@ -163,6 +165,7 @@ struct DaemonConfig : CellConfig, DetectorConfig {
   ServiceConfig service;
   DdsConfig dds;
   SpoolConfig spool;
+  FramesConfig frames;  // [frames]: the names on the wire (ROS messages and TF)
 };
 
 struct ConfigResult {

@@ -77,6 +77,23 @@ void Pipeline::set_options(PipelineOptions options) {
   options_ = options;
 }
 
+void Pipeline::hold() {
+  std::lock_guard lock(mutex_);
+  held_ = true;
+}
+
+bool Pipeline::idle() const {
+  std::lock_guard lock(mutex_);
+  return held_ && !processing_;
+}
+
+std::deque<ScanRequest> Pipeline::take_queue() {
+  std::deque<ScanRequest> taken;
+  std::lock_guard lock(mutex_);
+  taken.swap(queue_);
+  return taken;
+}
+
 void Pipeline::set_state(LifecycleState s, const std::string& detail, const std::string& active) {
   state_ = s;
   sink_.on_state(s, detail, active, queue_depth());
@@ -89,15 +106,18 @@ void Pipeline::run() {
       std::unique_lock lock(mutex_);
       // Waking every 100 ms is the idle heartbeat the watchdog looks for.
       cv_.wait_for(lock, std::chrono::milliseconds(100),
-                   [&] { return stopping_ || !queue_.empty(); });
+                   [&] { return stopping_ || (!held_ && !queue_.empty()); });
       touch();
       if (stopping_) return;
-      if (queue_.empty()) continue;
+      if (held_ || queue_.empty()) continue;
       request = std::move(queue_.front());
       queue_.pop_front();
+      processing_ = true;
     }
     process(request);
     touch();
+    std::lock_guard lock(mutex_);
+    processing_ = false;
   }
 }
 

@@ -113,6 +113,12 @@ class Pipeline {
   std::uint64_t completed() const { return completed_.load(); }
   std::uint64_t rejected_busy() const { return busy_.load(); }
   void set_options(PipelineOptions options);  // SIGHUP: new queue bound and timeout
+  // SIGHUP without losing requests: hold() keeps the worker from starting another request (new
+  // ones still queue, or are answered busy); idle() is true once a held worker is between
+  // requests; take_queue() hands the waiting requests over unanswered, for the next pipeline.
+  void hold();
+  bool idle() const;
+  std::deque<ScanRequest> take_queue();
 
  private:
   void run();
@@ -133,6 +139,8 @@ class Pipeline {
   std::condition_variable cv_;
   std::deque<ScanRequest> queue_;
   bool stopping_ = false;
+  bool held_ = false;
+  bool processing_ = false;  // the worker took a request and has not finished it
   std::atomic<bool> cancel_{false};
   std::atomic<std::int64_t> last_progress_ns_{0};
   std::atomic<LifecycleState> state_{LifecycleState::kStarting};

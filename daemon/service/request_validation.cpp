@@ -69,6 +69,17 @@ std::string validate_request(ScanRequest& request, const DaemonConfig& config) {
     request.sweep_end = device->sweep_end;
   }
   if (request.sweep_speed == 0.0) request.sweep_speed = device->sweep_speed;
+  // The sweep decides how many points the scan fuses (a CSS sweep of +-30 rad fused 3.6 M
+  // points): the limits of the config's sweeps, one turn each way or 10 m.
+  const bool linear = sweep_is_linear(device->kind);
+  const double limit = linear ? 1e4 : 6.283185307179586;
+  if (std::abs(request.sweep_start) > limit || std::abs(request.sweep_end) > limit) {
+    return linear ? "sweep_start and sweep_end must be within +-10 m"
+                  : "sweep_start and sweep_end must be within +-2 pi rad (one turn)";
+  }
+  if (request.sweep_speed > (linear ? 1e5 : 100.0)) {
+    return linear ? "sweep_speed must be at most 100 m/s" : "sweep_speed must be at most 100 rad/s";
+  }
   return "";
 }
 

@@ -105,7 +105,7 @@ TEST_P(MsgIdlAgreement, MsgAndIdlDeclareTheSameFieldsInOrder) {
 }
 
 INSTANTIATE_TEST_SUITE_P(RangefitMsgs, MsgIdlAgreement,
-                         ::testing::Values("Detection", "DetectRequest", "State"));
+                         ::testing::Values("Detection", "DetectRequest", "State", "Models"));
 
 TEST(MsgIdlAgreement, AMissingStructIsNoMatch) {
   EXPECT_TRUE(idl_struct(read("daemon/dds/idl/rangefit_msgs.idl"), "Nope_").empty());

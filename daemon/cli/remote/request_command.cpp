@@ -2,20 +2,24 @@
 
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <iostream>
+#include <optional>
 #include <random>
 #include <vector>
 
 #include "daemon/cli/commands.hpp"
+#include "daemon/cli/option_checks.hpp"
 #include "daemon/dds/client.hpp"
 #include "daemon/service/json_codec.hpp"
 #include "daemon/service/result_outcome.hpp"
+#include "daemon/service/ros_env.hpp"
 
 namespace rangefit::cli {
 namespace {
 
 struct RequestArgs {
-  std::uint32_t domain = 0;
+  std::optional<std::uint32_t> domain;  // none: ROS_DOMAIN_ID, else 0
   std::string id;
   std::string model;
   std::string sensor;
@@ -58,10 +62,14 @@ int run(RequestArgs& a, daemon::DetectKind kind) {
   req.trials = a.trials;
   req.seed = a.seed;
   try {
-    daemon::DdsClient client(a.domain);
-    const auto timeout = std::chrono::milliseconds(static_cast<long>(a.timeout_s * 1000));
-    if (!client.wait_for_daemon(std::min(timeout, std::chrono::milliseconds(10000)))) {
-      std::cerr << "rangefit request: no rangefitd on DDS domain " << a.domain << "\n";
+    const std::uint32_t domain = a.domain ? *a.domain : daemon::ros_domain_id().value_or(0);
+    daemon::DdsClient client(domain);
+    const auto timeout = std::chrono::milliseconds(std::llround(a.timeout_s * 1000));
+    // Discovery may take a while when many clients start at once: the whole timeout is
+    // available for it, and the result's own wait starts once the daemon is matched.
+    if (!client.wait_for_daemon(timeout)) {
+      std::cerr << "rangefit request: no rangefitd on DDS domain " << domain << " within "
+                << a.timeout_s << " s\n";
       return kExitBadInput;
     }
     client.send(req, a.linear);
@@ -80,13 +88,16 @@ int run(RequestArgs& a, daemon::DetectKind kind) {
 }
 
 void common(CLI::App* sub, RequestArgs& a) {
-  sub->add_option("--domain", a.domain, "DDS domain id of rangefitd")->capture_default_str();
+  sub->add_option("--domain", a.domain,
+                  "DDS domain id of rangefitd (default: ROS_DOMAIN_ID, else 0)")
+      ->check(CLI::Range(0, 232));
   sub->add_option("--id", a.id, "request id (default: random)");
   sub->add_option("--sensor", a.sensor, "device name (default: the daemon's default for the kind)");
   sub->add_option("--sweep", a.sweep, "sweep start end speed (mm or rad, per second)");
   sub->add_flag("--linear", a.linear, "the sensor sweeps linearly (values in mm)");
-  sub->add_option("--timeout", a.timeout_s, "seconds to wait for the result")
-      ->capture_default_str();
+  sub->add_option("--timeout", a.timeout_s, "seconds to wait for the daemon and for the result")
+      ->capture_default_str()
+      ->check(finite_range(0.001, 86400.0));
   sub->add_option("--seed", a.seed, "seed of the detection (default: the daemon's)");
 }
 

@@ -1,0 +1,78 @@
+// The ROS 2 side of the configuration: [frames] names the world and sensor frames (checked as
+// tf2 frame ids), and ROS_DOMAIN_ID picks the domain when the config names none.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <string>
+
+#include "daemon/service/config.hpp"
+
+namespace rangefit::daemon {
+namespace {
+
+const std::string kDevice =
+    "[[devices]]\nname = \"css\"\nkind = \"css\"\ndriver = \"replay\"\nreplay_file = \"x.ply\"\n";
+
+// Sets (or, with nullptr, clears) ROS_DOMAIN_ID for one test.
+class RosDomainEnv {
+ public:
+  explicit RosDomainEnv(const char* value) {
+    if (value == nullptr) {
+      unsetenv("ROS_DOMAIN_ID");
+    } else {
+      setenv("ROS_DOMAIN_ID", value, 1);
+    }
+  }
+  ~RosDomainEnv() { unsetenv("ROS_DOMAIN_ID"); }
+};
+
+TEST(RosConfig, FramesNameTheWorldAndEachSensorAndDefaultToWorldAndTheDeviceName) {
+  auto plain = parse_config(kDevice);
+  ASSERT_TRUE(plain.config) << plain.error;
+  EXPECT_EQ(plain.config->frames.world, "world");
+  EXPECT_EQ(plain.config->frames.sensor("css"), "css");
+  auto named = parse_config(kDevice + "[frames]\nworld = \"base_link\"\ncss = \"css_link\"\n");
+  ASSERT_TRUE(named.config) << named.error;
+  EXPECT_EQ(named.config->frames.world, "base_link");
+  EXPECT_EQ(named.config->frames.sensor("css"), "css_link");
+}
+
+TEST(RosConfig, BadFrameIdsAndUnknownSensorsAreErrorsNamingTheField) {
+  auto slash = parse_config(kDevice + "[frames]\nworld = \"/world\"\n");
+  EXPECT_FALSE(slash.config);
+  EXPECT_NE(slash.error.find("frames.world"), std::string::npos) << slash.error;
+  auto space = parse_config(kDevice + "[frames]\ncss = \"css link\"\n");
+  EXPECT_FALSE(space.config);
+  EXPECT_NE(space.error.find("frames.css"), std::string::npos) << space.error;
+  auto unknown = parse_config(kDevice + "[frames]\nlidar = \"lidar\"\n");
+  EXPECT_FALSE(unknown.config);
+  EXPECT_NE(unknown.error.find("neither world nor a device"), std::string::npos) << unknown.error;
+}
+
+TEST(RosConfig, RosDomainIdIsTheDomainWhenTheConfigSetsNone) {
+  RosDomainEnv env("17");
+  auto from_env = parse_config(kDevice);
+  ASSERT_TRUE(from_env.config) << from_env.error;
+  EXPECT_EQ(from_env.config->dds.domain_id, 17u);
+  auto from_config = parse_config(kDevice + "[dds]\ndomain_id = 3\n");
+  ASSERT_TRUE(from_config.config) << from_config.error;
+  EXPECT_EQ(from_config.config->dds.domain_id, 3u);
+}
+
+TEST(RosConfig, UnsetRosDomainIdMeansDomainZeroAndABadOneIsAnError) {
+  {
+    RosDomainEnv env(nullptr);
+    auto none = parse_config(kDevice);
+    ASSERT_TRUE(none.config) << none.error;
+    EXPECT_EQ(none.config->dds.domain_id, 0u);
+  }
+  for (const char* bad : {"abc", "233", "-1", "99999999999"}) {
+    RosDomainEnv env(bad);
+    auto r = parse_config(kDevice);
+    EXPECT_FALSE(r.config) << bad;
+    EXPECT_NE(r.error.find("ROS_DOMAIN_ID"), std::string::npos) << r.error;
+  }
+}
+
+}  // namespace
+}  // namespace rangefit::daemon

@@ -1,0 +1,212 @@
+// What a ROS 2 node on the cell's network receives from rangefitd: the ROS type names on the
+// rt/ topics, XCDR1 bytes, SI metres and the configured frames; the sensors' mounts latched on
+// /tf_static, every part of a detection on /tf and rt/rangefit/poses; and the service
+// /rangefit/detect answered with the caller's identity, as rmw_cyclonedds matches replies.
+#include <dds/ddsi/ddsi_serdata.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "daemon/dds/client.hpp"
+#include "daemon/dds/ros_service.hpp"
+#include "daemon/rangefitd/service.hpp"
+#include "test/daemon/fakes.hpp"
+#include "test/daemon/replay_service.hpp"
+
+namespace rangefit::daemon {
+namespace {
+namespace fs = std::filesystem;
+using std::chrono::milliseconds;
+using std::chrono::seconds;
+
+std::string type_name(dds_entity_t reader) {
+  char name[256] = {};
+  dds_get_type_name(dds_get_topic(reader), name, sizeof name);
+  return name;
+}
+
+// The serialized sample as it travels: 4 bytes of encapsulation, then the CDR body.
+std::optional<std::vector<unsigned char>> take_bytes(dds_entity_t reader, seconds limit) {
+  const auto deadline = std::chrono::steady_clock::now() + limit;
+  while (std::chrono::steady_clock::now() < deadline) {
+    ddsi_serdata* sd = nullptr;
+    dds_sample_info_t info;
+    if (dds_takecdr(reader, &sd, 1, &info, DDS_ANY_STATE) == 1) {
+      std::vector<unsigned char> bytes(ddsi_serdata_size(sd));
+      ddsi_serdata_to_ser(sd, 0, bytes.size(), bytes.data());
+      ddsi_serdata_unref(sd);
+      if (info.valid_data) return bytes;
+    }
+    std::this_thread::sleep_for(milliseconds(10));
+  }
+  return std::nullopt;
+}
+
+// A little-endian XCDR1 reader, written from the CDR rules (alignment from the body's start).
+struct Cdr {
+  const std::vector<unsigned char>& b;
+  std::size_t at = 4;  // after the encapsulation header
+  void align(std::size_t n) { at = 4 + ((at - 4 + n - 1) / n) * n; }
+  template <class T>
+  T get() {
+    align(sizeof(T));
+    T v;
+    std::memcpy(&v, b.data() + at, sizeof(T));
+    at += sizeof(T);
+    return v;
+  }
+  std::string str() {
+    const auto n = get<std::uint32_t>();
+    std::string s(reinterpret_cast<const char*>(b.data() + at), n > 0 ? n - 1 : 0);
+    at += n;
+    return s;
+  }
+};
+
+class RosInterfacesTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = test::fresh_test_dir(fs::path("rangefit_ros_interfaces_test") /
+                                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    config_ = test::replay_css_config(dir_, dir_ / "scan.ply");
+    config_.devices[0].xyz_mm = {100, -200, 300};
+    config_.devices[0].rpy_rad = {0, 0, M_PI / 2};
+    config_.frames.world = "cell_base";
+    config_.frames.sensors["css"] = "css_mount";
+    auto backend = std::make_unique<test::FakeBackend>();
+    service_ = std::make_unique<Service>(config_, clock_, std::move(backend),
+                                         std::make_unique<test::CentroidDetector>());
+    loop_ = std::make_unique<test::ServiceLoop>(*service_);
+  }
+  void TearDown() override {
+    loop_.reset();
+    service_.reset();
+    fs::remove_all(dir_);
+  }
+  template <class T>
+  std::unique_ptr<dds::Reader<T>> reader(const char* topic, const dds_topic_descriptor_t* desc,
+                                         const dds::QosSpec& qos) {
+    return std::make_unique<dds::Reader<T>>(participant_, topic, desc, qos);
+  }
+
+  fs::path dir_;
+  DaemonConfig config_;
+  hal::MonotonicClock clock_;
+  std::unique_ptr<Service> service_;
+  std::unique_ptr<test::ServiceLoop> loop_;
+  dds::Participant participant_{test::dds_test_domain()};
+};
+
+TEST_F(RosInterfacesTest, SensorMountIsLatchedOnTfStaticInMetresFromTheWorldFrame) {
+  auto tf_static = reader<tf2_msgs_msg_dds__TFMessage_>(
+      topics::kTfStatic, &tf2_msgs_msg_dds__TFMessage__desc, topics::tf_static_qos());
+  EXPECT_EQ(type_name(tf_static->get()), "tf2_msgs::msg::dds_::TFMessage_");
+  const auto bytes = take_bytes(tf_static->get(), seconds(20));
+  ASSERT_TRUE(bytes);
+  EXPECT_EQ((*bytes)[0], 0x00);  // CDR_LE: XCDR1, as rmw_cyclonedds reads it
+  EXPECT_EQ((*bytes)[1], 0x01);
+  Cdr cdr{*bytes};
+  ASSERT_EQ(cdr.get<std::uint32_t>(), 1u);  // one transform: the css
+  cdr.get<std::int32_t>();                  // stamp
+  cdr.get<std::uint32_t>();
+  EXPECT_EQ(cdr.str(), "cell_base");
+  EXPECT_EQ(cdr.str(), "css_mount");
+  EXPECT_NEAR(cdr.get<double>(), 0.1, 1e-12);  // metres
+  EXPECT_NEAR(cdr.get<double>(), -0.2, 1e-12);
+  EXPECT_NEAR(cdr.get<double>(), 0.3, 1e-12);
+  const double qx = cdr.get<double>(), qy = cdr.get<double>(), qz = cdr.get<double>(),
+               qw = cdr.get<double>();
+  EXPECT_NEAR(qx, 0, 1e-12);  // yaw 90 degrees
+  EXPECT_NEAR(qy, 0, 1e-12);
+  EXPECT_NEAR(qz, std::sqrt(0.5), 1e-12);
+  EXPECT_NEAR(qw, std::sqrt(0.5), 1e-12);
+}
+
+TEST_F(RosInterfacesTest, EveryPartIsAPoseInPoseArrayAndATfFrameInTheConfiguredWorldFrame) {
+  auto poses = reader<geometry_msgs_msg_dds__PoseArray_>(
+      topics::kPoses, &geometry_msgs_msg_dds__PoseArray__desc, topics::latched_qos());
+  auto tf = reader<tf2_msgs_msg_dds__TFMessage_>(topics::kTf, &tf2_msgs_msg_dds__TFMessage__desc,
+                                                 topics::tf_qos());
+  EXPECT_EQ(type_name(poses->get()), "geometry_msgs::msg::dds_::PoseArray_");
+  DdsClient client(config_.dds.domain_id);
+  ASSERT_TRUE(client.wait_for_daemon(seconds(20)));
+  for (int i = 0; i < 200 && (tf->matched() == 0 || poses->matched() == 0); ++i) {
+    std::this_thread::sleep_for(milliseconds(10));
+  }
+  ScanRequest req;
+  req.id = "frames";
+  req.bore.radius_mm = 5;
+  ASSERT_TRUE(client.send(req, false));
+  const auto result = client.wait_result("frames", seconds(20));
+  ASSERT_TRUE(result && result->found);
+  const Eigen::Vector3d mm = result->parts.at(0).T_world_part.translation();
+
+  const auto pose_bytes = take_bytes(poses->get(), seconds(10));
+  ASSERT_TRUE(pose_bytes);
+  Cdr p{*pose_bytes};
+  p.get<std::int32_t>();
+  p.get<std::uint32_t>();
+  EXPECT_EQ(p.str(), "cell_base");
+  ASSERT_EQ(p.get<std::uint32_t>(), 1u);
+  EXPECT_NEAR(p.get<double>(), mm.x() * 1e-3, 1e-12);
+  EXPECT_NEAR(p.get<double>(), mm.y() * 1e-3, 1e-12);
+  EXPECT_NEAR(p.get<double>(), mm.z() * 1e-3, 1e-12);
+
+  const auto tf_bytes = take_bytes(tf->get(), seconds(10));
+  ASSERT_TRUE(tf_bytes);
+  Cdr t{*tf_bytes};
+  ASSERT_EQ(t.get<std::uint32_t>(), 1u);
+  t.get<std::int32_t>();
+  t.get<std::uint32_t>();
+  EXPECT_EQ(t.str(), "cell_base");
+  EXPECT_EQ(t.str(), "rangefit/bore/centroid/0");
+  EXPECT_NEAR(t.get<double>(), mm.x() * 1e-3, 1e-12);
+}
+
+// The request is framed as rmw_cyclonedds_cpp frames one (serdata.hpp: cdds_request_header_t
+// { uint64_t guid; int64_t seq; } before the message); the reply must carry the same two.
+TEST_F(RosInterfacesTest, ServiceCallIsAnsweredOnTheReplyTopicWithTheCallersIdentity) {
+  dds::Writer<rangefit_msgs_srv_dds__Detect_Request_> requests(
+      participant_, topics::kServiceRequest, &rangefit_msgs_srv_dds__Detect_Request__desc,
+      topics::service_qos());
+  auto replies = reader<rangefit_msgs_srv_dds__Detect_Response_>(
+      topics::kServiceReply, &rangefit_msgs_srv_dds__Detect_Response__desc,
+      dds::QosSpec{true, false, 10});  // rclcpp's default service QoS
+  EXPECT_EQ(type_name(replies->get()), "rangefit_msgs::srv::dds_::Detect_Response_");
+  for (int i = 0; i < 2000 && (requests.matched() == 0 || replies->matched() == 0); ++i) {
+    std::this_thread::sleep_for(milliseconds(10));
+  }
+  ASSERT_GT(requests.matched(), 0);
+  rangefit_msgs_srv_dds__Detect_Request_ call{};
+  call.rmw_client_guid = 0x0123456789abcdefull;
+  call.rmw_sequence_number = 42;
+  call.request_id = const_cast<char*>("");  // `ros2 service call` with the defaults
+  call.kind = const_cast<char*>("bore");
+  call.model = const_cast<char*>("");
+  call.sensor = const_cast<char*>("");
+  call.bore_axis = {0, 0, 1};
+  call.bore_radius = 0.005;  // metres
+  ASSERT_TRUE(requests.write(call));
+  const auto bytes = take_bytes(replies->get(), seconds(20));
+  ASSERT_TRUE(bytes);
+  Cdr r{*bytes};
+  EXPECT_EQ(r.get<std::uint64_t>(), 0x0123456789abcdefull);
+  EXPECT_EQ(r.get<std::int64_t>(), 42);
+  r.get<std::int32_t>();
+  r.get<std::uint32_t>();
+  EXPECT_EQ(r.str(), "cell_base");
+  EXPECT_EQ(r.str(), "ros-0123456789abcdef-42");  // the id the daemon gave the call
+  EXPECT_EQ(r.str(), "bore");
+  EXPECT_EQ(r.get<std::uint8_t>(), 1) << "found";
+}
+
+}  // namespace
+}  // namespace rangefit::daemon
