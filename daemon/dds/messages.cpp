@@ -239,14 +239,6 @@ ScanRequest from_msg(const rangefit_msgs_msg_dds__DetectRequest_& msg, std::stri
   return req;
 }
 
-void convert_sweep_units(ScanRequest& req, bool linear_sweep, bool to_wire) {
-  if (!linear_sweep) return;
-  const double f = to_wire ? kMetresPerMm : 1.0 / kMetresPerMm;
-  req.sweep_start *= f;
-  req.sweep_end *= f;
-  req.sweep_speed *= f;
-}
-
 StateOut::StateOut(LifecycleState s, std::string detail, std::string active_id, std::uint32_t depth,
                    std::string frame)
     : frame_(std::move(frame)), detail_(std::move(detail)), active_(std::move(active_id)) {
