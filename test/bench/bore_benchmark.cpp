@@ -234,7 +234,8 @@ const std::vector<CssFixture>& css_fixtures() {
 
 // The pipelines compared: the default (region read at a stride within its budget), the one
 // before the region budget (every region point read, one-step refinement, 60-point normal
-// patches: the same results as before), and session 1's (BoreOptions::cost_bounded = false).
+// patches, 0.5 mm plane margin: the same results as before), and session 1's
+// (BoreOptions::cost_bounded = false).
 enum class CssMode { kDefault, kFullRegion, kSession1 };
 
 BoreResult css_run(const sim::SyntheticBoreScan& scan, const BorePrior& prior, CssMode mode) {
@@ -245,6 +246,7 @@ BoreResult css_run(const sim::SyntheticBoreScan& scan, const BorePrior& prior, C
     opt.region_budget = 0;
     opt.refine_full_resolution = false;
     opt.normal_neighbours = 60.0;
+    opt.refine_plane_margin = 0.5;
   }
   return detect_bore(scan.cloud, prior, opt);
 }
