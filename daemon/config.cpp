@@ -187,6 +187,7 @@ void read_spool(FieldReader& r, SpoolConfig& s) {
   r.read("max_bytes", bytes, 1 << 20, std::numeric_limits<std::int64_t>::max());
   s.max_bytes = static_cast<std::uint64_t>(bytes);
   r.read("max_age_hours", s.max_age_hours, 0.001, 24.0 * 3650);
+  r.read("pictures", s.pictures);
   r.reject_unknown();
 }
 

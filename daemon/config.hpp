@@ -130,6 +130,7 @@ struct SpoolConfig {
   std::filesystem::path directory = "/var/lib/rangefitd/spool";
   std::uint64_t max_bytes = 1ull << 30;  // oldest entries are removed beyond this size...
   double max_age_hours = 168.0;          // ...or this age
+  bool pictures = true;                  // picture.png per entry with a scan (render/)
 };
 
 struct ServiceConfig {

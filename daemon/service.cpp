@@ -5,12 +5,26 @@
 
 #include "daemon/log_escape.hpp"
 #include "daemon/request_validation.hpp"
+#include "daemon/result_picture.hpp"
 
 namespace rangefit::daemon {
 namespace {
 
 hal::Duration seconds(double s) {
   return std::chrono::duration_cast<hal::Duration>(std::chrono::duration<double>(s));
+}
+
+// picture.png of each spool entry, with the configured models' shapes for object results. Runs
+// on the pipeline's worker, the one thread that draws.
+Spool::PictureWriter picture_writer(const std::vector<ObjectModelConfig>& objects) {
+  return [objects](const std::filesystem::path& path, const PointCloud& cloud,
+                   const DetectionResult& result, std::string* error) {
+    const ObjectModel* model = nullptr;
+    for (const ObjectModelConfig& o : objects) {
+      if (o.name == result.model) model = &o.model;
+    }
+    return write_result_picture(path, cloud, result, model, error);
+  };
 }
 
 }  // namespace
@@ -26,6 +40,7 @@ Service::Service(DaemonConfig config, hal::Clock& clock, std::unique_ptr<ScanBac
       dds_(config_.dds) {
   std::string why;
   if (!spool_.open(&why)) throw std::runtime_error(why);
+  spool_.set_picture(picture_writer(config_.objects));
   if (own_backend_) {
     backend_ = std::make_unique<DeviceBackend>(config_);
     detector_ = std::make_unique<ModelDetector>(config_);
@@ -99,6 +114,7 @@ bool Service::reload(const DaemonConfig& next, std::string* why) {
   }
   Spool spool(next.spool);
   if (!spool.open(why)) return false;
+  spool.set_picture(picture_writer(next.objects));
   // Devices first (a simulated scene may fail to load): a refused config changes nothing.
   std::unique_ptr<ScanBackend> backend;
   if (own_backend_) {
