@@ -142,8 +142,19 @@ struct ServiceConfig {
   std::string object_sensor;       // default sensor for object requests
 };
 
+// [http] and [tcp]: the interfaces for robot controllers and the browser page (api/), each off
+// unless listen is set. Detections need the token; without one the interface is read-only.
+struct InterfaceConfig {
+  std::string listen;  // "127.0.0.1:8080" (HOST:PORT, numeric IPv4 or localhost); empty: off
+  std::string token;   // write access; 8..256 printable ASCII characters, no spaces
+  std::size_t max_request_bytes = 64 * 1024;  // a longer HTTP body or TCP line is refused
+  bool operator==(const InterfaceConfig&) const = default;
+};
+
 struct DaemonConfig {
   ServiceConfig service;
+  InterfaceConfig http;
+  InterfaceConfig tcp;
   DdsConfig dds;
   SpoolConfig spool;
   DetectionConfig detection;

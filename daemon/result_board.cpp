@@ -90,6 +90,11 @@ std::uint64_t ResultBoard::generation() const {
   return generation_;
 }
 
+bool ResultBoard::closed() const {
+  std::lock_guard lock(mutex_);
+  return closed_;
+}
+
 void ResultBoard::close() {
   {
     std::lock_guard lock(mutex_);

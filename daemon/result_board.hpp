@@ -50,6 +50,7 @@ class ResultBoard final : public ResultSink {
   BoardState state() const;
   std::uint64_t generation() const;  // counts results; a page polls it cheaply
   void close();                      // the service stops: every waiter returns
+  bool closed() const;
 
  private:
   ResultSink& next_;

@@ -55,31 +55,62 @@ void Service::build_pipeline() {
   options.queue_capacity = config_.service.queue_capacity;
   options.scan_timeout = seconds(config_.service.scan_timeout_s);
   options.detect_timeout = seconds(config_.detection.timeout_s);
-  pipeline_ = std::make_unique<Pipeline>(options, *backend_, *detector_, &spool_, dds_, clock_);
+  pipeline_ = std::make_unique<Pipeline>(options, *backend_, *detector_, &spool_, board_, clock_);
+}
+
+std::optional<DetectionResult> Service::admit(ScanRequest req, const std::string& decode_error) {
+  std::optional<DetectionResult> refused;
+  {
+    std::lock_guard lock(mutex_);
+    const std::string why = decode_error.empty() ? validate_request(req, config_) : decode_error;
+    if (!why.empty()) {
+      spdlog::warn("request \"{}\" rejected: {}", log_escape(req.id), log_escape(why));
+      refused = DetectionResult::error(req, "bad request: " + why);
+    } else {
+      switch (pipeline_->submit(req)) {
+        case Submit::kAccepted:
+          spdlog::info("request {} ({}) queued", log_escape(req.id), to_string(req.kind));
+          break;
+        case Submit::kBusy:
+          spdlog::warn("request {} refused: busy", log_escape(req.id));
+          refused = DetectionResult::error(
+              req, fmt::format("busy: {} requests queued", pipeline_->queue_depth()));
+          break;
+        case Submit::kStopping:
+          refused = DetectionResult::error(req, "daemon stopping");
+          break;
+      }
+    }
+  }
+  if (refused) board_.on_result(*refused);
+  return refused;
+}
+
+PipelineSnapshot Service::snapshot() const {
+  std::lock_guard lock(mutex_);
+  return {pipeline_->state(),         pipeline_->queue_depth(), pipeline_->completed(),
+          pipeline_->rejected_busy(), pipeline_->last_error(),  stalled()};
+}
+
+std::optional<ObjectModel> Service::model(const std::string& name) const {
+  std::lock_guard lock(mutex_);
+  const ObjectModelConfig* o = config_.object(name);
+  return o ? std::optional<ObjectModel>(o->model) : std::nullopt;
+}
+
+std::filesystem::path Service::spool_directory() const {
+  std::lock_guard lock(mutex_);
+  return config_.spool.directory;
+}
+
+DaemonConfig Service::config_copy() const {
+  std::lock_guard lock(mutex_);
+  return config_;
 }
 
 void Service::step(std::chrono::milliseconds timeout) {
-  dds_.poll_requests(timeout, [&](ScanRequest req, const std::string& error) {
-    std::string why = error.empty() ? validate_request(req, config_) : error;
-    if (!why.empty()) {
-      spdlog::warn("request \"{}\" rejected: {}", log_escape(req.id), log_escape(why));
-      dds_.on_result(DetectionResult::error(req, "bad request: " + why));
-      return;
-    }
-    switch (pipeline_->submit(req)) {
-      case Submit::kAccepted:
-        spdlog::info("request {} ({}) queued", log_escape(req.id), to_string(req.kind));
-        break;
-      case Submit::kBusy:
-        spdlog::warn("request {} refused: busy", log_escape(req.id));
-        dds_.on_result(DetectionResult::error(
-            req, fmt::format("busy: {} requests queued", pipeline_->queue_depth())));
-        break;
-      case Submit::kStopping:
-        dds_.on_result(DetectionResult::error(req, "daemon stopping"));
-        break;
-    }
-  });
+  dds_.poll_requests(
+      timeout, [&](ScanRequest req, const std::string& error) { admit(std::move(req), error); });
   if (clock_.now() >= next_diagnostics_) {
     publish_diagnostics();
     next_diagnostics_ = clock_.now() + seconds(config_.dds.diagnostics_period_s);
@@ -90,7 +121,9 @@ void Service::publish_diagnostics() {
   PipelineSnapshot snap{pipeline_->state(),      pipeline_->queue_depth(),
                         pipeline_->completed(),  pipeline_->rejected_busy(),
                         pipeline_->last_error(), stalled()};
-  dds_.publish_diagnostics(diagnostics_.build(backend_->health(), snap, clock_.now()));
+  auto statuses = diagnostics_.build(backend_->health(), snap, clock_.now());
+  board_.set_diagnostics(statuses);
+  dds_.publish_diagnostics(std::move(statuses));
 }
 
 bool Service::stalled() const {
@@ -112,6 +145,10 @@ bool Service::reload(const DaemonConfig& next, std::string* why) {
     *why = "dds settings changed; they apply on restart only (config not reloaded)";
     return false;
   }
+  if (next.http != config_.http || next.tcp != config_.tcp) {
+    *why = "http or tcp settings changed; they apply on restart only (config not reloaded)";
+    return false;
+  }
   Spool spool(next.spool);
   if (!spool.open(why)) return false;
   spool.set_picture(picture_writer(next.objects));
@@ -125,7 +162,9 @@ bool Service::reload(const DaemonConfig& next, std::string* why) {
       return false;
     }
   }
-  // Finish the running scan with the old configuration, then swap everything in.
+  // Finish the running scan with the old configuration, then swap everything in. The
+  // interfaces wait meanwhile (their requests would be refused by a stopped pipeline).
+  std::lock_guard lock(mutex_);
   pipeline_->stop(false);
   config_ = next;
   spool_ = std::move(spool);

@@ -17,6 +17,7 @@
 #include "daemon/config.hpp"
 #include "daemon/dds_security.hpp"
 #include "daemon/dds_service.hpp"
+#include "daemon/interfaces.hpp"
 #include "daemon/service.hpp"
 #include "daemon/systemd_notify.hpp"
 
@@ -116,10 +117,14 @@ int main(int argc, char** argv) {
 
   hal::MonotonicClock clock;
   std::unique_ptr<daemon::Service> service;
+  std::unique_ptr<daemon::Interfaces> interfaces;  // [http], [tcp]
   try {
     daemon::apply_dds_config_uri(loaded.config->dds.config_uri);
     daemon::apply_dds_security(loaded.config->dds.security);
     service = std::make_unique<daemon::Service>(*loaded.config, clock);
+    interfaces = std::make_unique<daemon::Interfaces>(*service, *loaded.config);
+    std::string why;
+    if (!interfaces->start(&why)) throw std::runtime_error(why);
   } catch (const std::exception& e) {
     spdlog::critical("start-up failed: {}", e.what());
     notifier.notify(std::string("STATUS=start-up failed: ") + e.what());
@@ -175,7 +180,8 @@ int main(int argc, char** argv) {
     } else if (sig == SIGTERM || sig == SIGINT) {
       notifier.notify("STOPPING=1\nSTATUS=stopping");
       spdlog::info("{}: stopping (aborting the running scan)", strsignal(sig));
-      service->stop(true);
+      service->stop(true);  // answers what the interfaces wait for, then they stop
+      interfaces.reset();
       service.reset();
       spdlog::info("stopped");
       return 0;
