@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+
 #include "web/page.hpp"
 
 namespace rangefit::daemon {
@@ -14,6 +16,9 @@ Interfaces::Interfaces(Service& service, const DaemonConfig& config)
     o.listen = *api::parse_listen_address(config.http.listen, &why);  // checked with the config
     o.write_token = config.http.token;
     o.max_body_bytes = config.http.max_request_bytes;
+    // Clients waiting for their result hold a thread each (the running one, the queued ones):
+    // enough are left for the page and the readers.
+    o.threads = static_cast<int>(std::clamp<std::size_t>(config.service.queue_capacity + 6, 8, 64));
     for (const web::PageFile& f : web::page_files()) o.files.push_back({f.path, f.type, f.body});
     http_ = std::make_unique<api::HttpServer>(backend_, std::move(o));
   }
