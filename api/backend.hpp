@@ -3,6 +3,7 @@
 // request goes through one Backend, which the service implements with the same queue its DDS
 // requests use, so a busy cell, a timeout or an error reads the same on every interface.
 
+#include <cstddef>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -14,6 +15,7 @@ enum class Status {
   kOk,          // body: the result, state, ...
   kAccepted,    // queued, body {"id": ...}: poll the result
   kBadRequest,  // malformed JSON or fields
+  kForbidden,   // a write (a detection) without the configured token, or with none configured
   kNotFound,    // no such result or file
   kTooLarge,    // request body or line over the limit
   kBusy,        // the queue is full: try again later
@@ -21,8 +23,8 @@ enum class Status {
   kError,       // anything else; body {"error": ...}
 };
 
-const char* to_string(Status s);  // "ok", "accepted", "bad_request", ...
-int http_status(Status s);        // 200, 202, 400, 404, 413, 503, 504, 500
+const char* to_string(Status s);  // "ok", "accepted", "bad_request", "forbidden", ...
+int http_status(Status s);        // 200, 202, 400, 403, 404, 413, 503, 504, 500
 
 struct Answer {
   Status status = Status::kOk;
@@ -31,6 +33,10 @@ struct Answer {
 
 // {"error": message} with that status.
 Answer error_answer(Status status, const std::string& message);
+
+// Write access (a detection request): true when a token is configured and given is it. Without
+// a configured token the interfaces are read-only.
+bool token_matches(const std::string& expected, const std::string& given);
 
 // The servers call these from their worker threads, several at once.
 class Backend {
@@ -42,6 +48,8 @@ class Backend {
   virtual Answer detect(const nlohmann::json& request, bool wait) = 0;
   // A result by request id: kOk with the result, kAccepted while it runs, kNotFound.
   virtual Answer result(const std::string& id) = 0;
+  // The last n finished results, newest first: kOk with {"results": [...]}.
+  virtual Answer recent(std::size_t n) = 0;
   // Lifecycle state, queue depth, diagnostics.
   virtual Answer state() = 0;
   // A file of a finished result, name "cloud.ply" or "picture.png" (the servers ask for no

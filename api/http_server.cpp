@@ -3,6 +3,7 @@
 #include <httplib.h>
 #include <sys/socket.h>
 
+#include <charconv>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -53,9 +54,23 @@ struct HttpServer::Impl {
   void routes();
 };
 
+// "Authorization: Bearer TOKEN" (what curl -H and fetch() send), or "X-Rangefit-Token: TOKEN".
+std::string token_of(const httplib::Request& req) {
+  const std::string auth = req.get_header_value("Authorization");
+  if (auth.starts_with("Bearer ")) return auth.substr(7);
+  return req.get_header_value("X-Rangefit-Token");
+}
+
 void HttpServer::Impl::routes() {
   server.Post("/v1/detect", [this](const httplib::Request& req, httplib::Response& res) {
     guarded(res, [&] {
+      if (!token_matches(options.write_token, token_of(req))) {
+        return error_answer(Status::kForbidden,
+                            options.write_token.empty()
+                                ? "read-only: no token is configured for detection requests"
+                                : "detection requests need the configured token "
+                                  "(Authorization: Bearer TOKEN)");
+      }
       const nlohmann::json request = nlohmann::json::parse(req.body, nullptr, false);
       if (request.is_discarded() || !request.is_object()) {
         return error_answer(Status::kBadRequest, "the body must be one JSON object");
@@ -91,6 +106,28 @@ void HttpServer::Impl::routes() {
   server.Get("/v1/state", [this](const httplib::Request&, httplib::Response& res) {
     guarded(res, [&] { return backend.state(); });
   });
+  server.Get("/v1/results", [this](const httplib::Request& req, httplib::Response& res) {
+    guarded(res, [&] {
+      std::size_t n = 10;
+      const std::string text = req.get_param_value("n");
+      if (!text.empty()) {
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+        if (ec != std::errc() || end != text.data() + text.size() || n > 1000) {
+          return error_answer(Status::kBadRequest, "n must be a number 0..1000");
+        }
+      }
+      return backend.recent(n);
+    });
+  });
+  for (const StaticFile& f : options.files) {
+    const auto serve = [&f](const httplib::Request&, httplib::Response& res) {
+      res.set_header("X-Content-Type-Options", "nosniff");
+      res.set_header("Cache-Control", "no-cache");
+      res.set_content(f.body.data(), f.body.size(), f.content_type.c_str());
+    };
+    server.Get(f.path, serve);
+    if (f.path == "/index.html") server.Get("/", serve);
+  }
   // Errors httplib answers itself (no such route, body too large, bad request line) in the
   // same JSON as ours.
   server.set_error_handler(

@@ -1,9 +1,14 @@
 #pragma once
 // The HTTP/JSON interface for robot controllers and scripts (cpp-httplib):
-//   POST /v1/detect                 body: a detection request; ?wait=0 answers 202 + {"id"} at once
+//   POST /v1/detect                 body: a detection request; ?wait=0 answers 202 + {"id"} at
+//   once;
+//                                   needs "Authorization: Bearer TOKEN" (403 without, or when no
+//                                   token is configured: the interface is then read-only)
+//   GET  /v1/results?n=N            the last N results, newest first
 //   GET  /v1/results/ID             the result (202 while it runs, 404 unknown)
 //   GET  /v1/results/ID/cloud.ply   the scan of a result, and its picture: .../picture.png
 //   GET  /v1/state                  lifecycle state and queue
+//   GET  /, /PATH                   the static files given in the options (a browser page)
 // Every JSON answer carries "status" as in backend.hpp ("ok", "busy", "timeout", ...), the HTTP
 // code matches it (200, 503, 504, ...), and errors say why in "error". Bodies over the limit get
 // 413 without being read; a client that stops sending is dropped after the read timeout.
@@ -12,18 +17,29 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "api/backend.hpp"
 #include "api/listen_address.hpp"
 
 namespace rangefit::api {
 
+// A file served as is from memory (the page is compiled in: nothing is read from disk for it).
+struct StaticFile {
+  std::string path;  // "/index.html" ("/" serves it too), "/app.js", ...
+  std::string content_type;
+  std::string_view body;  // must outlive the server
+};
+
 struct HttpOptions {
   ListenAddress listen;                          // loopback by default; port 0: any free port
   std::size_t max_body_bytes = 64 * 1024;        // a detection request is well under 1 KiB
   std::chrono::milliseconds read_timeout{5000};  // per read: a silent client is dropped after it
   std::chrono::milliseconds write_timeout{5000};
-  int threads = 8;  // requests served at once; more wait in line for a thread
+  int threads = 8;                // requests served at once; more wait in line for a thread
+  std::string write_token;        // empty: read-only (every POST /v1/detect is forbidden)
+  std::vector<StaticFile> files;  // the browser page
 };
 
 class HttpServer {

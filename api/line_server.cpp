@@ -35,14 +35,33 @@ bool send_answer(int fd, const Answer& a) { return send_all(fd, answer_json(a).d
 
 }  // namespace
 
-Answer answer_line(Backend& backend, const std::string& line) {
-  const nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
+Answer answer_line(Backend& backend, const std::string& line, const std::string& write_token) {
+  nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
   if (j.is_discarded() || !j.is_object()) {
     return error_answer(Status::kBadRequest, "each line must be one JSON object");
   }
   try {
+    std::string token;
+    if (j.contains("token")) {
+      if (j["token"].is_string()) token = j["token"].get<std::string>();
+      j.erase("token");
+    }
+    const bool detect = !j.contains("op") || j["op"] == "detect";
+    if (detect && !token_matches(write_token, token)) {
+      return error_answer(Status::kForbidden,
+                          write_token.empty()
+                              ? "read-only: no token is configured for detection requests"
+                              : "a detection needs \"token\": the configured token");
+    }
     if (!j.contains("op")) return backend.detect(j, true);
     const nlohmann::json& op = j.at("op");
+    if (op == "results") {
+      const nlohmann::json n = j.contains("n") ? j["n"] : nlohmann::json(10u);
+      if (!n.is_number_unsigned() || n.get<std::size_t>() > 1000) {
+        return error_answer(Status::kBadRequest, "\"n\" must be a number 0..1000");
+      }
+      return backend.recent(n.get<std::size_t>());
+    }
     if (op == "detect") {
       if (!j.contains("request") || !j["request"].is_object()) {
         return error_answer(Status::kBadRequest, "\"detect\" needs a \"request\" object");
@@ -57,7 +76,8 @@ Answer answer_line(Backend& backend, const std::string& line) {
       return backend.result(j["id"].get<std::string>());
     }
     if (op == "state") return backend.state();
-    return error_answer(Status::kBadRequest, "op must be \"detect\", \"result\" or \"state\"");
+    return error_answer(Status::kBadRequest,
+                        "op must be \"detect\", \"result\", \"results\" or \"state\"");
   } catch (const std::exception& e) {
     return error_answer(Status::kError, std::string("internal error: ") + e.what());
   }
@@ -124,7 +144,7 @@ void LineServer::Impl::serve(int fd) {
         open = false;
         break;
       }
-      open = send_answer(fd, answer_line(backend, line));
+      open = send_answer(fd, answer_line(backend, line, options.write_token));
     }
     if (!open) break;
     if (buffer.size() > options.max_line_bytes) {

@@ -4,6 +4,9 @@
 //   {"op": "detect", "request": {...}, "wait": true}   or the request object itself
 //   {"op": "result", "id": "..."}
 //   {"op": "state"}
+//   {"op": "results", "n": 10}
+// A detection needs "token": the configured token, at the top level of the line (in the bare
+// request form too); without it, or with no token configured, the answer is forbidden.
 // Answers are what the HTTP interface sends (http_server.hpp: answer_json), one per line. Bad
 // JSON gets a bad_request answer and the connection stays; a line over the limit gets too_large
 // and the connection is closed (the rest of it cannot be framed); an idle client is closed after
@@ -24,6 +27,7 @@ struct LineOptions {
   std::size_t max_line_bytes = 64 * 1024;
   std::chrono::milliseconds idle_timeout{30000};
   int max_connections = 64;
+  std::string write_token;  // empty: read-only
 };
 
 class LineServer {
@@ -43,6 +47,6 @@ class LineServer {
 };
 
 // One request line to one answer (the protocol without the socket).
-Answer answer_line(Backend& backend, const std::string& line);
+Answer answer_line(Backend& backend, const std::string& line, const std::string& write_token);
 
 }  // namespace rangefit::api

@@ -23,6 +23,12 @@ set(RANGEFIT_DOC_FILE ${CMAKE_INSTALL_FULL_DOCDIR}/README.md)
 set(RANGEFIT_SYSTEMD_UNIT_DIR lib/systemd/system CACHE STRING
     "Directory of the systemd unit, relative to the prefix or absolute")
 
+# Who may talk to rangefitd over IP (the unit's IPAddressAllow=): DDS peers and the clients of
+# its [http]/[tcp] interfaces, whose listen addresses must lie in these ranges.
+set(RANGEFITD_IP_ADDRESS_ALLOW
+    "localhost link-local multicast 10.0.0.0/8 172.16.0.0/12 192.168.0.0/16"
+    CACHE STRING "IPAddressAllow= of the rangefitd unit (systemd.resource-control)")
+
 # What the programs print: the version, and where the installed sample configuration is.
 foreach(program rangefit rangefitd)
   if(TARGET ${program})

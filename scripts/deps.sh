@@ -14,7 +14,11 @@ packages=(
   clang libclang-rt-14-dev  # RANGEFIT_FUZZ=ON: the libFuzzer harnesses of test/fuzz
   libcairo2-dev fonts-dejavu-core  # render/: pictures of scans and detections, legend font
   libcpp-httplib-dev  # api/: the HTTP/JSON interface for robot controllers
+  chromium chromium-driver python3  # test/web/browser_test.py: the page in headless Chromium
 )
+# web/: npm ci fetches three.js (pinned in web/package-lock.json) for rangefitd's page at
+# configure time. A Node.js that brings its own npm (nodesource's) is used as it is.
+command -v npm > /dev/null || packages+=(npm)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -12,6 +12,7 @@
 
 #include "daemon/cli/commands.hpp"
 #include "daemon/service/json_codec.hpp"
+#include "daemon/service/result_picture.hpp"
 #include "io/cloud_io.hpp"
 #include "io/object_model_file.hpp"
 #include "render/render.hpp"
@@ -113,31 +114,17 @@ render::Drawing object_json(const nlohmann::json& j, const std::optional<ObjectM
   return d;
 }
 
-// rangefitd's result.json of a spool entry: poses and one score per part.
+// rangefitd's result.json of a spool entry: poses and one score per part, drawn as the service
+// draws its own picture of it.
 render::Drawing spool_json(const nlohmann::json& j, const std::optional<ObjectModel>& model) {
   daemon::DetectionResult r;
   std::string error;
   if (!daemon::from_json(j, r, &error)) throw std::invalid_argument(error);
-  render::Drawing d;
-  d.legend.push_back(std::string(daemon::to_string(r.kind)) + " request " + r.request_id +
-                     (r.model.empty() ? "" : " (" + r.model + ")") +
-                     (r.found ? ": found" : ": not found: " + r.reason));
-  for (const daemon::PartPose& p : r.parts) {
-    const Eigen::Vector3d c = p.T_world_part.translation(), z = p.T_world_part.linear().col(2);
-    if (r.kind == daemon::DetectKind::kBore) {
-      // The service's result has no entrance plane: the renderer estimates it from the scan.
-      d.bores.push_back({c, z, r.bore_radius_mm, Eigen::Vector3d::Zero(), 0.0});
-      d.legend.push_back("entrance  " + text(c) + " mm");
-      d.legend.push_back("axis      " + text(z) + " (out of the bore)");
-      d.legend.push_back(format("radius    %.3f mm, score %.3f", r.bore_radius_mm, p.score));
-    } else {
-      d.parts.push_back({p.name, shape_of(model, p.name), p.T_world_part});
-      d.legend.push_back(p.name + "  centre " + text(c) + " mm, z-axis " + text(z) +
-                         format(", score %.3f", p.score));
-    }
+  if (r.kind == daemon::DetectKind::kObject && !r.parts.empty() && !model) {
+    throw std::invalid_argument(
+        "the result has object parts; --model MODEL.toml gives their shape");
   }
-  d.legend.push_back(format("scan %.2f s, detection %.3f s", r.scan_seconds, r.detect_seconds));
-  return d;
+  return daemon::result_drawing(r, model ? &*model : nullptr);
 }
 
 render::Drawing drawing_from(const nlohmann::json& j, const std::optional<ObjectModel>& model) {

@@ -14,6 +14,7 @@
 #include <memory>
 #include <string>
 
+#include "daemon/rangefitd/interfaces.hpp"
 #include "daemon/rangefitd/service.hpp"
 #include "daemon/rangefitd/systemd_notify.hpp"
 #include "daemon/service/config.hpp"
@@ -131,8 +132,12 @@ int main(int argc, char** argv) {
 
   hal::MonotonicClock clock;
   std::unique_ptr<daemon::Service> service;
+  std::unique_ptr<daemon::Interfaces> interfaces;  // [http], [tcp]
   try {
     service = std::make_unique<daemon::Service>(*loaded.config, clock);
+    interfaces = std::make_unique<daemon::Interfaces>(*service, *loaded.config);
+    std::string why;
+    if (!interfaces->start(&why)) throw std::runtime_error(why);
   } catch (const std::exception& e) {
     spdlog::critical("start-up failed: {}", e.what());
     notifier.notify(std::string("STATUS=start-up failed: ") + e.what());
@@ -176,7 +181,8 @@ int main(int argc, char** argv) {
     } else if (sig == SIGTERM || sig == SIGINT) {
       notifier.notify("STOPPING=1\nSTATUS=stopping");
       spdlog::info("{}: stopping (aborting the running scan)", strsignal(sig));
-      service->stop(true);
+      service->stop(true);  // answers what the interfaces wait for, then they stop
+      interfaces.reset();
       service.reset();
       spdlog::info("stopped");
       return 0;

@@ -3,11 +3,16 @@
 // built from a DaemonConfig. The executable (daemon/rangefitd) owns signals and sd_notify and
 // calls step() from its main loop; tests can run a Service in-process the same way.
 
+#include <deque>
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "daemon/cell/device_backend.hpp"
 #include "daemon/dds/dds_service.hpp"
+#include "daemon/rangefitd/result_board.hpp"
 #include "daemon/service/config.hpp"
 #include "daemon/service/diagnostics.hpp"
 #include "daemon/service/model_detector.hpp"
@@ -26,6 +31,18 @@ class Service {
 
   // Takes requests (waiting up to timeout) and publishes diagnostics when due.
   void step(std::chrono::milliseconds timeout);
+  // The one way into the queue, for DDS, HTTP and TCP requests alike (any thread): validates and
+  // queues the request; nullopt when queued, else the error result it is answered with (bad
+  // request, busy, stopping), published like every result. decode_error: the request could not
+  // be decoded.
+  std::optional<DetectionResult> admit(ScanRequest request, const std::string& decode_error = "");
+  // What the HTTP and TCP interfaces read: results by id, state, diagnostics (any thread).
+  ResultBoard& board() { return board_; }
+  PipelineSnapshot snapshot() const;
+  // The configured model of that name, the spool directory (any thread).
+  std::optional<ObjectModel> model(const std::string& name) const;
+  std::filesystem::path spool_directory() const;
+  DaemonConfig config_copy() const;
   // SIGHUP: a config that changes nothing DDS-related is checked at once and swapped in between
   // scans: the running scan finishes with the old one while step() goes on taking requests, and
   // the waiting requests carry over to the new pipeline. Returns false with *why when the new
@@ -42,7 +59,7 @@ class Service {
 
  private:
   void build_pipeline();
-  void submit(ScanRequest request);
+  std::optional<DetectionResult> submit_locked(const ScanRequest& request);  // mutex_ held
   void apply_pending_reload();  // once the held pipeline is between scans
 
   struct PendingReload {
@@ -58,6 +75,10 @@ class Service {
   bool own_backend_;
   Spool spool_;
   DdsService dds_;
+  ResultBoard board_{dds_};  // the pipeline's sink: records, then forwards to DDS
+  // Guards config_, spool_ and pipeline_ against reload() for the interfaces' threads; the main
+  // thread (step, reload) is their only writer.
+  mutable std::mutex mutex_;
   std::unique_ptr<Pipeline> pipeline_;
   DiagnosticsBuilder diagnostics_;
   hal::Timestamp next_diagnostics_{0};

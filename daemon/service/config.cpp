@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "api/listen_address.hpp"
 #include "daemon/service/bus_addresses.hpp"
 #include "daemon/service/ros_env.hpp"
 #include "daemon/service/scan_types.hpp"
@@ -188,6 +189,24 @@ void read_spool(FieldReader& r, SpoolConfig& s) {
   r.read("max_bytes", bytes, 1 << 20, std::numeric_limits<std::int64_t>::max());
   s.max_bytes = static_cast<std::uint64_t>(bytes);
   r.read("max_age_hours", s.max_age_hours, 0.001, 24.0 * 3650);
+  r.read("pictures", s.pictures);
+  r.reject_unknown();
+}
+
+void read_interface(FieldReader& r, InterfaceConfig& c) {
+  r.read("listen", c.listen);
+  std::string why;
+  if (!c.listen.empty() && !api::parse_listen_address(c.listen, &why)) r.fail("listen", why);
+  r.read("token", c.token);
+  if (!c.token.empty()) {
+    if (c.token.size() < 8 || c.token.size() > 256) r.fail("token", "must be 8..256 characters");
+    for (const char ch : c.token) {
+      if (ch <= 0x20 || ch > 0x7e) r.fail("token", "must be printable ASCII without spaces");
+    }
+  }
+  std::int64_t bytes = static_cast<std::int64_t>(c.max_request_bytes);
+  r.read("max_request_bytes", bytes, 1024, 16 << 20);
+  c.max_request_bytes = static_cast<std::size_t>(bytes);
   r.reject_unknown();
 }
 
@@ -413,6 +432,15 @@ DaemonConfig read_root(const toml::table& root, std::string_view source_name,
   if (const auto* t = r.sub_table("service")) {
     FieldReader sub(*t, "service");
     read_service(sub, c.service);
+  }
+  for (const char* name : {"http", "tcp"}) {
+    if (const auto* t = r.sub_table(name)) {
+      FieldReader sub(*t, name);
+      read_interface(sub, std::string_view(name) == "http" ? c.http : c.tcp);
+    }
+  }
+  if (!c.http.listen.empty() && c.http.listen == c.tcp.listen) {
+    throw FieldError("tcp.listen: the same address as http.listen");
   }
   if (const auto* t = r.sub_table("dds")) {
     FieldReader sub(*t, "dds");

@@ -132,6 +132,7 @@ struct SpoolConfig {
   std::filesystem::path directory = "/var/lib/rangefitd/spool";
   std::uint64_t max_bytes = 1ull << 30;  // oldest entries are removed beyond this size...
   double max_age_hours = 168.0;          // ...or this age
+  bool pictures = true;                  // picture.png per entry with a scan (render/)
 };
 
 struct ServiceConfig {
@@ -141,6 +142,15 @@ struct ServiceConfig {
   std::string log_level = "info";  // trace | debug | info | warn | error
   std::string bore_sensor;         // default sensor for bore requests (a device name)
   std::string object_sensor;       // default sensor for object requests
+};
+
+// [http] and [tcp]: the interfaces for robot controllers and the browser page (api/), each off
+// unless listen is set. Detections need the token; without one the interface is read-only.
+struct InterfaceConfig {
+  std::string listen;  // "127.0.0.1:8080" (HOST:PORT, numeric IPv4 or localhost); empty: off
+  std::string token;   // write access; 8..256 printable ASCII characters, no spaces
+  std::size_t max_request_bytes = 64 * 1024;  // a longer HTTP body or TCP line is refused
+  bool operator==(const InterfaceConfig&) const = default;
 };
 
 // Each part of rangefitd is built from its own slice of the file: the cell (daemon/cell) from
@@ -163,6 +173,8 @@ struct DetectorConfig {
 
 struct DaemonConfig : CellConfig, DetectorConfig {
   ServiceConfig service;
+  InterfaceConfig http;  // [http]
+  InterfaceConfig tcp;   // [tcp]
   DdsConfig dds;
   SpoolConfig spool;
   FramesConfig frames;  // [frames]: the names on the wire (ROS messages and TF)

@@ -1,5 +1,7 @@
 #include "daemon/service/spool.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <ctime>
 #include <fstream>
@@ -100,6 +102,11 @@ bool Spool::write(const ScanRequest& request, const PointCloud& cloud, Detection
     if (!write_text(tmp / "request.json", to_json(request).dump(2)) ||
         !write_text(tmp / "result.json", to_json(result).dump(2))) {
       throw std::runtime_error("cannot write json");
+    }
+    std::string why;
+    if (config_.pictures && picture_ && !cloud.empty() &&
+        !picture_(tmp / "picture.png", cloud, result, &why)) {
+      spdlog::warn("spool {}: no picture: {}", name, why);
     }
     fs::rename(tmp, final_path);
   } catch (const std::exception& e) {

@@ -1,13 +1,15 @@
 #pragma once
 // The spool: every scan's cloud and result are written here before the result is published, so
 // nothing is lost and a failed detection can be replayed offline (`rangefit replay ENTRY`).
-// One directory per scan: request.json, cloud.ply (binary, world frame, mm), result.json.
+// One directory per scan: request.json, cloud.ply (binary, world frame, mm), result.json, and
+// picture.png (the scan with the detection drawn over it) when a picture writer is set.
 // Entries are written under a temporary name and renamed, so a reader never sees half of one.
 // Bounded by total size and by age; the oldest entries go first.
 
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -26,6 +28,12 @@ struct SpoolEntry {
 class Spool {
  public:
   explicit Spool(SpoolConfig config);
+
+  // Draws an entry's picture.png; false and *error when it cannot (the entry is kept without).
+  using PictureWriter = std::function<bool(const std::filesystem::path&, const PointCloud&,
+                                           const DetectionResult&, std::string*)>;
+  // Called by write() for every entry with points while config.pictures is set.
+  void set_picture(PictureWriter writer) { picture_ = std::move(writer); }
 
   // Creates the directory if needed; false + *error when it cannot be created or written.
   bool open(std::string* error);
@@ -47,6 +55,7 @@ class Spool {
  private:
   SpoolConfig config_;
   std::uint64_t sequence_ = 0;
+  PictureWriter picture_;
 };
 
 // Reads an entry written by Spool::write. nullopt + *error when missing or malformed.

@@ -47,6 +47,15 @@ class FakeBackend : public Backend {
     return {Status::kOk, *it->second};
   }
 
+  Answer recent(std::size_t n) override {
+    std::lock_guard lock(mutex_);
+    nlohmann::json list = nlohmann::json::array();
+    for (auto it = results_.rbegin(); it != results_.rend() && list.size() < n; ++it) {
+      if (it->second) list.push_back(*it->second);
+    }
+    return {Status::kOk, {{"results", list}}};
+  }
+
   Answer state() override {
     return {Status::kOk, {{"state", "ready"}, {"queue", in_flight_.load()}}};
   }

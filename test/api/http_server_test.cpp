@@ -21,11 +21,13 @@ namespace rangefit::api {
 namespace {
 
 const std::string kRequest = R"({"kind": "bore", "bore": {"radius_mm": 5}})";
+const std::string kToken = "t0ken-for-tests";
 
 class Http : public ::testing::Test {
  protected:
   void start(HttpOptions o = {}) {
     o.listen = {"127.0.0.1", 0};
+    if (o.write_token.empty() && !read_only_) o.write_token = kToken;
     server_ = std::make_unique<HttpServer>(backend_, o);
     std::string error;
     ASSERT_TRUE(server_->start(&error)) << error;
@@ -34,6 +36,7 @@ class Http : public ::testing::Test {
   httplib::Client client() const {
     httplib::Client c("127.0.0.1", server_->port());
     c.set_read_timeout(10, 0);
+    c.set_bearer_token_auth(kToken);
     return c;
   }
   static nlohmann::json body(const httplib::Result& r) {
@@ -42,6 +45,7 @@ class Http : public ::testing::Test {
 
   test::FakeBackend backend_;
   std::unique_ptr<HttpServer> server_;
+  bool read_only_ = false;
 };
 
 TEST_F(Http, DetectWaitsForTheResult) {
@@ -104,6 +108,60 @@ TEST_F(Http, StateUnknownIdsAndRoutes) {
   ASSERT_TRUE(missing);
   EXPECT_EQ(missing->status, 404);
   EXPECT_EQ(body(missing)["status"], "not_found");
+}
+
+TEST_F(Http, DetectionNeedsTheConfiguredTokenReadsDoNot) {
+  start();
+  httplib::Client anonymous("127.0.0.1", server_->port());
+  const auto none = anonymous.Post("/v1/detect", kRequest, "application/json");
+  ASSERT_TRUE(none);
+  EXPECT_EQ(none->status, 403);
+  EXPECT_EQ(body(none)["status"], "forbidden");
+  anonymous.set_bearer_token_auth(kToken + "x");
+  EXPECT_EQ(anonymous.Post("/v1/detect", kRequest, "application/json")->status, 403);
+  anonymous.set_bearer_token_auth(kToken.substr(0, 5));
+  EXPECT_EQ(anonymous.Post("/v1/detect", kRequest, "application/json")->status, 403);
+  EXPECT_EQ(backend_.detections, 0);
+  EXPECT_EQ(anonymous.Get("/v1/state")->status, 200);
+  httplib::Client header("127.0.0.1", server_->port());
+  const auto ok =
+      header.Post("/v1/detect", {{"X-Rangefit-Token", kToken}}, kRequest, "application/json");
+  ASSERT_TRUE(ok);
+  EXPECT_EQ(ok->status, 200);
+  const auto recent = anonymous.Get("/v1/results?n=5");
+  ASSERT_TRUE(recent);
+  EXPECT_EQ(body(recent)["results"].size(), 1u);
+  EXPECT_EQ(anonymous.Get("/v1/results?n=-1")->status, 400);
+}
+
+TEST_F(Http, WithoutAConfiguredTokenEveryDetectionIsForbidden) {
+  read_only_ = true;
+  start();
+  auto c = client();  // sends a token, but none is configured
+  const auto r = c.Post("/v1/detect", kRequest, "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 403);
+  EXPECT_NE(body(r)["error"].get<std::string>().find("read-only"), std::string::npos);
+  EXPECT_EQ(backend_.detections, 0);
+}
+
+TEST_F(Http, ServesTheStaticFilesGivenAndNothingElse) {
+  static const std::string page = "<!doctype html><title>cell</title>";
+  HttpOptions o;
+  o.files.push_back({"/index.html", "text/html", page});
+  o.files.push_back({"/app.js", "text/javascript", "console.log(1);"});
+  start(o);
+  auto c = client();
+  for (const char* path : {"/", "/index.html"}) {
+    const auto r = c.Get(path);
+    ASSERT_TRUE(r) << path;
+    EXPECT_EQ(r->status, 200) << path;
+    EXPECT_EQ(r->body, page);
+    EXPECT_EQ(r->get_header_value("Content-Type"), "text/html");
+  }
+  EXPECT_EQ(c.Get("/app.js")->body, "console.log(1);");
+  EXPECT_EQ(c.Get("/../CMakeLists.txt")->status, 404);
+  EXPECT_EQ(c.Get("/etc/passwd")->status, 404);
 }
 
 TEST_F(Http, BadJsonIsABadRequest) {

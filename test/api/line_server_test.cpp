@@ -62,12 +62,15 @@ class LineClient {
   std::string buffer_;
 };
 
-const std::string kRequest = R"({"kind": "bore", "bore": {"radius_mm": 5}})";
+const std::string kToken = "t0ken-for-tests";
+const std::string kRequest =
+    R"({"kind": "bore", "bore": {"radius_mm": 5}, "token": ")" + kToken + "\"}";
 
 class Line : public ::testing::Test {
  protected:
   void start(LineOptions o = {}) {
     o.listen = {"127.0.0.1", 0};
+    o.write_token = kToken;
     server_ = std::make_unique<LineServer>(backend_, o);
     std::string error;
     ASSERT_TRUE(server_->start(&error)) << error;
@@ -80,8 +83,10 @@ TEST_F(Line, OneAnswerPerRequestLineInOrder) {
   start();
   LineClient c(server_->port());
   ASSERT_TRUE(c.connected());
-  c.send(kRequest + "\n" + R"({"op": "state"})" + "\r\n" +
-         R"({"op": "detect", "request": {"kind": "bore", "id": "mine"}, "wait": false})" + "\n");
+  c.send(
+      kRequest + "\n" + R"({"op": "state"})" + "\r\n" +
+      R"({"op": "detect", "request": {"kind": "bore", "id": "mine"}, "wait": false, "token": ")" +
+      kToken + "\"}\n");
   const nlohmann::json first = c.answer();
   EXPECT_EQ(first["status"], "ok");
   EXPECT_EQ(first["found"], true);
@@ -109,6 +114,21 @@ TEST_F(Line, BadJsonIsAnsweredAndTheConnectionStays) {
   }
   EXPECT_EQ(c.answer()["status"], "ok");
   EXPECT_EQ(backend_.detections, 1);
+}
+
+TEST_F(Line, DetectionNeedsTheTokenOtherOpsDoNot) {
+  start();
+  LineClient c(server_->port());
+  c.send(std::string(R"({"kind": "bore", "bore": {"radius_mm": 5}})") + "\n" +
+         R"({"op": "detect", "request": {"kind": "bore"}, "token": "wrong"})" + "\n" +
+         R"({"op": "state"})" + "\n" + R"({"op": "results", "n": 3})" + "\n");
+  EXPECT_EQ(c.answer()["status"], "forbidden");
+  EXPECT_EQ(c.answer()["status"], "forbidden");
+  EXPECT_EQ(c.answer()["status"], "ok");
+  const nlohmann::json recent = c.answer();
+  EXPECT_EQ(recent["status"], "ok");
+  EXPECT_TRUE(recent["results"].empty());
+  EXPECT_EQ(backend_.detections, 0);
 }
 
 TEST_F(Line, OverlongLinesCloseTheConnection) {

@@ -1,0 +1,156 @@
+// The service's picture of a result (daemon/result_picture.hpp): what it draws from a spooled
+// result, the picture.png of every spool entry, and `rangefit replay --png`.
+#include "daemon/service/result_picture.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include "daemon/service/spool.hpp"
+#include "render/render.hpp"
+#include "sim/synthetic_bore.hpp"
+
+namespace rangefit::daemon {
+namespace {
+namespace fs = std::filesystem;
+
+bool white_near(const render::Image& image, const Eigen::Vector2d& p) {
+  const int cx = static_cast<int>(std::floor(p.x())), cy = static_cast<int>(std::floor(p.y()));
+  for (int y = cy - 1; y <= cy + 1; ++y) {
+    for (int x = cx - 1; x <= cx + 1; ++x) {
+      const render::Rgb c = image.contains(x, y) ? image.at(x, y) : render::Rgb{};
+      if (c.r > 225 && c.g > 225 && c.b > 225) return true;
+    }
+  }
+  return false;
+}
+
+bool is_png(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  char magic[4] = {};
+  in.read(magic, 4);
+  return in && std::string(magic + 1, 3) == "PNG";
+}
+
+sim::SyntheticBoreScan bore_scan() {
+  sim::SyntheticBoreOptions o;
+  o.radius = 5.0;
+  o.outlier_fraction = 0.0;
+  o.ghost_fraction = 0.0;
+  o.spacing = 0.3;
+  return sim::make_synthetic_bore(o);
+}
+
+// What the service reports for the bore: the entrance and the axis as a part pose.
+DetectionResult bore_result(const sim::SyntheticBoreTruth& t) {
+  DetectionResult r;
+  r.request_id = "bore-1";
+  r.kind = DetectKind::kBore;
+  r.found = true;
+  r.bore_radius_mm = t.radius;
+  PartPose p;
+  p.name = "bore";
+  p.T_world_part.linear() =
+      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), t.axis).toRotationMatrix();
+  p.T_world_part.translation() = t.entrance;
+  p.score = 1.0;
+  r.parts.push_back(p);
+  return r;
+}
+
+TEST(ResultPicture, ASpooledBoreResultIsDrawnOnTheHoleEdge) {
+  const sim::SyntheticBoreScan scan = bore_scan();
+  const render::Drawing d = result_drawing(bore_result(scan.truth), nullptr);
+  ASSERT_EQ(d.bores.size(), 1u);
+  render::RenderOptions o;
+  o.panel_width = o.panel_height = 400;
+  o.toward_sensor = scan.truth.axis;
+  o.look_at = scan.truth.entrance;
+  o.px_per_mm = 10.0;
+  const render::Rendering r = render::render_scan(scan.cloud, d, o);
+  for (int k = 0; k < 12; ++k) {
+    const double w = 2.0 * std::numbers::pi * (k + 0.5) / 12.0;
+    const Eigen::Vector2d on_ring =
+        Eigen::Vector2d(200, 200) + 50.0 * Eigen::Vector2d(std::cos(w), std::sin(w));
+    EXPECT_TRUE(white_near(r.image, on_ring)) << "angle " << w;
+  }
+  EXPECT_FALSE(white_near(r.image, Eigen::Vector2d(200 + 80, 200 + 10)));  // the plate
+  render::release_font_caches();
+}
+
+TEST(ResultPicture, ObjectPartsNeedTheirModel) {
+  DetectionResult r;
+  r.kind = DetectKind::kObject;
+  r.found = true;
+  r.parts.push_back({"head", Eigen::Isometry3d::Identity(), 1.0, 0});
+  std::string error;
+  EXPECT_FALSE(write_result_picture(fs::temp_directory_path() / "rangefit_no_model.png",
+                                    PointCloud{}, r, nullptr, &error));
+  EXPECT_NE(error.find("model"), std::string::npos) << error;
+  ObjectModel other{"mallet", {{"shaft", Superquadric{}}}, {}};
+  EXPECT_THROW(result_drawing(r, &other), std::invalid_argument);
+}
+
+class SpoolPictures : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("rangefit_spool_pictures_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // A spool entry of the synthetic bore scan, as the service writes it.
+  fs::path spool_entry(bool pictures) {
+    SpoolConfig c;
+    c.directory = dir_ / "spool";
+    c.pictures = pictures;
+    Spool spool(c);
+    std::string why;
+    EXPECT_TRUE(spool.open(&why)) << why;
+    spool.set_picture([](const fs::path& path, const PointCloud& cloud,
+                         const DetectionResult& result, std::string* error) {
+      return write_result_picture(path, cloud, result, nullptr, error);
+    });
+    const sim::SyntheticBoreScan scan = bore_scan();
+    ScanRequest request;
+    request.id = "bore-1";
+    request.bore.position_mm = scan.truth.entrance + Eigen::Vector3d(0.5, -0.3, 0.0);
+    request.bore.axis = scan.truth.axis;
+    request.bore.radius_mm = 5.0;
+    DetectionResult result = bore_result(scan.truth);
+    EXPECT_TRUE(spool.write(request, scan.cloud, result, &why)) << why;
+    return result.spool_entry;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(SpoolPictures, EveryEntryWithAScanHasItsPictureUnlessTurnedOff) {
+  EXPECT_TRUE(is_png(spool_entry(true) / "picture.png"));
+  EXPECT_FALSE(fs::exists(spool_entry(false) / "picture.png"));
+}
+
+#ifdef RANGEFIT_CLI_PATH
+TEST_F(SpoolPictures, ReplayDrawsTheReplayedDetection) {
+  const fs::path entry = spool_entry(false);
+  const fs::path png = dir_ / "replay.png";
+  const std::string command = std::string(RANGEFIT_CLI_PATH) + " replay " + entry.string() +
+                              " --png " + png.string() + " > /dev/null 2>&1";
+  const int status = std::system(command.c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_TRUE(is_png(png));
+  // An unwritable picture is a bad-input exit, not a crash.
+  const std::string bad = std::string(RANGEFIT_CLI_PATH) + " replay " + entry.string() +
+                          " --png /nonexistent/dir/x.png > /dev/null 2>&1";
+  EXPECT_EQ(WEXITSTATUS(std::system(bad.c_str())), 1);
+}
+#endif
+
+}  // namespace
+}  // namespace rangefit::daemon
