@@ -87,9 +87,16 @@ bool Spool::open(std::string* error) {
 
 bool Spool::write(const ScanRequest& request, const PointCloud& cloud, DetectionResult& result,
                   std::string* error) {
-  char seq[16];
-  std::snprintf(seq, sizeof seq, "%06llu", static_cast<unsigned long long>(++sequence_ % 1000000));
-  const std::string name = utc_stamp() + "-" + seq + "-" + sanitise(request.id);
+  // A new Spool on the same folder (a reload) starts its sequence again: within the same second
+  // the same request id would name an entry that exists, so the sequence moves past it.
+  std::string name;
+  std::error_code exists_ec;
+  do {
+    char seq[16];
+    std::snprintf(seq, sizeof seq, "%06llu",
+                  static_cast<unsigned long long>(++sequence_ % 1000000));
+    name = utc_stamp() + "-" + seq + "-" + sanitise(request.id);
+  } while (fs::exists(config_.directory / name, exists_ec));
   const fs::path tmp = config_.directory / (kTmpPrefix + name);
   const fs::path final_path = config_.directory / name;
   result.spool_entry = final_path.string();
