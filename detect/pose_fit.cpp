@@ -7,6 +7,7 @@
 #include <limits>
 #include <vector>
 
+#include "detect/levenberg_marquardt.hpp"
 #include "detect/pca.hpp"
 #include "detect/superquadric_eval.hpp"
 
@@ -18,11 +19,7 @@ using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
 // Cost 0.5 sum r^2 (eq. 2.49), the Gauss-Newton matrix J^T J and the gradient g = J^T r for the
 // increment [dt (world), w (part frame)] about T.
-struct Linearisation {
-  double cost = 0.0;
-  Matrix6d jtj = Matrix6d::Zero();
-  Vector6d g = Vector6d::Zero();
-};
+using Linearisation = LmLinearisation<6>;
 
 // The points in lanes of four (structure of arrays); the tail is padded with copies of the last
 // point at weight 0. Plain doubles, loaded with memcpy (unaligned loads).
@@ -168,46 +165,21 @@ PoseFitResult fit_pose(const Superquadric& sq, std::span<const Eigen::Vector3d> 
   }
   const SuperquadricMetric m(sq);
   const PointLanes soa(points);
-  Eigen::Isometry3d T = initial;
-  Linearisation lin = linearise(m, T, soa);
+  const LmOptions lm{.max_iterations = options.max_iterations,
+                     .tau = options.tau,
+                     .gradient_tolerance = options.gradient_tolerance,
+                     .step_tolerance = options.step_tolerance};
+  const auto out = levenberg_marquardt<6>(
+      initial, [&](const Eigen::Isometry3d& T) { return linearise(m, T, soa); }, apply_step,
+      [](const Eigen::Isometry3d& T) { return T.translation().norm(); }, lm);
   const double n = static_cast<double>(points.size());
-  result.initial_measure = std::sqrt(2.0 * lin.cost / n);
-  double mu = options.tau * lin.jtj.diagonal().maxCoeff();  // eq. 2.60
-  if (!(mu > 0.0)) mu = options.tau;
-  double nu = 2.0;
-  result.termination = FitTermination::kMaxIterations;
-  int k = 0;
-  for (; k < options.max_iterations; ++k) {
-    if (lin.g.lpNorm<Eigen::Infinity>() <= options.gradient_tolerance) {  // eq. 2.63
-      result.termination = FitTermination::kGradient;
-      break;
-    }
-    Matrix6d a = lin.jtj;
-    a.diagonal().array() += mu;
-    const Vector6d h = a.ldlt().solve(-lin.g);  // eq. 2.58
-    const double x_norm = T.translation().norm();
-    if (!h.allFinite() ||
-        h.norm() <= options.step_tolerance * (x_norm + options.step_tolerance)) {  // eq. 2.64
-      result.termination = FitTermination::kStep;
-      break;
-    }
-    const Eigen::Isometry3d T_new = apply_step(T, h);
-    Linearisation lin_new = linearise(m, T_new, soa);
-    const double predicted = 0.5 * h.dot(mu * h - lin.g);      // eq. 2.62
-    const double rho = (lin.cost - lin_new.cost) / predicted;  // eq. 2.61
-    if (predicted > 0.0 && rho > 0.0 && std::isfinite(lin_new.cost)) {
-      T = T_new;
-      lin = lin_new;
-      mu *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));
-      nu = 2.0;
-    } else {
-      mu *= nu;
-      nu *= 2.0;
-    }
-  }
-  result.iterations = k;
-  result.T_world_part = T;
-  result.measure = std::sqrt(2.0 * lin.cost / n);
+  result.initial_measure = std::sqrt(2.0 * out.initial_cost / n);
+  result.termination = out.termination == LmTermination::kGradient ? FitTermination::kGradient
+                       : out.termination == LmTermination::kStep   ? FitTermination::kStep
+                                                                   : FitTermination::kMaxIterations;
+  result.iterations = out.iterations;
+  result.T_world_part = out.state;
+  result.measure = std::sqrt(2.0 * out.lin.cost / n);
   return result;
 }
 
