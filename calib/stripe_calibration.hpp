@@ -35,7 +35,7 @@ struct StripeCalibrationOptions {
   double crop_margin_mm = 40.0;   // points further than this outside the cube's sphere are left out
   PlaneExtractionOptions planes;
   LmOptions lm{
-      .max_iterations = 30, .tau = 1e-3, .gradient_tolerance = 1e-12, .step_tolerance = 1e-12};
+      .max_iterations = 30, .tau = 1e-3, .gradient_tolerance = 1e-12, .step_tolerance = 1e-10};
 };
 
 // Parameters of the refinement and of the covariance, in this order: the ranger origin in the

@@ -1,12 +1,12 @@
 // `rangefit calibrate`: what an operator runs, on files as the cell would record them.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "calib/calibration_cube.hpp"
 #include "calib/raw_sweep_text.hpp"
