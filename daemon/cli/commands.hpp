@@ -20,4 +20,5 @@ void add_simulate_command(CLI::App& app, int* exit_code);  // simulate_command.c
 void add_bore_command(CLI::App& app, int* exit_code);  // bore_command.cpp
 void add_object_command(CLI::App& app, int* exit_code);  // object_command.cpp
 void add_learn_command(CLI::App& app, int* exit_code);  // learn_command.cpp
+void add_calibrate_command(CLI::App& app, int* exit_code);  // calibrate_command.cpp
 }  // namespace rangefit::cli

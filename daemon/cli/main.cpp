@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   rangefit::cli::add_replay_command(app, &exit_code);
   rangefit::cli::add_simulate_command(app, &exit_code);
   rangefit::cli::add_render_command(app, &exit_code);
+  rangefit::cli::add_calibrate_command(app, &exit_code);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,122 @@
+#include "calib/raw_sweep_text.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+
+namespace rangefit::calib {
+namespace {
+
+std::vector<std::string_view> words(std::string_view line) {
+  std::vector<std::string_view> out;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
+    std::size_t j = i;
+    while (j < line.size() && line[j] != ' ' && line[j] != '\t' && line[j] != '\r') ++j;
+    if (j > i) out.push_back(line.substr(i, j - i));
+    i = j;
+  }
+  return out;
+}
+
+bool number(std::string_view w, double& v) {
+  const auto r = std::from_chars(w.data(), w.data() + w.size(), v);
+  return r.ec == std::errc() && r.ptr == w.data() + w.size() && std::isfinite(v);
+}
+
+}  // namespace
+
+RawSweepParse parse_raw_sweep(std::string_view text, std::string_view source) {
+  RawSweepParse out;
+  RawSweep sweep;
+  bool header = false;
+  std::size_t line_no = 0;
+  auto fail = [&](const std::string& what) {
+    out.error = std::string(source) + ":" + std::to_string(line_no) + ": " + what;
+    return out;
+  };
+  while (!text.empty()) {
+    const std::size_t end = text.find('\n');
+    std::string_view line = text.substr(0, end);
+    text = end == std::string_view::npos ? std::string_view() : text.substr(end + 1);
+    ++line_no;
+    if (const std::size_t hash = line.find('#'); hash != std::string_view::npos) {
+      line = line.substr(0, hash);
+    }
+    const auto w = words(line);
+    if (w.empty()) continue;
+    if (!header) {
+      double n = 0.0;
+      if (w.size() != 4 || w[0] != "rangefit-raw-sweep" || w[1] != "1" ||
+          (w[2] != "stripe" && w[2] != "pantilt") || !number(w[3], n) || n < 2 || n > 65536 ||
+          n != std::floor(n)) {
+        return fail("expected the header 'rangefit-raw-sweep 1 stripe|pantilt POINTS'");
+      }
+      sweep.kind = w[2] == "stripe" ? SweepKind::kStripe : SweepKind::kPanTilt;
+      sweep.points_per_profile = static_cast<int>(n);
+      header = true;
+      continue;
+    }
+    const auto n = static_cast<std::size_t>(sweep.points_per_profile);
+    if (w[0] == "p") {
+      hal::RangerProfile p;
+      p.sequence = static_cast<std::uint32_t>(sweep.profiles.size());
+      p.x_mm.assign(n, hal::kNoReturn);
+      p.z_mm.assign(n, hal::kNoReturn);
+      if (sweep.kind == SweepKind::kStripe) {
+        double a = 0.0;
+        if (w.size() != 2 || !number(w[1], a)) return fail("expected 'p AXIS_MM'");
+        sweep.axis_mm.push_back(a);
+      } else {
+        hal::PanTiltSample s;
+        if (w.size() != 3 || !number(w[1], s.pan_rad) || !number(w[2], s.tilt_rad)) {
+          return fail("expected 'p PAN_RAD TILT_RAD'");
+        }
+        sweep.angles.push_back(s);
+      }
+      sweep.profiles.push_back(std::move(p));
+      continue;
+    }
+    double k = 0.0, x = 0.0, z = 0.0;
+    if (w.size() != 3 || !number(w[0], k) || !number(w[1], x) || !number(w[2], z)) {
+      return fail("expected 'K X_MM Z_MM' or 'p ...'");
+    }
+    if (sweep.profiles.empty()) return fail("a point before the first profile line 'p ...'");
+    if (k < 0 || k >= static_cast<double>(n) || k != std::floor(k)) {
+      return fail("point index outside 0.." + std::to_string(n - 1));
+    }
+    auto& p = sweep.profiles.back();
+    p.x_mm[static_cast<std::size_t>(k)] = static_cast<float>(x);
+    p.z_mm[static_cast<std::size_t>(k)] = static_cast<float>(z);
+  }
+  if (!header) return fail("empty sweep file (no header)");
+  out.sweep = std::move(sweep);
+  return out;
+}
+
+std::string format_raw_sweep(const RawSweep& sweep) {
+  std::string out = "rangefit-raw-sweep 1 ";
+  out += sweep.kind == SweepKind::kStripe ? "stripe " : "pantilt ";
+  out += std::to_string(sweep.points_per_profile) + "\n";
+  char buf[96];
+  for (std::size_t r = 0; r < sweep.profiles.size(); ++r) {
+    if (sweep.kind == SweepKind::kStripe) {
+      std::snprintf(buf, sizeof buf, "p %.9g\n", sweep.axis_mm[r]);
+    } else {
+      std::snprintf(buf, sizeof buf, "p %.12g %.12g\n", sweep.angles[r].pan_rad,
+                    sweep.angles[r].tilt_rad);
+    }
+    out += buf;
+    const auto& p = sweep.profiles[r];
+    for (std::size_t k = 0; k < p.z_mm.size() && k < p.x_mm.size(); ++k) {
+      if (!std::isfinite(p.z_mm[k]) || !std::isfinite(p.x_mm[k])) continue;
+      std::snprintf(buf, sizeof buf, "%zu %.9g %.9g\n", k, static_cast<double>(p.x_mm[k]),
+                    static_cast<double>(p.z_mm[k]));
+      out += buf;
+    }
+  }
+  return out;
+}
+
+}  // namespace rangefit::calib

@@ -1,0 +1,52 @@
+#pragma once
+// Shared set-ups of the calibration tests: a true cell drawn around the configured one (up to
+// 10 mm and 3 deg off, seeded), the calibration cube where its fixture holds it, and the sweep.
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "hal/stripe_geometry.hpp"
+
+namespace rangefit::test {
+
+inline constexpr double kDeg = std::numbers::pi / 180.0;
+
+// Cube body diagonal between the laser (down the fan) and the camera (baseline along -y of the
+// cell), turned a little about it so no edge lies in the laser plane.
+inline Eigen::Isometry3d cube_on_table() {
+  const Eigen::Vector3d b(0.0, -std::sin(18.0 * kDeg), std::cos(18.0 * kDeg));
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = (Eigen::AngleAxisd(20.0 * kDeg, b) *
+                Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::Ones().normalized(), b))
+                   .toRotationMatrix();
+  T.translation() = Eigen::Vector3d(5.0, 3.0, 130.0);
+  return T;
+}
+
+// Uniform in [-1, 1].
+inline double draw(std::mt19937_64& rng) {
+  return std::uniform_real_distribution<double>(-1.0, 1.0)(rng);
+}
+
+inline hal::StripeCellGeometry perturbed_cell(const hal::StripeCellGeometry& nominal,
+                                              std::uint64_t seed, double mm = 10.0,
+                                              double deg = 3.0) {
+  std::mt19937_64 rng(seed);
+  hal::StripeCellGeometry g = nominal;
+  for (int i = 0; i < 3; ++i) g.ranger_position_cell_mm[i] += mm * draw(rng);
+  for (int i = 0; i < 3; ++i) g.ranger_rpy_cell_rad[i] += deg * kDeg * draw(rng);
+  const Eigen::Vector3d tilt(deg * kDeg * draw(rng), 0.0, deg * kDeg * draw(rng));
+  g.axis_direction_cell =
+      (Eigen::AngleAxisd(tilt.x(), Eigen::Vector3d::UnitX()) *
+       Eigen::AngleAxisd(tilt.z(), Eigen::Vector3d::UnitZ()) * nominal.axis_direction_cell)
+          .normalized();
+  return g;
+}
+
+inline double angle_between(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  return Eigen::AngleAxisd(a.transpose() * b).angle();
+}
+
+}  // namespace rangefit::test

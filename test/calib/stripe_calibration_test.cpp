@@ -1,0 +1,121 @@
+#include "calib/stripe_calibration.hpp"
+
+#include <gtest/gtest.h>
+
+#include "calib_fixtures.hpp"
+#include "sim/calibration_scans.hpp"
+
+namespace rangefit::test {
+namespace {
+
+using calib::CalibrationCube;
+
+struct Sweep {
+  std::vector<double> axis;
+  std::vector<hal::RangerProfile> profiles;
+};
+
+Sweep sweep_of(const hal::StripeCellGeometry& truth, const sim::RangerNoise& noise,
+               double step_mm = 1.0) {
+  const CalibrationCube cube;
+  Sweep s;
+  for (double a = 60.0; a <= 340.0; a += step_mm) s.axis.push_back(a);
+  const sim::Scene scene =
+      sim::calibration_cube_scene(cube.edge_mm, cube.bar_mm, cube_on_table(), true);
+  s.profiles = sim::simulate_stripe_sweep(scene, truth, s.axis, noise);
+  return s;
+}
+
+calib::StripeCalibrationResult run(const Sweep& s, const hal::StripeCellGeometry& start) {
+  calib::StripeCalibrationInput in;
+  in.profiles = s.profiles;
+  in.axis_mm = s.axis;
+  in.T_table_cube = cube_on_table();
+  return calib::calibrate_stripe_cell(in, start);
+}
+
+class StripeCalibrationSeeds : public ::testing::TestWithParam<std::uint64_t> {};
+
+TEST_P(StripeCalibrationSeeds, RecoversAPerturbedCellFromOneSweep) {
+  const hal::StripeCellGeometry nominal;
+  const hal::StripeCellGeometry truth = perturbed_cell(nominal, GetParam());
+  const auto r = run(sweep_of(truth, {}, 2.0), nominal);
+  ASSERT_TRUE(r.ok) << r.reason;
+  const double dp = (r.geometry.ranger_position_cell_mm - truth.ranger_position_cell_mm).norm();
+  const double da =
+      angle_between(r.geometry.T_cell_ranger().linear(), truth.T_cell_ranger().linear());
+  const double dd =
+      std::acos(std::min(1.0, r.geometry.axis_direction_cell.dot(truth.axis_direction_cell)));
+  EXPECT_LT(dp, 0.05);
+  EXPECT_LT(da, 0.01 * kDeg);
+  EXPECT_LT(dd, 0.01 * kDeg);
+  EXPECT_LT(r.rms_mm, 0.01);
+  // The start was far off; the linear rounds alone already land on the corners.
+  EXPECT_GT((nominal.ranger_position_cell_mm - truth.ranger_position_cell_mm).norm(), 1.0);
+  ASSERT_EQ(r.rounds.size(), 3u);
+  EXPECT_LT(r.rounds.back().corner_rms_mm, 0.05);
+  for (const std::size_t n : r.rounds.back().plane_points) EXPECT_GT(n, 200u);
+}
+
+// Seeds drawn for the test, and one whose start is off by the full 10 mm / 3 deg in every field.
+INSTANTIATE_TEST_SUITE_P(Perturbed, StripeCalibrationSeeds, ::testing::Values(1u, 2u, 3u));
+
+TEST(StripeCalibration, RecoversACellOffByTheFullRangeInEveryField) {
+  const hal::StripeCellGeometry nominal;
+  hal::StripeCellGeometry truth = nominal;
+  truth.ranger_position_cell_mm += Eigen::Vector3d(10.0, -10.0, 10.0);
+  truth.ranger_rpy_cell_rad += Eigen::Vector3d(3.0, -3.0, 3.0) * kDeg;
+  truth.axis_direction_cell =
+      (Eigen::AngleAxisd(3.0 * kDeg, Eigen::Vector3d::UnitX()) *
+       Eigen::AngleAxisd(-3.0 * kDeg, Eigen::Vector3d::UnitZ()) * nominal.axis_direction_cell);
+  const auto r = run(sweep_of(truth, {}, 2.0), nominal);
+  ASSERT_TRUE(r.ok) << r.reason;
+  EXPECT_LT((r.geometry.ranger_position_cell_mm - truth.ranger_position_cell_mm).norm(), 0.05);
+  EXPECT_LT(angle_between(r.geometry.T_cell_ranger().linear(), truth.T_cell_ranger().linear()),
+            0.01 * kDeg);
+}
+
+TEST(StripeCalibration, ReportsACovarianceThatMatchesTheNoise) {
+  const hal::StripeCellGeometry nominal;
+  const hal::StripeCellGeometry truth = perturbed_cell(nominal, 7);
+  const Eigen::Matrix3d R_true = truth.T_cell_ranger().linear();
+  double z2 = 0.0;
+  int count = 0;
+  for (const std::uint64_t seed : {11u, 12u, 13u}) {
+    const auto r = run(sweep_of(truth, {.sigma_mm = 0.06, .seed = seed}, 2.0), nominal);
+    ASSERT_TRUE(r.ok) << r.reason;
+    const Eigen::Vector3d dp = r.geometry.ranger_position_cell_mm - truth.ranger_position_cell_mm;
+    const Eigen::AngleAxisd w(R_true.transpose() * r.geometry.T_cell_ranger().linear());
+    const Eigen::Vector3d dw = w.angle() * w.axis();
+    for (int i = 0; i < 3; ++i) {
+      z2 += std::pow(dp[i] / r.position_sigma_mm[i], 2) +
+            std::pow(dw[i] / r.rotation_sigma_rad[i], 2);
+      count += 2;
+    }
+  }
+  // Mean squared normalised error: 1 when the covariance is right; a factor of 1.5 in sigma
+  // is 2.25 in it.
+  const double mean = z2 / count;
+  EXPECT_GT(mean, 1.0 / 2.25);
+  EXPECT_LT(mean, 2.25);
+}
+
+TEST(StripeCalibration, EmptySweepIsAClearError) {
+  const auto r = run(Sweep{}, hal::StripeCellGeometry{});
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.reason.find("too few points"), std::string::npos);
+}
+
+TEST(StripeCalibration, SweepThatMissesTheCubeNamesTheMissingPlane) {
+  const hal::StripeCellGeometry nominal;
+  Sweep s = sweep_of(nominal, {}, 4.0);
+  // Only the first quarter of the sweep: the laser never reaches most of the cube.
+  s.axis.resize(s.axis.size() / 4);
+  s.profiles.resize(s.axis.size());
+  const auto r = run(s, nominal);
+  EXPECT_FALSE(r.ok);
+  EXPECT_FALSE(r.reason.empty());
+}
+
+}  // namespace
+}  // namespace rangefit::test
