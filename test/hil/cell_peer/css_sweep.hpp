@@ -1,10 +1,10 @@
 #pragma once
 // The robot program of the CSS cell, as the cell peer plays it: the last joint pivots the sensor
 // from -delta to +delta at the TCP speed of eq. 4.21 (the forward stroke the service records),
-// returns to -delta with the laser off, dwells, and starts again, for ever. One timeline drives
-// both device peers: the joint's angle at any instant (answered to every SYNC) and the revolution
-// the sensor measured at index pulse j (cast by the simulated cell, sim::CssRig, for the forward
-// stroke; no returns on the way back). Pure: no I/O after construction, no threads.
+// stops, returns to -delta with the laser off, dwells, and starts again, for ever. One timeline
+// drives both device peers: the joint's angle at any instant (answered to every SYNC) and the
+// revolution the sensor measured at index pulse j (cast by the simulated cell, sim::CssRig, for the
+// forward stroke; no returns on the way back). Pure: no I/O after construction, no threads.
 
 #include <array>
 #include <cstdint>
@@ -19,6 +19,7 @@ struct CssSweepOptions {
   double deflection_rad = 5.0 * 3.14159265358979323846 / 180.0;  // delta, as fusion.css
   double pivot_radius_mm = 285.8;                                // R, as hal::CssGeometry
   double scan_s = 6.0;          // forward stroke duration (thesis: 25 s)
+  double end_dwell_s = 0.3;     // at +delta, laser off (the robot stops before it returns)
   double return_s = 1.0;        // back to -delta, laser off
   double dwell_s = 0.5;         // at -delta before the next stroke
   double period_s = 1.0 / 7.0;  // revolution period (the sensor's 7 Hz)
