@@ -132,7 +132,7 @@ for u in systemd-binfmt.service proc-sys-fs-binfmt_misc.automount systemd-timesy
 done
 log=$work/console.log
 set +e
-timeout "${HIL_TIMEOUT:-240}" qemu-system-x86_64 -machine q35,accel=tcg -cpu max -smp 2 -m 1024 \
+timeout "${HIL_TIMEOUT:-1500}" qemu-system-x86_64 -machine q35,accel=tcg -cpu max -smp 2 -m 1024 \
   -nodefaults -display none -serial stdio -no-reboot -kernel "$kernel" \
   -initrd "$work/initramfs.cpio" -append "console=ttyS0 panic=-1 quiet systemd.unit=rangefit-hil.target $masks ${HIL_KERNEL_ARGS:-systemd.show_status=0}" \
   -fsdev local,id=r,path=/,security_model=none,readonly=on,multidevs=remap \
