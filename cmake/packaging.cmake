@@ -28,6 +28,17 @@ set(RANGEFIT_SYSTEMD_UNIT_DIR lib/systemd/system CACHE STRING
 set(RANGEFITD_IP_ADDRESS_ALLOW
     "localhost link-local multicast 10.0.0.0/8 172.16.0.0/12 192.168.0.0/16"
     CACHE STRING "IPAddressAllow= of the rangefitd unit (systemd.resource-control)")
+# udev and sysusers read <prefix>/lib/{udev/rules.d,sysusers.d} for both /usr and /usr/local.
+set(RANGEFIT_UDEV_RULES_DIR lib/udev/rules.d CACHE STRING
+    "Directory of the udev rule giving rangefitd the CSS, relative to the prefix or absolute")
+set(RANGEFIT_SYSUSERS_DIR lib/sysusers.d CACHE STRING
+    "Directory of rangefitd's sysusers.d file, relative to the prefix or absolute")
+set(RANGEFIT_CSS_USB_ID "1d6b:0105" CACHE STRING
+    "VID:PID (hex) of the CSS that the udev rule gives to rangefitd (the driver's default)")
+set(RANGEFIT_GROUP rangefit)  # owns the CSS's USB device; the service's dynamic user joins it
+string(REPLACE ":" ";" css_usb_id "${RANGEFIT_CSS_USB_ID}")
+list(GET css_usb_id 0 RANGEFIT_CSS_USB_VID)
+list(GET css_usb_id 1 RANGEFIT_CSS_USB_PID)
 
 # What the programs print: the version, and where the installed sample configuration is.
 foreach(program rangefit rangefitd)
@@ -41,9 +52,16 @@ set(generated ${PROJECT_BINARY_DIR}/systemd)
 configure_file(${PROJECT_SOURCE_DIR}/systemd/rangefitd.service.in ${generated}/rangefitd.service
                @ONLY)
 configure_file(${PROJECT_SOURCE_DIR}/systemd/rangefitd.toml ${generated}/rangefitd.toml @ONLY)
+configure_file(${PROJECT_SOURCE_DIR}/systemd/70-rangefitd.rules.in ${generated}/70-rangefitd.rules
+               @ONLY)
+configure_file(${PROJECT_SOURCE_DIR}/systemd/rangefitd.sysusers.in ${generated}/rangefitd.conf
+               @ONLY)
 
 install(FILES ${generated}/rangefitd.service DESTINATION ${RANGEFIT_SYSTEMD_UNIT_DIR}
         COMPONENT files)
+install(FILES ${generated}/70-rangefitd.rules DESTINATION ${RANGEFIT_UDEV_RULES_DIR}
+        COMPONENT files)
+install(FILES ${generated}/rangefitd.conf DESTINATION ${RANGEFIT_SYSUSERS_DIR} COMPONENT files)
 install(FILES ${generated}/rangefitd.toml ${PROJECT_SOURCE_DIR}/systemd/cyclonedds.xml
         DESTINATION ${RANGEFITD_CONFDIR} COMPONENT files)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/data/scenes/ DESTINATION ${RANGEFIT_SHARE_DIR}/scenes

@@ -1,7 +1,7 @@
 #pragma once
 // The CAN transport seam: a driver sends and receives CanFrames through this interface and never
 // sees a socket. Two implementations: SocketCAN raw sockets (socketcan_transport.hpp) and an
-// in-process socket pair for unit tests (inprocess_transport.hpp).
+// in-process socket pair for unit tests (test/support/inprocess_transport.hpp).
 //
 // Contract: send() never blocks (a full tx queue is normal on a loaded bus and only counted);
 // receive() waits up to a timeout, fills a caller-provided span and neither allocates nor locks.

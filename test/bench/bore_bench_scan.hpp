@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "detect/bore_detector.hpp"
-#include "sim/synthetic_bore.hpp"
+#include "test/support/synthetic_bore.hpp"
 
 namespace rangefit::bench {
 

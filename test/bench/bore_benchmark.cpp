@@ -36,9 +36,9 @@
 #include "detect/cylinder_rsf.hpp"
 #include "detect/kdtree.hpp"
 #include "detect/normals.hpp"
-#include "sim/synthetic_bore.hpp"
 #include "test/bench/bore_bench_scan.hpp"
 #include "test/bench/bore_thesis_tables.hpp"
+#include "test/support/synthetic_bore.hpp"
 
 namespace rangefit {
 namespace {

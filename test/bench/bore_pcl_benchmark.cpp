@@ -18,8 +18,8 @@
 
 #include "detect/bore_detector.hpp"
 #include "detect/normals.hpp"
-#include "sim/synthetic_bore.hpp"
 #include "test/bench/bore_bench_scan.hpp"
+#include "test/support/synthetic_bore.hpp"
 
 namespace rangefit {
 namespace {

@@ -15,7 +15,7 @@
 
 #include "detect/bore_detector.hpp"
 #include "detect/cylinder_rsf.hpp"
-#include "sim/synthetic_bore.hpp"
+#include "test/support/synthetic_bore.hpp"
 
 namespace rangefit::bench {
 

@@ -31,8 +31,8 @@
 #include "drivers/can/cia402_joint_source.hpp"
 #include "drivers/can/ranger_source.hpp"
 #include "drivers/can/socketcan_transport.hpp"
-#include "sim/can_bus.hpp"
-#include "sim/can_cia402_node.hpp"
+#include "test/support/can_bus.hpp"
+#include "test/support/can_cia402_node.hpp"
 
 namespace rangefit::drivers::can {
 namespace {

@@ -20,7 +20,7 @@
 #include "daemon/dds/client.hpp"
 #include "daemon/rangefitd/service.hpp"
 #include "io/ply.hpp"
-#include "sim/synthetic_bore.hpp"
+#include "test/support/synthetic_bore.hpp"
 
 namespace {
 using namespace rangefit;

@@ -14,8 +14,8 @@
 
 #include "drivers/modbus/fhpp_axis.hpp"
 #include "drivers/modbus/modbus_link.hpp"
-#include "sim/fault_proxy.hpp"
-#include "sim/modbus_axis_server.hpp"
+#include "test/support/fault_proxy.hpp"
+#include "test/support/modbus_axis_server.hpp"
 
 namespace rangefit {
 namespace {

@@ -1,5 +1,5 @@
 // End to end through DDS with the real detector: rangefitd's service replays a synthetic
-// bore-plate scan (sim/synthetic_bore) as the CSS device and answers a bore request from a
+// bore-plate scan (test/support/synthetic_bore) as the CSS device and answers a bore request from a
 // separate DDS participant; the pose must agree with the ground truth.
 #include <gtest/gtest.h>
 
@@ -9,8 +9,8 @@
 #include "daemon/dds/client.hpp"
 #include "daemon/rangefitd/service.hpp"
 #include "io/ply.hpp"
-#include "sim/synthetic_bore.hpp"
 #include "test/daemon/replay_service.hpp"
+#include "test/support/synthetic_bore.hpp"
 
 namespace rangefit::daemon {
 namespace {

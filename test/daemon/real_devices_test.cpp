@@ -1,7 +1,7 @@
 // driver = "real": the daemon builds the cell's drivers from the config. Tested against peers that
 // speak the real protocol on this machine: the simulated Festo drive's Modbus TCP server on
-// loopback (sim/modbus_axis_server). SocketCAN and USB hardware are absent here, which is itself
-// the case to test: reported, never fatal.
+// loopback (test/support/modbus_axis_server). SocketCAN and USB hardware are absent here, which is
+// itself the case to test: reported, never fatal.
 #include "daemon/cell/real_devices.hpp"
 
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 
 #include "daemon/cell/device_backend.hpp"
 #include "daemon/service/diagnostics.hpp"
-#include "sim/modbus_axis_server.hpp"
+#include "test/support/modbus_axis_server.hpp"
 
 namespace rangefit::daemon {
 namespace {

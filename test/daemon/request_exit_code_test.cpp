@@ -15,8 +15,8 @@
 #include "detect/bore_result.hpp"
 #include "detect/object_detector.hpp"
 #include "io/ply.hpp"
-#include "sim/synthetic_bore.hpp"
 #include "test/daemon/replay_service.hpp"
+#include "test/support/synthetic_bore.hpp"
 
 namespace rangefit::daemon {
 namespace {

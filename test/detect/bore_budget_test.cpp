@@ -8,8 +8,8 @@
 #include <numbers>
 
 #include "detect/bore_detector.hpp"
-#include "sim/synthetic_bore.hpp"
 #include "test/detect/bore_test_cases.hpp"
+#include "test/support/synthetic_bore.hpp"
 
 namespace rangefit {
 namespace {

@@ -11,7 +11,7 @@
 
 #include "detect/bore_detector.hpp"
 #include "io/cloud_io.hpp"
-#include "sim/synthetic_bore.hpp"
+#include "test/support/synthetic_bore.hpp"
 
 namespace rangefit {
 namespace {

@@ -3,7 +3,7 @@
 #include <limits>
 
 #include "detect/bore_detector.hpp"
-#include "sim/synthetic_bore.hpp"
+#include "test/support/synthetic_bore.hpp"
 
 namespace rangefit {
 namespace {

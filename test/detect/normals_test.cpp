@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "detect/normals_grid.hpp"
-#include "sim/synthetic_bore.hpp"
+#include "test/support/synthetic_bore.hpp"
 
 namespace rangefit {
 namespace {

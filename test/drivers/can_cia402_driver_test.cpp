@@ -10,9 +10,9 @@
 
 #include "drivers/can/cia402_joint_source.hpp"
 #include "drivers/can/cia402_pan_tilt_source.hpp"
-#include "drivers/can/inprocess_transport.hpp"
-#include "sim/can_cia402_node.hpp"
 #include "test/drivers/can_test_rig.hpp"
+#include "test/support/can_cia402_node.hpp"
+#include "test/support/inprocess_transport.hpp"
 
 namespace rangefit::drivers::can {
 namespace {

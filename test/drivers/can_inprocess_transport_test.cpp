@@ -4,7 +4,7 @@
 
 #include <array>
 
-#include "drivers/can/inprocess_transport.hpp"
+#include "test/support/inprocess_transport.hpp"
 
 namespace rangefit::drivers::can {
 namespace {

@@ -4,10 +4,10 @@
 #include <memory>
 #include <thread>
 
-#include "drivers/can/inprocess_transport.hpp"
 #include "drivers/can/powercube_joint_source.hpp"
-#include "sim/can_powercube_module.hpp"
 #include "test/drivers/can_test_rig.hpp"
+#include "test/support/can_powercube_module.hpp"
+#include "test/support/inprocess_transport.hpp"
 
 namespace rangefit::drivers::can {
 namespace {

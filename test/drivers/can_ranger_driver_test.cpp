@@ -6,10 +6,10 @@
 #include <memory>
 #include <thread>
 
-#include "drivers/can/inprocess_transport.hpp"
 #include "drivers/can/ranger_source.hpp"
-#include "sim/can_profile_ranger.hpp"
 #include "test/drivers/can_test_rig.hpp"
+#include "test/support/can_profile_ranger.hpp"
+#include "test/support/inprocess_transport.hpp"
 
 namespace rangefit::drivers::can {
 namespace {

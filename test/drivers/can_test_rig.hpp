@@ -9,9 +9,9 @@
 #include <thread>
 #include <vector>
 
-#include "drivers/can/inprocess_transport.hpp"
 #include "hal/source.hpp"
-#include "sim/can_bus.hpp"
+#include "test/support/can_bus.hpp"
+#include "test/support/inprocess_transport.hpp"
 
 namespace rangefit::drivers::can::test {
 

@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "drivers/modbus/fhpp_axis.hpp"
-#include "sim/fault_proxy.hpp"
-#include "sim/modbus_axis_drive.hpp"
-#include "sim/modbus_axis_server.hpp"
+#include "test/support/fault_proxy.hpp"
+#include "test/support/modbus_axis_drive.hpp"
+#include "test/support/modbus_axis_server.hpp"
 
 namespace rangefit::test {
 

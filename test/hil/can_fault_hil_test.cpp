@@ -13,10 +13,10 @@
 #include "drivers/can/cia402_joint_source.hpp"
 #include "drivers/can/powercube_joint_source.hpp"
 #include "drivers/can/ranger_source.hpp"
-#include "sim/can_cia402_node.hpp"
-#include "sim/can_powercube_module.hpp"
-#include "sim/can_profile_ranger.hpp"
 #include "test/hil/can_hil_rig.hpp"
+#include "test/support/can_cia402_node.hpp"
+#include "test/support/can_powercube_module.hpp"
+#include "test/support/can_profile_ranger.hpp"
 
 namespace rangefit::drivers::can {
 namespace {

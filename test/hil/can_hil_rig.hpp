@@ -7,8 +7,8 @@
 #include <string>
 
 #include "drivers/can/socketcan_transport.hpp"
-#include "sim/can_bus.hpp"
 #include "test/drivers/can_test_rig.hpp"
+#include "test/support/can_bus.hpp"
 
 namespace rangefit::drivers::can::test {
 

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Hardware-in-the-loop runner: boots a Debian kernel under qemu (TCG), shares the host root
-# read-only over 9p (tmpfs overlay on top) and the build folder read-write, creates vcan0 and
-# loads dummy_hcd/libcomposite/usb_f_fs with configfs mounted and systemd-udevd running (libusb
-# hotplug needs it), and runs the ctest tests labelled `hil` inside the VM. Exits with their exit code; 124 when the
-# VM timed out, 125 when it never reported one. Facts behind each step: ../shared/HIL.md.
+# read-only over 9p (tmpfs overlay on top) and the build folder read-write, boots the host's
+# systemd as PID 1 on it (journald, udevd, sysusers: what rangefitd.service runs under on a cell
+# PC) into a target that creates vcan0, loads dummy_hcd/libcomposite/usb_f_fs with configfs
+# mounted, and runs the ctest tests labelled `hil`. Exits with their exit code; 124 when the VM
+# timed out, 125 when it never reported one. Facts behind each step: ../shared/HIL.md.
 # Usage: bash test/hil/run_vm.sh BUILD_DIR   (build first: cmake --build BUILD_DIR)
 #   HIL_CMD="..." runs that command in the VM instead of the hil tests (e.g. a benchmark).
 set -euo pipefail
@@ -17,7 +18,7 @@ mkdir -p "$cache"
 # 1. Kernel: the package linux-image-amd64 depends on, cached by its name and the module list.
 pkg=$(apt-cache depends linux-image-amd64 | awk '/Depends: linux-image-[0-9]/{print $2; exit}')
 mods=(net/can drivers/net/can net/9p fs/9p fs/netfs fs/fscache fs/overlayfs drivers/virtio
-      drivers/usb/common drivers/usb/core drivers/usb/gadget fs/configfs)
+      drivers/usb/common drivers/usb/core drivers/usb/gadget fs/configfs fs/autofs)
 tree=$cache/$pkg-$(echo "${mods[*]}" | md5sum | cut -c1-8)
 if [[ ! -f $tree/.done ]]; then
   rm -rf "$tree" && mkdir -p "$tree/deb"
@@ -44,7 +45,7 @@ ver=$(cat "$tree/version")
 work=$build/hil-run && rm -rf "$work" && mkdir -p "$work/initrd"/{bin,modules,proc,sys,dev,host,ovl,newroot}
 cp /bin/busybox "$work/initrd/bin/busybox"
 for m in virtio_ring virtio virtio_pci_modern_dev virtio_pci_legacy_dev virtio_pci netfs fscache \
-         9pnet 9pnet_virtio 9p overlay; do
+         9pnet 9pnet_virtio 9p overlay autofs4; do
   f=$(find "$tree/modules" -name "$m.ko*" | head -1)
   [[ -n $f ]] && cp "$f" "$work/initrd/modules/$m.ko"
 done
@@ -52,7 +53,7 @@ cat > "$work/initrd/init" <<INIT
 #!/bin/busybox sh
 /bin/busybox --install -s /bin
 mount -t proc proc /proc; mount -t sysfs sys /sys; mount -t devtmpfs dev /dev
-for m in virtio_ring virtio virtio_pci_modern_dev virtio_pci_legacy_dev virtio_pci netfs fscache 9pnet 9pnet_virtio 9p overlay; do
+for m in virtio_ring virtio virtio_pci_modern_dev virtio_pci_legacy_dev virtio_pci netfs fscache 9pnet 9pnet_virtio 9p overlay autofs4; do
   [ -f /modules/\$m.ko ] && insmod /modules/\$m.ko 2>/dev/null
 done
 mount -t 9p -o trans=virtio,version=9p2000.L,ro hostroot /host
@@ -66,14 +67,49 @@ mkdir -p /newroot$src && mount --bind /host$src /newroot$src
 mkdir -p /newroot$build
 mount -t 9p -o trans=virtio,version=9p2000.L,msize=262144 build /newroot$build
 mkdir -p /newroot/lib/modules/$ver && mount --bind /newroot$tree/modules /newroot/lib/modules/$ver
-chroot /newroot /bin/bash $work/cmd.sh
-echo EXIT_CODE=\$?
-poweroff -f
+# systemd boots the host's units into rangefit-hil.target (kernel command line), not the host's
+# default target; the run unit reports the exit code on the console and powers off.
+# The host root may be a container's: systemd must not take the VM for one (it would skip udev).
+mkdir -p /newroot/etc/systemd/system && rm -f /newroot/.dockerenv /newroot/run/.containerenv
+cp /newroot$work/rangefit-hil.target /newroot$work/rangefit-hil.service /newroot/etc/systemd/system/
+exec switch_root /newroot /lib/systemd/systemd
 INIT
 chmod +x "$work/initrd/init"
 (cd "$work/initrd" && find . | cpio -o -H newc --quiet) > "$work/initramfs.cpio"
 
-# 3. The command the VM runs (a file in the share: the kernel command line cannot carry spaces).
+# The programs, unit, udev rule and data as `cmake --install` lays them out, staged here on the
+# host (cmake's per-file work over 9p under emulation takes minutes); the service test copies the
+# tree into the VM's root.
+if [[ -x $build/daemon/rangefitd/rangefitd && -x $build/daemon/rangefit ]]; then
+  DESTDIR=$work/install cmake --install "$build" > "$work/install.log"
+fi
+
+# 3. The command the VM runs (a file in the share: the kernel command line cannot carry spaces),
+# as a unit of the target systemd boots into.
+cat > "$work/rangefit-hil.target" <<UNIT
+[Unit]
+Description=rangefit hardware-in-the-loop run
+Requires=rangefit-hil.service
+After=rangefit-hil.service
+AllowIsolate=yes
+UNIT
+cat > "$work/rangefit-hil.service" <<UNIT
+[Unit]
+Description=rangefit hardware-in-the-loop tests
+After=systemd-udevd.service systemd-journald.service systemd-sysusers.service dbus.socket
+Wants=systemd-udevd.service dbus.socket
+[Service]
+Type=oneshot
+StandardOutput=tty
+StandardError=tty
+TTYPath=/dev/ttyS0
+ExecStart=/bin/bash $work/run.sh
+UNIT
+cat > "$work/run.sh" <<RUN
+bash $work/cmd.sh
+echo EXIT_CODE=\$?
+systemctl --force --force poweroff
+RUN
 cat > "$work/cmd.sh" <<CMD
 set -e
 export PATH=/usr/sbin:/usr/bin:/sbin:/bin
@@ -83,15 +119,22 @@ ip link set lo up
 # USB: a dummy host+device controller pair, configfs gadgets with FunctionFS, udevd for hotplug.
 modprobe dummy_hcd; modprobe libcomposite; modprobe usb_f_fs
 mountpoint -q /sys/kernel/config || mount -t configfs none /sys/kernel/config
-/usr/lib/systemd/systemd-udevd --daemon >/dev/null 2>&1 || echo "HIL: udevd did not start"
+systemctl is-active -q systemd-udevd || echo "HIL: udevd is not running"
 ${HIL_CMD:-ctest --test-dir $build -L hil --output-on-failure ${HIL_CTEST_ARGS:-}}
 CMD
 
+# Host units the run does not need (and that fail or wait in the VM).
+masks=""
+for u in systemd-binfmt.service proc-sys-fs-binfmt_misc.automount systemd-timesyncd.service \
+         systemd-update-utmp.service systemd-journal-flush.service systemd-random-seed.service \
+         dev-hugepages.mount sys-kernel-debug.mount sys-kernel-tracing.mount; do
+  masks+=" systemd.mask=$u"
+done
 log=$work/console.log
 set +e
-timeout "${HIL_TIMEOUT:-240}" qemu-system-x86_64 -machine q35,accel=tcg -cpu max -smp 2 -m 1024 \
+timeout "${HIL_TIMEOUT:-1500}" qemu-system-x86_64 -machine q35,accel=tcg -cpu max -smp 2 -m 1024 \
   -nodefaults -display none -serial stdio -no-reboot -kernel "$kernel" \
-  -initrd "$work/initramfs.cpio" -append 'console=ttyS0 panic=-1 quiet' \
+  -initrd "$work/initramfs.cpio" -append "console=ttyS0 panic=-1 quiet systemd.unit=rangefit-hil.target $masks ${HIL_KERNEL_ARGS:-systemd.show_status=0}" \
   -fsdev local,id=r,path=/,security_model=none,readonly=on,multidevs=remap \
   -device virtio-9p-pci,fsdev=r,mount_tag=hostroot \
   -fsdev local,id=b,path="$build",security_model=none,multidevs=remap \

@@ -12,7 +12,7 @@
 #include <Eigen/Geometry>
 
 #include "io/cloud_io.hpp"
-#include "sim/synthetic_bore.hpp"
+#include "test/support/synthetic_bore.hpp"
 
 #ifdef RANGEFIT_CLI_PATH
 namespace rangefit {

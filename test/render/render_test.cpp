@@ -12,7 +12,7 @@
 #include "render/model_geometry.hpp"
 #include "render/render.hpp"
 #include "sim/superquadric_raycast.hpp"
-#include "sim/synthetic_bore.hpp"
+#include "test/support/synthetic_bore.hpp"
 
 namespace rangefit::render {
 namespace {

@@ -12,7 +12,7 @@
 
 #include "daemon/service/spool.hpp"
 #include "render/render.hpp"
-#include "sim/synthetic_bore.hpp"
+#include "test/support/synthetic_bore.hpp"
 
 namespace rangefit::daemon {
 namespace {

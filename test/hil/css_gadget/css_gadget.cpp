@@ -7,6 +7,7 @@
 #include <sys/mount.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -224,7 +225,15 @@ void CssGadget::stream_loop() {
     // START begins a pulse train at the device's current time, at the rate last set.
     const DeviceClockModel& clock = options_.clock;
     const double period_us = std::round(1e8 / rate_);
-    const double first_pulse_us = std::floor(clock.exact_us(hal::monotonic_now()));
+    double first_pulse_us = std::floor(clock.exact_us(hal::monotonic_now()));
+    std::uint64_t first_index = 0;
+    if (options_.revolution) {
+      // The motor turns whether or not a host listens: pulses stay on the cell's timeline.
+      const double origin_us = clock.exact_us(options_.pulse_origin);
+      const double since = std::max(0.0, first_pulse_us - origin_us);
+      first_index = static_cast<std::uint64_t>(std::ceil(since / period_us));
+      first_pulse_us = origin_us + static_cast<double>(first_index) * period_us;
+    }
     for (std::uint64_t k = 0;; ++k) {
       const double pulse_us = first_pulse_us + static_cast<double>(k) * period_us;
       // The frame leaves when the revolution is complete, i.e. at the next index pulse.
@@ -247,7 +256,11 @@ void CssGadget::stream_loop() {
           static_cast<std::uint64_t>(static_cast<std::int64_t>(pulse_us)) & wrap_mask;
       r.period_us = static_cast<std::uint32_t>(period_us);
       r.flags = hal::kCssMotorLocked | hal::kCssLaserOn;
-      r.samples = source_.samples(r.sequence);
+      if (options_.revolution) {
+        if (!options_.revolution(first_index + k, r.samples)) r.flags = hal::kCssMotorLocked;
+      } else {
+        r.samples = source_.samples(r.sequence);
+      }
       frame.clear();
       css::encode_revolution(r, frame);
       if (bad_crc_ > 0) {

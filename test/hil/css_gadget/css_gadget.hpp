@@ -7,9 +7,11 @@
 // device faster than real time by asking for more revolutions per second. Faults are injected on
 // command, and the host time of every index pulse is kept as ground truth. Needs root.
 
+#include <array>
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -29,6 +31,15 @@ struct CssGadgetOptions {
   std::string scene_path;  // empty: synthetic pattern (RevolutionSource)
   DeviceClockModel clock;
   std::uint16_t rate_centi_hz = 700;  // until the host sends SET_RATE
+  // A sensor on a moving cell (test/hil/cell_peer): what revolution `index` (counted from the
+  // index pulse at host time pulse_origin) measured; false = laser off (no returns). The index
+  // pulses then stay on that timeline across STOP/START and replugs, as a spinning motor's do.
+  // Empty: the scene's scan of scene_path, revolution = sequence.
+  using Revolution =
+      std::function<bool(std::uint64_t index, std::array<drivers::css_usb::WireSample,
+                                                         drivers::css_usb::kSamples>& samples)>;
+  Revolution revolution;
+  hal::Timestamp pulse_origin{};
 };
 
 // Faults, each applied to the next revolution(s) the stream thread sends.

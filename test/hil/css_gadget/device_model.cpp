@@ -37,7 +37,7 @@ double DeviceClockModel::offset_wrapping_after(hal::Timestamp now, hal::Duration
   return span - rate * static_cast<double>((now + after).count()) / 1e3;
 }
 
-RevolutionSource::RevolutionSource(const std::string& scene_path) {
+RevolutionSource::RevolutionSource(const std::string& scene_path, double scan_s) {
   if (scene_path.ends_with(".frames")) {
     load(scene_path);
   } else if (!scene_path.empty()) {
@@ -47,7 +47,7 @@ RevolutionSource::RevolutionSource(const std::string& scene_path) {
       sim::SimClock clock;
       // The thesis' 25 s scan (section 4.2.1): 175 revolutions at 7 Hz, whatever the pivot radius.
       sim::CssScanOptions scan;
-      scan.speed_mm_s = 2.0 * scan.deflection_rad * scan.geometry.pivot_radius_mm / 25.05;
+      scan.speed_mm_s = 2.0 * scan.deflection_rad * scan.geometry.pivot_radius_mm / scan_s;
       const sim::CssRig rig(scene, caster, scan, clock);
       samples_.resize(rig.revolutions_in_scan());
       for (std::uint64_t k = 0; k < samples_.size(); ++k) {

@@ -37,7 +37,9 @@ class RevolutionSource {
   // (ray casting under the VM's emulated CPU takes ~10 s, so the build records it on the host).
   // Otherwise a scene file: the simulated cell's CSS scan of it (sim::CssRig, a 25 s scan: 175
   // revolutions at 7 Hz). `error` says why a scene or recording failed (then: synthetic pattern).
-  explicit RevolutionSource(const std::string& scene_path = "");
+  // scan_s: how long the sweep from -delta to +delta takes (the thesis' 25 s by default; a
+  // faster robot gives fewer revolutions per scan).
+  explicit RevolutionSource(const std::string& scene_path = "", double scan_s = 25.05);
   // Writes the scan as protocol frames (sequence = revolution index).
   bool save(const std::string& path) const;
 

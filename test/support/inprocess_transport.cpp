@@ -1,4 +1,4 @@
-#include "drivers/can/inprocess_transport.hpp"
+#include "test/support/inprocess_transport.hpp"
 
 #include <poll.h>
 #include <sys/socket.h>

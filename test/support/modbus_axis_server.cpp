@@ -1,4 +1,4 @@
-#include "sim/modbus_axis_server.hpp"
+#include "test/support/modbus_axis_server.hpp"
 
 #include <modbus/modbus.h>
 #include <netinet/in.h>

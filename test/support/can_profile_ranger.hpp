@@ -8,7 +8,7 @@
 #include <functional>
 
 #include "drivers/can/ranger_codec.hpp"
-#include "sim/can_bus.hpp"
+#include "test/support/can_bus.hpp"
 
 namespace rangefit::sim {
 

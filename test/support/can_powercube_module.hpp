@@ -6,7 +6,7 @@
 #include <functional>
 
 #include "drivers/can/powercube_codec.hpp"
-#include "sim/can_bus.hpp"
+#include "test/support/can_bus.hpp"
 
 namespace rangefit::sim {
 

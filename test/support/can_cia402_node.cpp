@@ -1,4 +1,4 @@
-#include "sim/can_cia402_node.hpp"
+#include "test/support/can_cia402_node.hpp"
 
 #include <cmath>
 

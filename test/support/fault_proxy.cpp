@@ -1,4 +1,4 @@
-#include "sim/fault_proxy.hpp"
+#include "test/support/fault_proxy.hpp"
 
 #include <arpa/inet.h>
 #include <netinet/in.h>

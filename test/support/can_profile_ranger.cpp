@@ -1,4 +1,4 @@
-#include "sim/can_profile_ranger.hpp"
+#include "test/support/can_profile_ranger.hpp"
 
 #include <array>
 

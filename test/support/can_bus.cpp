@@ -1,4 +1,4 @@
-#include "sim/can_bus.hpp"
+#include "test/support/can_bus.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "sim/synthetic_bore.hpp"
+#include "test/support/synthetic_bore.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "sim/modbus_axis_drive.hpp"
+#include "test/support/modbus_axis_drive.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "sim/can_powercube_module.hpp"
+#include "test/support/can_powercube_module.hpp"
 
 namespace rangefit::sim {
 

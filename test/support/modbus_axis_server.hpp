@@ -11,7 +11,7 @@
 #include "drivers/modbus/fhpp_codec.hpp"
 #include "hal/device.hpp"
 #include "hal/time.hpp"
-#include "sim/modbus_axis_drive.hpp"
+#include "test/support/modbus_axis_drive.hpp"
 
 namespace rangefit::sim {
 

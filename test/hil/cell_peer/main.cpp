@@ -1,0 +1,136 @@
+// rangefit_cell_peer: the device side of a simulated cell on the real transports, for running
+// rangefitd with driver = "real" devices in the HIL VM. The CSS cell: the sensor as a USB gadget
+// (FunctionFS on dummy_hcd) streaming revolutions cast by the simulated cell (sim::CssRig over a
+// scene, recorded on the host by --record) while the robot's last joint, a CiA 402 node on a
+// SocketCAN interface, answers every SYNC with the angle of the same sweep (test/hil/cell_peer/
+// css_sweep.hpp: -delta .. +delta in scan_s, back with the laser off, again). Needs root, vcan and
+// the gadget modules (test/hil/run_vm.sh).
+//   rangefit_cell_peer --frames FILE [--can vcan0] [--node 1] [--scan-s 6] [--vid 0x1d6b]
+//                      [--pid 0x0105] [--udc NAME]
+//   rangefit_cell_peer --record FILE --scene bore_plate.toml [--scan-s 6]   (host, no root)
+// Then one command per line on stdin: unplug, replug, status, quit (or end of input).
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "drivers/can/socketcan_transport.hpp"
+#include "test/hil/cell_peer/css_sweep.hpp"
+#include "test/hil/css_gadget/css_gadget.hpp"
+#include "test/support/can_bus.hpp"
+#include "test/support/can_cia402_node.hpp"
+
+namespace {
+
+using namespace rangefit;
+
+int usage(const std::string& why) {
+  std::fprintf(stderr, "rangefit_cell_peer: %s\n(see test/hil/cell_peer/main.cpp)\n", why.c_str());
+  return 2;
+}
+
+struct Args {
+  std::string frames, record, scene, can = "vcan0", udc;
+  double scan_s = 6.0;
+  unsigned node = 1, vid = 0x1d6b, pid = 0x0105;
+};
+
+bool parse(int argc, char** argv, Args& a, std::string& why) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (i + 1 >= argc) {
+      why = "missing value after " + arg;
+      return false;
+    }
+    const std::string v = argv[++i];
+    if (arg == "--frames") {
+      a.frames = v;
+    } else if (arg == "--record") {
+      a.record = v;
+    } else if (arg == "--scene") {
+      a.scene = v;
+    } else if (arg == "--can") {
+      a.can = v;
+    } else if (arg == "--udc") {
+      a.udc = v;
+    } else if (arg == "--scan-s") {
+      a.scan_s = std::strtod(v.c_str(), nullptr);
+    } else if (arg == "--node") {
+      a.node = static_cast<unsigned>(std::strtoul(v.c_str(), nullptr, 0));
+    } else if (arg == "--vid") {
+      a.vid = static_cast<unsigned>(std::strtoul(v.c_str(), nullptr, 0));
+    } else if (arg == "--pid") {
+      a.pid = static_cast<unsigned>(std::strtoul(v.c_str(), nullptr, 0));
+    } else {
+      why = "unknown option " + arg;
+      return false;
+    }
+  }
+  if (!(a.scan_s >= 1.0 && a.scan_s <= 60.0)) why = "--scan-s must be within 1..60";
+  if (a.node < 1 || a.node > 127) why = "--node must be within 1..127";
+  if (a.record.empty() && a.frames.empty()) why = "--frames or --record is required";
+  return why.empty();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args a;
+  if (std::string why; !parse(argc, argv, a, why)) return usage(why);
+  if (!a.record.empty()) {
+    if (a.scene.empty()) return usage("--record needs --scene");
+    const hil::RevolutionSource cast(a.scene, a.scan_s);
+    if (!cast.error().empty()) return usage(cast.error());
+    if (!cast.save(a.record)) return usage("cannot write " + a.record);
+    std::printf("rangefit_cell_peer: %zu revolutions of %s in %s\n", cast.size(), a.scene.c_str(),
+                a.record.c_str());
+    return 0;
+  }
+  const hil::RevolutionSource forward(a.frames);
+  if (!forward.error().empty()) return usage(forward.error());
+  hil::CssSweepOptions so;
+  so.scan_s = a.scan_s;
+  // The first stroke starts a second from now: the service has time to come up and connect.
+  const hil::CssSweep sweep(forward, so, hal::monotonic_now() + std::chrono::seconds(1));
+
+  drivers::can::SocketCanConfig cc;
+  cc.interface = a.can;
+  auto transport = std::make_unique<drivers::can::SocketCanTransport>(cc);
+  if (const hal::Status s = transport->open(); !s) return usage(a.can + ": " + s.message);
+  sim::SimCanBus bus(std::move(transport));
+  sim::SimCia402Config jc;
+  jc.node = static_cast<std::uint8_t>(a.node);
+  bus.add(std::make_shared<sim::SimCia402Node>(
+      jc, [&sweep](hal::Timestamp t) { return sweep.omega_at(t); }));
+  bus.start();
+
+  hil::CssGadgetOptions go;
+  go.vendor_id = static_cast<std::uint16_t>(a.vid);
+  go.product_id = static_cast<std::uint16_t>(a.pid);
+  go.udc = a.udc;
+  go.pulse_origin = sweep.origin();
+  go.revolution = [&sweep](std::uint64_t j, auto& samples) { return sweep.revolution(j, samples); };
+  hil::CssGadget gadget(go);
+  if (const std::string e = gadget.start(); !e.empty()) return usage(e);
+  std::printf(
+      "rangefit_cell_peer: css cell up: %zu revolutions per %.1f s stroke, cycle %.2f s, "
+      "joint node %u on %s\n",
+      forward.size(), a.scan_s, sweep.cycle_s(), a.node, a.can.c_str());
+  std::fflush(stdout);
+  for (std::string line; std::getline(std::cin, line) && line != "quit";) {
+    if (line == "unplug") {
+      gadget.unplug();
+    } else if (line == "replug") {
+      gadget.replug();
+    } else if (line != "status") {
+      std::fprintf(stderr, "rangefit_cell_peer: unknown command %s\n", line.c_str());
+    }
+    std::printf("frames %llu streaming %d starts %llu\n",
+                static_cast<unsigned long long>(gadget.frames_sent()), gadget.streaming() ? 1 : 0,
+                static_cast<unsigned long long>(gadget.starts()));
+    std::fflush(stdout);
+  }
+  bus.stop();
+  return 0;
+}
