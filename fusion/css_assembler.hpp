@@ -1,5 +1,5 @@
 #pragma once
-// CSS assembler (thesis 4.2.1, eq. 4.17-4.21; issue 5, item 1): turns revolutions of the
+// CSS assembler (thesis 4.2.1, eq. 4.17-4.21): turns revolutions of the
 // Circular Scanning Sensor and the robot's last-joint angle stream into a world-frame cloud,
 // organised revolution x 512, while the scan runs.
 //

@@ -1,6 +1,6 @@
 #pragma once
 // What every assembler hands out: the world-frame cloud of one scan plus the scan's metadata,
-// above all the time-alignment faults that were met while building it (issue 5, item 5). Faults
+// above all the time-alignment faults that were met while building it. Faults
 // are counted, never smoothed over silently; past the configured limit the scan is marked bad.
 
 #include <cstddef>

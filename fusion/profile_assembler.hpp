@@ -1,5 +1,5 @@
 #pragma once
-// Assemblers for the laser-stripe ranger (thesis 5.2.1; issue 5, items 2 and 3): profiles plus
+// Assemblers for the laser-stripe ranger (thesis 5.2.1): profiles plus
 // the stream that moves the laser plane - linear-axis positions in the sensor cell, pan/tilt
 // angles on the mobile head - interpolated at each profile's exposure centre. The cloud is
 // organised profile x point (points_per_profile columns), one row per fused profile.

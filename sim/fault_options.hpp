@@ -1,5 +1,5 @@
 #pragma once
-// Seeded noise and faults a simulated device can inject (issue 4, sensors item 4). All default to
+// Seeded noise and faults a simulated device can inject. All default to
 // off; a device draws every random decision of frame k from an RNG seeded by (seed, device, k),
 // so a scan is reproducible for a seed however its consumer chunks its reads.
 

@@ -1,6 +1,6 @@
 #pragma once
-// Triangle meshes of the scene's analytic primitives, for shipping scenes as STL files (issue 4:
-// example scenes built from small STL files) and for checking the STL path against the exact
+// Triangle meshes of the scene's analytic primitives, for shipping scenes as STL files (example
+// scenes built from small STL files) and for checking the STL path against the exact
 // primitives. Meshes are in the object frame, outward facing, closed except for planes.
 
 #include "io/triangle_mesh.hpp"

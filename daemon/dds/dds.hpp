@@ -1,7 +1,7 @@
 #pragma once
 // A small RAII layer over the Cyclone DDS C API. Entities are deleted in the destructor; writers
 // and readers are typed by the idlc-generated C struct and its topic descriptor. QoS is spelled
-// as a QosSpec so that each topic's contract (issue 9) reads in one line at the call site.
+// as a QosSpec so that each topic's contract reads in one line at the call site.
 // Everything is written as XCDR1, as ROS 2 (rmw_cyclonedds) expects.
 
 #include <dds/dds.h>

@@ -1,5 +1,5 @@
 #pragma once
-// The Circular Scanning Sensor over USB as a hal::CssSource (issue 8). A supervisor thread opens
+// The Circular Scanning Sensor over USB as a hal::CssSource. A supervisor thread opens
 // the device (retrying with back-off while it is absent), reads GET_INFO, synchronises the clock
 // with GET_TIME bursts, sends START and keeps the bulk stream running; the transport's event thread
 // feeds the RevolutionTranslator and pushes revolutions into a bounded queue. Unplug cancels the

@@ -1,4 +1,4 @@
-// Fusion speed (issue 5): a full CSS scan (25 s at 7 Hz, > 75,000 points) and the latency of one
+// Fusion speed: a full CSS scan (25 s at 7 Hz, > 75,000 points) and the latency of one
 // revolution (last sample in -> world points out), each against a naive baseline measured in
 // the same run: per point, a binary search in the joint stream and CssGeometry's full
 // T_world_css(omega) * sensor_point(angle, range), into an unreserved cloud. Ratios are printed

@@ -1,4 +1,4 @@
-// Simulator speed (issue 4): a full 25 s CSS scan (~90,000 beam samples over a bore plate) and a
+// Simulator speed: a full 25 s CSS scan (~90,000 beam samples over a bore plate) and a
 // ~140,000-point stripe-cell scan, each through the HAL devices with an as-fast-as-possible clock.
 // Counters: rays_per_s (Embree path), brute_rays_per_s (every triangle and primitive tested per
 // ray, measured in the same run on a sample of the same rays) and speedup = their ratio.

@@ -240,7 +240,7 @@ TEST(UsbCssHil, GetTimeReadingLiesWithinEveryExchangeWindow) {
   }
 }
 
-// Issue 8 asks for 20 us of truth after 10 s with an offset and 50 ppm drift. Two-way exchanges
+// The driver is specified to stay within 20 us of truth after 10 s with an offset and 50 ppm drift. Two-way exchanges
 // cannot see the link's asymmetry (GetTimeReadingLiesWithinEveryExchangeWindow prints it: on
 // dummy_hcd under TCG the reading sits tens of us off the midpoint, more on a loaded host), so
 // here the drift must be tracked (fitted 50 +- 25 ppm: ~100 us jitter over 10 s; untracked: 0)

@@ -1,4 +1,4 @@
-// Seeded faults of the stripe cell and the pan-tilt head (issue 4, sensors item 4): the streams
+// Seeded faults of the stripe cell and the pan-tilt head: the streams
 // report them as a real device does (sequence gaps, health counters and state, repeated
 // readings, jittered stamps), and fusion's assemblers see them exactly so.
 #include <gtest/gtest.h>
