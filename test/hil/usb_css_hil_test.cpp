@@ -240,11 +240,11 @@ TEST(UsbCssHil, GetTimeReadingLiesWithinEveryExchangeWindow) {
   }
 }
 
-// The driver is specified to stay within 20 us of truth after 10 s with an offset and 50 ppm drift. Two-way exchanges
-// cannot see the link's asymmetry (GetTimeReadingLiesWithinEveryExchangeWindow prints it: on
-// dummy_hcd under TCG the reading sits tens of us off the midpoint, more on a loaded host), so
-// here the drift must be tracked (fitted 50 +- 25 ppm: ~100 us jitter over 10 s; untracked: 0)
-// and the stamps stay within half a typical round trip of the truth.
+// The driver is specified to stay within 20 us of truth after 10 s with an offset and 50 ppm drift.
+// Two-way exchanges cannot see the link's asymmetry (GetTimeReadingLiesWithinEveryExchangeWindow
+// prints it: on dummy_hcd under TCG the reading sits tens of us off the midpoint, more on a loaded
+// host), so here the drift must be tracked (fitted 50 +- 25 ppm: ~100 us jitter over 10 s;
+// untracked: 0) and the stamps stay within half a typical round trip of the truth.
 TEST(UsbCssHil, OffsetAndFiftyPpmDriftAreTrackedAfterTenSeconds) {
   UsbRig rig(scene_device(3.7e9, 50.0), 700);  // real time: the fit needs a real 10 s
   ASSERT_EQ(rig.gadget.start(), "");
