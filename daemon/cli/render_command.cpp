@@ -15,6 +15,7 @@
 #include "daemon/service/result_picture.hpp"
 #include "io/cloud_io.hpp"
 #include "io/object_model_file.hpp"
+#include "render/legend_text.hpp"
 #include "render/render.hpp"
 
 namespace rangefit::cli {
@@ -32,15 +33,8 @@ Eigen::Vector3d vec(const nlohmann::json& j) {
   return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
 }
 
-std::string format(const char* fmt, auto... args) {
-  char buffer[256];
-  std::snprintf(buffer, sizeof buffer, fmt, args...);
-  return buffer;
-}
-
-std::string text(const Eigen::Vector3d& v) {
-  return format("%.3f, %.3f, %.3f", v.x(), v.y(), v.z());
-}
+using render::legend_format;
+using render::legend_vector;
 
 // The shape of part `name` in the model file; throws when there is none to draw.
 Superquadric shape_of(const std::optional<ObjectModel>& model, const std::string& name) {
@@ -82,12 +76,12 @@ render::Drawing bore_json(const nlohmann::json& j) {
 // `rangefit object --json`: every part of every instance.
 render::Drawing object_json(const nlohmann::json& j, const std::optional<ObjectModel>& model) {
   render::Drawing d;
-  d.legend.push_back(j.at("object").get<std::string>() +
-                     (j.at("found").get<bool>()
-                          ? ": found"
-                          : ": not found (" + j.value("reason", std::string()) + ")") +
-                     format(", %d hypotheses, %.1f ms", j.value("hypotheses_evaluated", 0),
-                            j.value("time_ms", nlohmann::json::object()).value("total", 0.0)));
+  d.legend.push_back(
+      j.at("object").get<std::string>() +
+      (j.at("found").get<bool>() ? ": found"
+                                 : ": not found (" + j.value("reason", std::string()) + ")") +
+      legend_format(", %d hypotheses, %.1f ms", j.value("hypotheses_evaluated", 0),
+                    j.value("time_ms", nlohmann::json::object()).value("total", 0.0)));
   const nlohmann::json instances = j.value("instances", nlohmann::json::array());
   for (std::size_t i = 0; i < instances.size(); ++i) {
     for (const nlohmann::json& p : instances[i].at("parts")) {
@@ -102,13 +96,13 @@ render::Drawing object_json(const nlohmann::json& j, const std::optional<ObjectM
       part.T_world_part.translation() = vec(p.at("center"));
       d.parts.push_back(part);
       const nlohmann::json s = p.value("scores", nlohmann::json::object());
-      d.legend.push_back(format("[%zu] ", i) + part.name + "  centre " +
-                         text(part.T_world_part.translation()) + " mm, z-axis " +
-                         text(part.T_world_part.linear().col(2)));
-      d.legend.push_back(format("      M %.4f  I %zu  S %zu  coverage %.2f  seen through %.2f",
-                                s.value("M", 0.0), s.value("I", std::size_t{0}),
-                                s.value("S", std::size_t{0}), s.value("coverage", 0.0),
-                                s.value("seen_through", 0.0)));
+      d.legend.push_back(legend_format("[%zu] ", i) + part.name + "  centre " +
+                         legend_vector(part.T_world_part.translation()) + " mm, z-axis " +
+                         legend_vector(part.T_world_part.linear().col(2)));
+      d.legend.push_back(legend_format(
+          "      M %.4f  I %zu  S %zu  coverage %.2f  seen through %.2f", s.value("M", 0.0),
+          s.value("I", std::size_t{0}), s.value("S", std::size_t{0}), s.value("coverage", 0.0),
+          s.value("seen_through", 0.0)));
     }
   }
   return d;

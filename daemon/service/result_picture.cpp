@@ -3,20 +3,14 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "render/legend_text.hpp"
 #include "render/render.hpp"
 
 namespace rangefit::daemon {
 namespace {
 
-std::string format(const char* fmt, auto... args) {
-  char buffer[256];
-  std::snprintf(buffer, sizeof buffer, fmt, args...);
-  return buffer;
-}
-
-std::string text(const Eigen::Vector3d& v) {
-  return format("%.3f, %.3f, %.3f", v.x(), v.y(), v.z());
-}
+using render::legend_format;
+using render::legend_vector;
 
 Superquadric shape_of(const ObjectModel* model, const std::string& name) {
   if (model == nullptr) {
@@ -40,16 +34,18 @@ render::Drawing result_drawing(const DetectionResult& r, const ObjectModel* mode
     if (r.kind == DetectKind::kBore) {
       // The service's result has no entrance plane: the renderer estimates it from the scan.
       d.bores.push_back({c, z, r.bore_radius_mm, Eigen::Vector3d::Zero(), 0.0});
-      d.legend.push_back("entrance  " + text(c) + " mm");
-      d.legend.push_back("axis      " + text(z) + " (out of the bore)");
-      d.legend.push_back(format("radius    %.3f mm, score %.3f", r.bore_radius_mm, p.score));
+      d.legend.push_back("entrance  " + legend_vector(c) + " mm");
+      d.legend.push_back("axis      " + legend_vector(z) + " (out of the bore)");
+      d.legend.push_back(legend_format("radius    %.3f mm, score %.3f", r.bore_radius_mm, p.score));
     } else {
       d.parts.push_back({p.name, shape_of(model, p.name), p.T_world_part});
-      d.legend.push_back(format("[%u] ", p.instance) + p.name + "  centre " + text(c) +
-                         " mm, z-axis " + text(z) + format(", score %.3f", p.score));
+      d.legend.push_back(legend_format("[%u] ", p.instance) + p.name + "  centre " +
+                         legend_vector(c) + " mm, z-axis " + legend_vector(z) +
+                         legend_format(", score %.3f", p.score));
     }
   }
-  d.legend.push_back(format("scan %.2f s, detection %.3f s", r.scan_seconds, r.detect_seconds));
+  d.legend.push_back(
+      legend_format("scan %.2f s, detection %.3f s", r.scan_seconds, r.detect_seconds));
   return d;
 }
 
