@@ -130,7 +130,9 @@ class PreScan {
       } else if (!bare_key_char(c) && c != '"' && c != '\'') {
         chain_ = 1;
       }
-      if (!expect_key_ && !terminator && c != '[' && c != '{') in_bare_ = true;
+      // '=' starts a value rather than being part of one: a quote right after it opens a string
+      // (x ="..."), as it does for toml++.
+      if (!expect_key_ && !terminator && c != '[' && c != '{' && c != '=') in_bare_ = true;
       prev_ = c;
       ++pos_;
     }

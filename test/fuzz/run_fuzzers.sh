@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# Runs every fuzzer built in BUILD for SECONDS each, from a copy of its seed corpus (the corpus in
-# the repository only grows by hand), and fails on the first finding: a crash, a sanitizer
-# report, a leak or a timeout. The crashing input is left in the work folder and its path printed.
-#   bash test/fuzz/run_fuzzers.sh build-fuzz 20 [name ...]
+# Runs every fuzzer built in BUILD for RUNS inputs each with a fixed seed (the same run every time,
+# so a CI failure reproduces; long searches go by hand with -runs=10000000 or -max_total_time),
+# from a copy of its seed corpus (the corpus in the repository only grows by hand), and fails on
+# the first finding: a crash, a sanitizer report, a leak or a timeout. The crashing input is left
+# in the work folder and its path printed.
+#   bash test/fuzz/run_fuzzers.sh build-fuzz 20000 [name ...]
 set -euo pipefail
-build=${1:?usage: run_fuzzers.sh BUILD SECONDS [name ...]}
-seconds=${2:?usage: run_fuzzers.sh BUILD SECONDS [name ...]}
+build=${1:?usage: run_fuzzers.sh BUILD RUNS [name ...]}
+runs=${2:?usage: run_fuzzers.sh BUILD RUNS [name ...]}
 shift 2
 here=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d /tmp/rangefit-fuzz.XXXXXX)
@@ -18,7 +20,7 @@ for name in "${names[@]}"; do
   mkdir -p "$work/$name"
   [ -d "$here/corpus/$name" ] && cp -r "$here/corpus/$name/." "$work/$name/"
   if ! ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
-      "$exe" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+      "$exe" -seed=1 -runs="$runs" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
       -artifact_prefix="$work/$name-" "$work/$name" > "$work/$name.log" 2>&1; then
     tail -n 40 "$work/$name.log"
     echo "fuzz: $name found a problem; input: $(ls "$work/$name"-* 2>/dev/null | head -1)"

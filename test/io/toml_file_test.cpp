@@ -90,6 +90,11 @@ TEST(TomlFile, RefusesNonAsciiWhereTomlPlusPlusTestsItForWhitespace) {
             "f.toml:3: non-ASCII character after a line-ending backslash in a string");
   EXPECT_EQ(error_of("\"\"\"s\\\t\t\xcd\x8b\"\"\" = 1\n"),
             "f.toml:1: non-ASCII character after a line-ending backslash in a string");
+  // A string right after '=' is a string: what follows it is outside (U+FEFE there reached
+  // TOML_UNREACHABLE, found by test/fuzz/fusion_config_fuzz), its own text is inside.
+  EXPECT_EQ(error_of("x =\" == \"\xef\xbb\xbe\"\n"),
+            "f.toml:1: non-ASCII character outside a string or comment");
+  EXPECT_EQ(error_of("x =\"\xc3\xa4\"\n"), "");
   // Everywhere else in strings and comments non-ASCII text is fine.
   EXPECT_EQ(error_of("\"k\xc3\xa4\" = [\"\xc3\xa4\", '\xc3\xb6']  # \xc3\xbc\n"
                      "y = \"\"\"\n\xc3\xa4\\n\"\"\"\n[a.\"\xc3\xa4\"]\n"),
