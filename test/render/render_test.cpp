@@ -12,29 +12,15 @@
 #include "render/model_geometry.hpp"
 #include "render/render.hpp"
 #include "sim/superquadric_raycast.hpp"
-#include "test/support/synthetic_bore.hpp"
+#include "test/render/picture_checks.hpp"
 
 namespace rangefit::render {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-bool near_colour(Rgb a, Rgb b, int tolerance) {
-  return std::abs(a.r - b.r) <= tolerance && std::abs(a.g - b.g) <= tolerance &&
-         std::abs(a.b - b.b) <= tolerance;
-}
-
-// The colour within `radius` px of pixel p (antialiased 1.5 px lines may straddle two pixels).
-bool colour_near(const Image& image, const Eigen::Vector2d& p, Rgb colour, int radius = 1,
-                 int tolerance = 30) {
-  const int cx = static_cast<int>(std::floor(p.x())), cy = static_cast<int>(std::floor(p.y()));
-  for (int y = cy - radius; y <= cy + radius; ++y) {
-    for (int x = cx - radius; x <= cx + radius; ++x) {
-      if (image.contains(x, y) && near_colour(image.at(x, y), colour, tolerance)) return true;
-    }
-  }
-  return false;
-}
+using test::clean_bore;
+using test::colour_near;
 
 // RANGEFIT_RENDER_TEST_DIR=DIR keeps the pictures for a look.
 void keep(const Image& image, const std::string& name) {
@@ -46,15 +32,6 @@ void keep(const Image& image, const std::string& name) {
 
 Rgb pixel(const Image& image, const Eigen::Vector2d& p) {
   return image.at(static_cast<int>(std::floor(p.x())), static_cast<int>(std::floor(p.y())));
-}
-
-sim::SyntheticBoreScan clean_bore() {
-  sim::SyntheticBoreOptions o;
-  o.radius = 5.0;
-  o.outlier_fraction = 0.0;
-  o.ghost_fraction = 0.0;
-  o.spacing = 0.3;
-  return sim::make_synthetic_bore(o);
 }
 
 TEST(Render, BoreEntranceRingLiesOnTheHoleEdgeInBothViews) {

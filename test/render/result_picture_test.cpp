@@ -12,21 +12,15 @@
 
 #include "daemon/service/spool.hpp"
 #include "render/render.hpp"
-#include "test/support/synthetic_bore.hpp"
+#include "test/render/picture_checks.hpp"
 
 namespace rangefit::daemon {
 namespace {
 namespace fs = std::filesystem;
 
+// White (the model's colour, each channel above 225) within a pixel of p.
 bool white_near(const render::Image& image, const Eigen::Vector2d& p) {
-  const int cx = static_cast<int>(std::floor(p.x())), cy = static_cast<int>(std::floor(p.y()));
-  for (int y = cy - 1; y <= cy + 1; ++y) {
-    for (int x = cx - 1; x <= cx + 1; ++x) {
-      const render::Rgb c = image.contains(x, y) ? image.at(x, y) : render::Rgb{};
-      if (c.r > 225 && c.g > 225 && c.b > 225) return true;
-    }
-  }
-  return false;
+  return render::test::colour_near(image, p, render::kModelColour, 1, 29);
 }
 
 bool is_png(const fs::path& path) {
@@ -34,15 +28,6 @@ bool is_png(const fs::path& path) {
   char magic[4] = {};
   in.read(magic, 4);
   return in && std::string(magic + 1, 3) == "PNG";
-}
-
-sim::SyntheticBoreScan bore_scan() {
-  sim::SyntheticBoreOptions o;
-  o.radius = 5.0;
-  o.outlier_fraction = 0.0;
-  o.ghost_fraction = 0.0;
-  o.spacing = 0.3;
-  return sim::make_synthetic_bore(o);
 }
 
 // What the service reports for the bore: the entrance and the axis as a part pose.
@@ -63,7 +48,7 @@ DetectionResult bore_result(const sim::SyntheticBoreTruth& t) {
 }
 
 TEST(ResultPicture, ASpooledBoreResultIsDrawnOnTheHoleEdge) {
-  const sim::SyntheticBoreScan scan = bore_scan();
+  const sim::SyntheticBoreScan scan = render::test::clean_bore();
   const render::Drawing d = result_drawing(bore_result(scan.truth), nullptr);
   ASSERT_EQ(d.bores.size(), 1u);
   render::RenderOptions o;
@@ -117,7 +102,7 @@ class SpoolPictures : public ::testing::Test {
                          const DetectionResult& result, std::string* error) {
       return write_result_picture(path, cloud, result, nullptr, error);
     });
-    const sim::SyntheticBoreScan scan = bore_scan();
+    const sim::SyntheticBoreScan scan = render::test::clean_bore();
     ScanRequest request;
     request.id = "bore-1";
     request.bore.position_mm = scan.truth.entrance + Eigen::Vector3d(0.5, -0.3, 0.0);
