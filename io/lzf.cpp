@@ -1,38 +1,22 @@
 #include "io/lzf.hpp"
 
-#include <cstdint>
-#include <cstring>
+#include <liblzf/lzf.h>
+
+#include <limits>
 
 namespace rangefit::io::detail {
 
+// liblzf is built with CHECK_INPUT (its default), so a malformed stream or one that would run
+// past out_size returns 0 instead of reading or writing out of bounds. Its lengths are unsigned
+// int; PCD stores both sizes as uint32, so anything larger is malformed anyway.
 bool lzf_decompress(std::string_view in, char* out, std::size_t out_size) {
-  std::size_t ip = 0;
-  std::size_t op = 0;
-  auto byte = [&](std::size_t i) {
-    return static_cast<std::size_t>(static_cast<std::uint8_t>(in[i]));
-  };
-  while (ip < in.size()) {
-    const std::size_t ctrl = byte(ip++);
-    if (ctrl < 32) {  // literal run of ctrl + 1 bytes
-      const std::size_t length = ctrl + 1;
-      if (length > in.size() - ip || length > out_size - op) return false;
-      std::memcpy(out + op, in.data() + ip, length);
-      ip += length;
-      op += length;
-      continue;
-    }
-    std::size_t length = ctrl >> 5;  // back reference: length - 2, 7 means "one more byte"
-    if (length == 7) {
-      if (ip >= in.size()) return false;
-      length += byte(ip++);
-    }
-    if (ip >= in.size()) return false;
-    const std::size_t distance = ((ctrl & 0x1f) << 8) + byte(ip++) + 1;
-    length += 2;
-    if (distance > op || length > out_size - op) return false;
-    for (std::size_t k = 0; k < length; ++k, ++op) out[op] = out[op - distance];  // may overlap
-  }
-  return op == out_size;
+  constexpr std::size_t kMax = std::numeric_limits<unsigned int>::max();
+  if (in.size() > kMax || out_size > kMax) return false;
+  if (out_size == 0) return in.empty();
+  if (in.empty()) return false;
+  const unsigned int n = ::lzf_decompress(in.data(), static_cast<unsigned int>(in.size()), out,
+                                          static_cast<unsigned int>(out_size));
+  return n == out_size;
 }
 
 }  // namespace rangefit::io::detail

@@ -13,6 +13,7 @@ packages=(
   ccache  # .ci/run: compile results kept outside the clone
   clang libclang-rt-14-dev  # RANGEFIT_FUZZ=ON: the libFuzzer harnesses of test/fuzz
   libcairo2-dev fonts-dejavu-core  # render/: pictures of scans and detections, legend font
+  zlib1g-dev liblzf-dev  # drivers/: CRC-32 (zlib's crc32); io/: PCD binary_compressed (liblzf)
   libcpp-httplib-dev  # api/: the HTTP/JSON interface for robot controllers
   chromium chromium-driver python3  # test/web/browser_test.py: the page in headless Chromium
 )

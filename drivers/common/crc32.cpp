@@ -1,26 +1,22 @@
 #include "drivers/common/crc32.hpp"
 
-#include <array>
+#include <zlib.h>
+
+#include <limits>
 
 namespace rangefit::drivers {
 
-namespace {
-constexpr std::array<std::uint32_t, 256> make_table() {
-  std::array<std::uint32_t, 256> t{};
-  for (std::uint32_t i = 0; i < 256; ++i) {
-    std::uint32_t c = i;
-    for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-    t[i] = c;
-  }
-  return t;
-}
-constexpr auto kTable = make_table();
-}  // namespace
-
+// zlib's crc32 is the same CRC (and faster than a byte table: it folds several bytes a step).
+// It takes the length as uInt, so spans beyond 4 GiB are fed in pieces.
 std::uint32_t crc32(std::span<const std::uint8_t> bytes, std::uint32_t crc) {
-  crc = ~crc;
-  for (std::uint8_t b : bytes) crc = kTable[(crc ^ b) & 0xFF] ^ (crc >> 8);
-  return ~crc;
+  uLong c = crc;
+  constexpr std::size_t kMaxPiece = std::numeric_limits<uInt>::max();
+  while (!bytes.empty()) {
+    const std::size_t n = bytes.size() < kMaxPiece ? bytes.size() : kMaxPiece;
+    c = ::crc32(c, bytes.data(), static_cast<uInt>(n));
+    bytes = bytes.subspan(n);
+  }
+  return static_cast<std::uint32_t>(c);
 }
 
 }  // namespace rangefit::drivers

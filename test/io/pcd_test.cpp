@@ -2,6 +2,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <liblzf/lzf.h>
 #include <sys/stat.h>
 
 #include <limits>
@@ -168,6 +169,38 @@ TEST(PcdRead, LzfBackReferencesMayOverlapTheirOutput) {
   EXPECT_FALSE(detail::lzf_decompress(stream, small.data(), small.size()));
   const std::string before_start("\x40\x05", 2);  // refers to bytes before the output
   EXPECT_FALSE(detail::lzf_decompress(before_start, out.data(), out.size()));
+}
+
+TEST(PcdRead, BinaryCompressedFromLiblzfsCompressorReadsBack) {
+  // A scan plane at z = 5 with a regular grid repeats most bytes, so the compressor emits back
+  // references as PCL's writer does.
+  TempDir dir;
+  constexpr int kW = 40, kH = 30;
+  std::string raw;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int i = 0; i < kW * kH; ++i)
+      append_le(raw, axis == 0   ? static_cast<float>(i % kW)
+                     : axis == 1 ? static_cast<float>(i / kW)
+                                 : 5.0f);
+  std::string packed(raw.size() + 64, '\0');
+  const unsigned n = lzf_compress(raw.data(), static_cast<unsigned>(raw.size()), packed.data(),
+                                  static_cast<unsigned>(packed.size()));
+  ASSERT_GT(n, 0u);
+  packed.resize(n);
+  ASSERT_LT(packed.size(), raw.size() / 4);  // back references did the work
+  std::string bytes = header("x y z", "4 4 4", "F F F", kW, kH, "binary_compressed");
+  append_le(bytes, static_cast<std::uint32_t>(packed.size()));
+  append_le(bytes, static_cast<std::uint32_t>(raw.size()));
+  bytes += packed;
+  const PointCloud cloud = read_pcd(dir.write("plane.pcd", bytes));
+  ASSERT_EQ(cloud.size(), static_cast<std::size_t>(kW * kH));
+  EXPECT_EQ(cloud.points[kW * 7 + 3], Eigen::Vector3d(3, 7, 5));
+  // The same stream one byte short must be an IoError, never a partial cloud.
+  std::string cut = header("x y z", "4 4 4", "F F F", kW, kH, "binary_compressed");
+  append_le(cut, static_cast<std::uint32_t>(packed.size() - 1));
+  append_le(cut, static_cast<std::uint32_t>(raw.size()));
+  cut += packed.substr(0, packed.size() - 1);
+  EXPECT_NE(error_of(dir.write("cut.pcd", cut)), "no IoError");
 }
 
 TEST(PcdRead, HugePointCountIsRejectedBeforeAllocating) {
