@@ -9,7 +9,7 @@
 
 namespace rangefit::hal {
 
-struct Status {
+struct [[nodiscard]] Status {
   bool ok = true;
   std::string message;  // empty when ok
 

@@ -1,6 +1,7 @@
 #include "io/object_model_file.hpp"
 
 #include <toml++/toml.h>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -9,6 +10,7 @@
 #include <system_error>
 
 #include "io/io_error.hpp"
+#include "io/toml_fields.hpp"
 #include "io/toml_file.hpp"
 
 namespace rangefit::io {
@@ -17,149 +19,83 @@ namespace {
 constexpr std::size_t kMaxFileBytes = 1 << 20;  // model files are tiny; refuse anything huge
 constexpr std::size_t kMaxParts = 16;
 
-// "<file>:<line>: field '<field>': <problem>", the format of every TOML loader.
-[[noreturn]] void fail(const std::filesystem::path& file, const toml::source_region& where,
-                       const std::string& field, const std::string& problem) {
-  throw TomlError(file.string(), where.begin.line, "field '" + field + "': " + problem);
+// A non-empty string that must be present.
+std::string name_of(TomlFields& f, std::string_view key) {
+  f.require(key);
+  std::string v;
+  f.read(key, v);
+  if (v.empty()) f.fail(key, "must be a non-empty string");
+  return v;
 }
 
-// Keys this version reads; anything else is a typo that must not fall back to a default.
-void reject_unknown(const std::filesystem::path& file, const toml::table& table,
-                    const std::string& prefix, std::initializer_list<std::string_view> known) {
-  for (const auto& [key, node] : table) {
-    bool found = false;
-    for (std::string_view k : known) found = found || key.str() == k;
-    if (!found) fail(file, node.source(), prefix + std::string(key.str()), "unknown field");
-  }
-}
-
-double number(const std::filesystem::path& file, const toml::node& node, const std::string& field) {
-  const std::optional<double> v = node.value<double>();
-  if (!v || !std::isfinite(*v)) fail(file, node.source(), field, "expected a finite number");
-  return *v;
-}
-
-std::vector<double> numbers(const std::filesystem::path& file, const toml::node& node,
-                            const std::string& field, std::size_t count) {
-  const toml::array* arr = node.as_array();
-  if (arr == nullptr || arr->size() != count) {
-    fail(file, node.source(), field, "expected an array of " + std::to_string(count) + " numbers");
-  }
-  std::vector<double> out;
-  for (std::size_t i = 0; i < count; ++i) {
-    out.push_back(number(file, *arr->get(i), field + "[" + std::to_string(i) + "]"));
-  }
-  return out;
-}
-
-const toml::node& required(const std::filesystem::path& file, const toml::table& table,
-                           std::string_view key, const std::string& field) {
-  const toml::node* node = table.get(key);
-  if (node == nullptr) fail(file, table.source(), field, "missing");
-  return *node;
-}
-
-std::string text(const std::filesystem::path& file, const toml::node& node,
-                 const std::string& field) {
-  const std::optional<std::string> v = node.value<std::string>();
-  if (!v || v->empty()) fail(file, node.source(), field, "expected a non-empty string");
-  return *v;
-}
-
-ModelPart parse_part(const std::filesystem::path& file, const toml::table& t, std::size_t i) {
-  const std::string f = "part[" + std::to_string(i) + "]";
-  reject_unknown(file, t, f + ".", {"name", "size", "shape", "taper"});
+ModelPart parse_part(TomlFields f) {
+  f.only({"name", "size", "shape", "taper"});
   ModelPart part;
-  part.name = text(file, required(file, t, "name", f + ".name"), f + ".name");
-  const toml::node& size_node = required(file, t, "size", f + ".size");
-  const std::vector<double> size = numbers(file, size_node, f + ".size", 3);
-  for (double a : size) {
-    if (!(a > 0.0)) fail(file, size_node.source(), f + ".size", "sizes must be > 0 mm");
-  }
-  const toml::node& shape_node = required(file, t, "shape", f + ".shape");
-  const std::vector<double> shape = numbers(file, shape_node, f + ".shape", 2);
-  for (double e : shape) {
-    if (e < 0.1 || e > 2.0)
-      fail(file, shape_node.source(), f + ".shape", "eps must be in [0.1, 2]");
-  }
-  std::vector<double> taper = {0.0, 0.0};
-  if (const toml::node* taper_node = t.get("taper")) {
-    taper = numbers(file, *taper_node, f + ".taper", 2);
-    for (double k : taper) {
-      if (k < -1.0 || k > 1.0)
-        fail(file, taper_node->source(), f + ".taper", "k must be in [-1, 1]");
-    }
-  }
+  part.name = name_of(f, "name");
+  std::array<double, 3> size{};
+  f.require("size", "(three half-sizes, mm)");
+  f.read("size", size, 1e-9, 1e9);
+  std::array<double, 2> shape{};
+  f.require("shape", "(eps1, eps2)");
+  f.read("shape", shape, 0.1, 2.0);
+  std::array<double, 2> taper{0.0, 0.0};
+  f.read("taper", taper, -1.0, 1.0);
+  f.reject_unknown();
   part.shape = Superquadric{size[0], size[1], size[2], shape[0], shape[1], taper[0], taper[1]};
   return part;
 }
 
-PartLink parse_link(const std::filesystem::path& file, const toml::table& t, std::size_t i,
-                    const std::vector<ModelPart>& parts) {
-  const std::string f = "link[" + std::to_string(i) + "]";
-  reject_unknown(file, t, f + ".", {"parts", "angle_deg", "distance"});
-  const toml::node& names_node = required(file, t, "parts", f + ".parts");
-  const toml::array* names = names_node.as_array();
-  if (names == nullptr || names->size() != 2) {
-    fail(file, names_node.source(), f + ".parts", "expected two part names");
+PartLink parse_link(TomlFields f, const std::vector<ModelPart>& parts) {
+  f.only({"parts", "angle_deg", "distance"});
+  f.require("parts", "(two part names)");
+  const toml::array* names = f.find("parts")->as_array();
+  if (names == nullptr || names->size() != 2 || !(*names)[0].is_string() ||
+      !(*names)[1].is_string()) {
+    f.fail("parts", "must be two part names");
   }
   std::size_t idx[2] = {0, 0};
   for (std::size_t k = 0; k < 2; ++k) {
-    const std::string name = text(file, *names->get(k), f + ".parts");
+    const std::string name = (*names)[k].as_string()->get();
     std::size_t j = 0;
     while (j < parts.size() && parts[j].name != name) ++j;
-    if (j == parts.size())
-      fail(file, names->get(k)->source(), f + ".parts", "no part named '" + name + "'");
+    if (j == parts.size()) f.fail("parts", "no part named '" + name + "'");
     idx[k] = j;
   }
-  if (idx[0] == idx[1])
-    fail(file, names_node.source(), f + ".parts", "a part cannot link to itself");
-  const toml::node& angle_node = required(file, t, "angle_deg", f + ".angle_deg");
-  const double angle = number(file, angle_node, f + ".angle_deg");
-  if (angle < 0.0 || angle > 180.0)
-    fail(file, angle_node.source(), f + ".angle_deg", "must be in [0, 180]");
-  const toml::node& dist_node = required(file, t, "distance", f + ".distance");
-  const double distance = number(file, dist_node, f + ".distance");
-  if (distance < 0.0) fail(file, dist_node.source(), f + ".distance", "must be >= 0 mm");
+  if (idx[0] == idx[1]) f.fail("parts", "a part cannot link to itself");
+  double angle = 0.0, distance = 0.0;
+  f.require("angle_deg");
+  f.read("angle_deg", angle, 0.0, 180.0);
+  f.require("distance", "(mm)");
+  f.read("distance", distance, 0.0, 1e9);
+  f.reject_unknown();
   return PartLink{idx[0], idx[1], angle * std::numbers::pi / 180.0, distance};
-}
-
-const toml::array* table_array(const std::filesystem::path& file, const toml::table& root,
-                               std::string_view key) {
-  const toml::node* node = root.get(key);
-  if (node == nullptr) return nullptr;
-  const toml::array* arr = node->as_array();
-  if (arr == nullptr || !arr->is_array_of_tables()) {
-    fail(file, node->source(), std::string(key), "expected [[" + std::string(key) + "]] tables");
-  }
-  return arr;
 }
 
 }  // namespace
 
 ObjectModel parse_object_model(std::string_view source_text, const std::filesystem::path& file) {
   const toml::table root = parse_toml(source_text, file.string());
-  reject_unknown(file, root, "", {"name", "part", "link"});
+  TomlFields f(&root, file.string());
+  f.only({"name", "part", "link"});
   ObjectModel model;
-  model.name = text(file, required(file, root, "name", "name"), "name");
-  const toml::array* parts = table_array(file, root, "part");
-  if (parts == nullptr || parts->empty())
-    fail(file, root.source(), "part", "at least one [[part]] is required");
-  if (parts->size() > kMaxParts) fail(file, parts->source(), "part", "at most 16 parts");
+  model.name = name_of(f, "name");
+  const toml::array* parts = f.table_array("part");
+  if (parts == nullptr || parts->empty()) f.fail("part", "at least one [[part]] is required");
+  if (parts->size() > kMaxParts) f.fail("part", "at most 16 parts");
   for (std::size_t i = 0; i < parts->size(); ++i) {
-    ModelPart p = parse_part(file, *parts->get(i)->as_table(), i);
+    TomlFields pf = f.element("part", *parts, i);
+    ModelPart p = parse_part(pf);
     for (const ModelPart& q : model.parts) {
-      if (q.name == p.name)
-        fail(file, parts->get(i)->source(), "part[" + std::to_string(i) + "].name",
-             "duplicate part name '" + p.name + "'");
+      if (q.name == p.name) pf.fail("name", "duplicate part name '" + p.name + "'");
     }
     model.parts.push_back(std::move(p));
   }
-  if (const toml::array* links = table_array(file, root, "link")) {
+  if (const toml::array* links = f.table_array("link")) {
     for (std::size_t i = 0; i < links->size(); ++i) {
-      model.links.push_back(parse_link(file, *links->get(i)->as_table(), i, model.parts));
+      model.links.push_back(parse_link(f.element("link", *links, i), model.parts));
     }
   }
+  f.reject_unknown();
   return model;
 }
 

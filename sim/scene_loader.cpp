@@ -5,10 +5,13 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "io/stl.hpp"
+#include "io/toml_fields.hpp"
 #include "io/toml_file.hpp"
 #include "sim/bore_plate_mesh.hpp"
 
@@ -26,29 +29,21 @@ constexpr std::size_t kMaxObjects = 1000;
 constexpr std::size_t kMaxPlateBores = 100;
 constexpr std::size_t kMaxTruthBores = 1000;
 
-// Where we are while reading: file, the table being read and its label for messages.
+// The table being read, through the one field reader (io::TomlFields: "<file>:<line>:
+// <path>.<field>: <problem>"), with the scene's way of giving defaults: each getter returns the
+// value, or the fallback when the field is absent, or fails when there is none.
 struct Ctx {
-  const std::string& file;
-  const toml::table& table;
-  std::string label;  // e.g. "object 'table'"
+  mutable io::TomlFields f;
 
   [[noreturn]] void fail(std::string_view field, const std::string& what) const {
-    const toml::node* node = table.get(field);
-    const auto& src = node ? node->source() : table.source();
-    std::ostringstream msg;
-    msg << file << ":" << src.begin.line << ": " << label << ": field '" << field << "' " << what;
-    throw SceneError(msg.str());
+    f.fail(field, what);
   }
-
-  bool has(std::string_view field) const { return table.contains(field); }
-
+  bool has(std::string_view field) const { return f.has(field); }
   // Keys this version reads; any other is a typo that must not fall back to a default.
-  void only(std::initializer_list<std::string_view> known) const {
-    for (const auto& [key, node] : table) {
-      bool found = false;
-      for (std::string_view k : known) found = found || key.str() == k;
-      if (!found) fail(key.str(), "is not a known field");
-    }
+  void only(std::initializer_list<std::string_view> known) const { f.only(known); }
+  Ctx element(std::string_view key, const toml::array& array, std::size_t i) const {
+    if (!array[i].is_table()) fail(key, "must be an array of tables");
+    return Ctx{f.element(key, array, i)};
   }
 
   // A whole number in [lo, hi], checked before any conversion (1e30 or 1e12 as an int is UB).
@@ -68,14 +63,10 @@ struct Ctx {
   }
 
   double number(std::string_view field, std::optional<double> fallback = std::nullopt) const {
-    const toml::node* node = table.get(field);
-    if (!node) {
-      if (fallback) return *fallback;
-      fail(field, "is missing");
-    }
-    const auto v = node->value<double>();
-    if (!v || !std::isfinite(*v)) fail(field, "must be a finite number");
-    return *v;
+    if (!has(field) && !fallback) fail(field, "is missing");
+    double v = fallback.value_or(0.0);
+    f.read(field, v, -std::numeric_limits<double>::max(), std::numeric_limits<double>::max());
+    return v;
   }
 
   double positive(std::string_view field, std::optional<double> fallback = std::nullopt) const {
@@ -87,33 +78,18 @@ struct Ctx {
   template <int N>
   Eigen::Matrix<double, N, 1> vec(std::string_view field,
                                   std::optional<Eigen::Matrix<double, N, 1>> fallback = {}) const {
-    const toml::node* node = table.get(field);
-    if (!node) {
-      if (fallback) return *fallback;
-      fail(field, "is missing");
-    }
-    const toml::array* arr = node->as_array();
-    if (!arr || arr->size() != N)
-      fail(field, "must be an array of " + std::to_string(N) + " numbers");
-    Eigen::Matrix<double, N, 1> out;
-    for (int i = 0; i < N; ++i) {
-      const auto v = (*arr)[static_cast<std::size_t>(i)].value<double>();
-      if (!v || !std::isfinite(*v))
-        fail(field, "must be an array of " + std::to_string(N) + " numbers");
-      out[i] = *v;
-    }
-    return out;
+    if (!has(field) && !fallback) fail(field, "is missing");
+    std::array<double, N> v{};
+    if (fallback) std::copy(fallback->data(), fallback->data() + N, v.begin());
+    f.read(field, v, -std::numeric_limits<double>::max(), std::numeric_limits<double>::max());
+    return Eigen::Map<const Eigen::Matrix<double, N, 1>>(v.data());
   }
 
   std::string text(std::string_view field, std::optional<std::string> fallback = {}) const {
-    const toml::node* node = table.get(field);
-    if (!node) {
-      if (fallback) return *fallback;
-      fail(field, "is missing");
-    }
-    const auto v = node->value<std::string>();
-    if (!v) fail(field, "must be a string");
-    return *v;
+    if (!has(field) && !fallback) fail(field, "is missing");
+    std::string v = fallback.value_or("");
+    f.read(field, v);
+    return v;
   }
 };
 
@@ -157,14 +133,14 @@ void read_object(const Ctx& c, const std::string& base_dir, Scene& scene) {
   SceneObject obj;
   obj.name = c.text("name");
   const std::string type = c.text("type");
-  Ctx named{c.file, c.table, "object '" + obj.name + "'"};
+  const Ctx& named = c;
   obj.T_world_object = read_pose(named);
   const auto only = [&](std::initializer_list<std::string_view> extra) {
     std::vector<std::string_view> known{"name", "type", "position", "rpy_deg", "z_axis"};
     known.insert(known.end(), extra.begin(), extra.end());
-    for (const auto& [key, node] : c.table) {
+    for (const auto& [key, node] : *c.f.table()) {
       if (std::find(known.begin(), known.end(), key.str()) == known.end())
-        named.fail(key.str(), "is not a known field for type '" + type + "'");
+        named.fail(key.str(), "unknown field for type '" + type + "'");
     }
   };
   if (type == "plane") {
@@ -207,13 +183,11 @@ void read_object(const Ctx& c, const std::string& base_dir, Scene& scene) {
     spec.cell_mm = named.positive("cell", spec.cell_mm);
     spec.thickness_mm = named.positive("thickness", spec.thickness_mm);
     spec.segments = named.integer("segments", spec.segments, 8, kMaxSegments);
-    const toml::array* bores = c.table.get_as<toml::array>("bore");
+    const toml::array* bores = c.f.table()->get_as<toml::array>("bore");
     if (!bores) named.fail("bore", "is missing: a bore_plate needs [[object.bore]] tables");
     named.at_most("bore", *bores, kMaxPlateBores);
-    for (const toml::node& n : *bores) {
-      const toml::table* t = n.as_table();
-      if (!t) named.fail("bore", "must be an array of tables");
-      spec.bores.push_back(read_bore(Ctx{c.file, *t, named.label + " bore"}));
+    for (std::size_t i = 0; i < bores->size(); ++i) {
+      spec.bores.push_back(read_bore(c.element("bore", *bores, i)));
     }
     BorePlate plate = make_bore_plate(spec);
     if (!plate.error.empty()) named.fail("bore", "is invalid: " + plate.error);
@@ -229,34 +203,22 @@ void read_object(const Ctx& c, const std::string& base_dir, Scene& scene) {
   scene.objects.push_back(std::move(obj));
 }
 
-}  // namespace
-
-Scene parse_scene(const std::string& text, const std::string& name, const std::string& base_dir) {
-  toml::table root;
-  try {
-    root = io::parse_toml(text, name);
-  } catch (const io::TomlError& e) {
-    throw SceneError(e.what());
-  }
+Scene read_scene(const Ctx& top, const std::string& base_dir) {
   Scene scene;
-  scene.source = name;
-  const Ctx top{name, root, "scene"};
+  scene.source = top.f.source();
+  const toml::table& root = *top.f.table();
   top.only({"object", "bore", "sensors"});
   const toml::array* objects = root.get_as<toml::array>("object");
   if (!objects) top.fail("object", "is missing: a scene needs at least one [[object]]");
   top.at_most("object", *objects, kMaxObjects);
-  for (const toml::node& n : *objects) {
-    const toml::table* t = n.as_table();
-    if (!t) top.fail("object", "must be an array of tables");
-    read_object(Ctx{name, *t, "object"}, base_dir, scene);
+  for (std::size_t i = 0; i < objects->size(); ++i) {
+    read_object(top.element("object", *objects, i), base_dir, scene);
   }
   // Ground truth of bores in mesh objects (a bore_plate object gives its own).
   if (const toml::array* bores = root.get_as<toml::array>("bore")) {
     top.at_most("bore", *bores, kMaxTruthBores);
-    for (const toml::node& n : *bores) {
-      const toml::table* t = n.as_table();
-      if (!t) top.fail("bore", "must be an array of tables");
-      const Ctx c{name, *t, "bore"};
+    for (std::size_t i = 0; i < bores->size(); ++i) {
+      const Ctx c = top.element("bore", *bores, i);
       c.only({"name", "kind", "diameter", "opening", "axis"});
       BoreTruth b;
       b.name = c.text("name");
@@ -273,21 +235,33 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
       scene.bores.push_back(b);
     }
   }
-  if (const toml::table* sensors = root.get_as<toml::table>("sensors")) {
-    Ctx{name, *sensors, "sensors"}.only({"css", "stripe", "pantilt"});
+  if (const toml::table* sensors = top.f.sub_table("sensors")) {
+    const Ctx sensor_table{top.f.sub("sensors")};
+    sensor_table.only({"css", "stripe", "pantilt"});
     const std::pair<const char*, Eigen::Isometry3d*> mounts[] = {
         {"css", &scene.mounts.T_scene_css},
         {"stripe", &scene.mounts.T_scene_stripe},
         {"pantilt", &scene.mounts.T_scene_pantilt}};
     for (const auto& [key, pose] : mounts) {
-      if (const toml::table* t = sensors->get_as<toml::table>(key)) {
-        const Ctx mount{name, *t, std::string("sensors.") + key};
+      if (sensors->get_as<toml::table>(key) != nullptr) {
+        const Ctx mount{sensor_table.f.sub(key)};
         mount.only({"position", "rpy_deg", "z_axis"});
         *pose = read_pose(mount);
       }
     }
   }
   return scene;
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& name, const std::string& base_dir) {
+  try {
+    const toml::table root = io::parse_toml(text, name);
+    return read_scene(Ctx{io::TomlFields(&root, name)}, base_dir);
+  } catch (const io::TomlError& e) {
+    throw SceneError(e.what());
+  }
 }
 
 Scene load_scene(const std::string& path) {

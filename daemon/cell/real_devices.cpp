@@ -216,7 +216,10 @@ ScanOutcome RealDevices::scan_stripe(const DeviceConfig& device, const ScanReque
   };
   const ScanLoopEnd end = sweep_stripe(*axis, *ranger, assembler, {cancel, progress}, start_sweep,
                                        health_watch(device.name, *ranger, axis_name, *axis), &why);
-  if (end == ScanLoopEnd::kCancelled) axis->halt();
+  if (end == ScanLoopEnd::kCancelled) {
+    // The operator must know when the axis could not be stopped: it may still be moving.
+    if (const hal::Status halted = axis->halt(); !halted) why += "; halt failed: " + halted.message;
+  }
   if (end != ScanLoopEnd::kDone) return failed(device, why);
   return finish_scan(device, assembler.finish(), Eigen::Isometry3d::Identity(),
                      stripe_sensor(fc.geometry, from, to), clock_.get());

@@ -6,6 +6,7 @@
 #include <functional>
 #include <iostream>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,12 @@ nlohmann::json health_json(const hal::Device& d) {
           {"message", h.message}};
 }
 
+// A simulated device that refuses start() or a move has a broken scene or options: stop there
+// rather than write an empty or partial cloud.
+void require(const hal::Status& s, std::string_view what) {
+  if (!s) throw std::runtime_error(std::string(what) + ": " + s.message);
+}
+
 // Streams a simulated sensor and the device that moves it into the sensor's assembler, as the
 // frames arrive, until `running` turns false: the one scan loop of every sensor.
 template <class Frame, class Pose, class Assembler, class AddFrame, class AddPose>
@@ -77,8 +84,8 @@ fusion::FusedScan stream(hal::SampleSource<Frame>& sensor, hal::SampleSource<Pos
                          Assembler& assembler, AddFrame add_frame, AddPose add_pose,
                          const std::function<bool()>& running, nlohmann::json& health) {
   assembler.begin_scan();
-  sensor.start();
-  motion.start();
+  require(sensor.start(), "sensor start");
+  require(motion.start(), "motion start");
   std::vector<Frame> frames;
   std::vector<Pose> poses;
   while (running()) {
@@ -126,8 +133,8 @@ fusion::FusedScan scan_scene(const sim::Scene& scene, const sim::RayCaster& cast
     fusion::StripeCellFusionConfig config;
     config.geometry = o.geometry;
     fusion::StripeCellAssembler assembler(config);
-    cell.axis().enable();
-    cell.axis().move_to(o.geometry.axis_travel_mm, o.geometry.max_speed_mm_s);
+    require(cell.axis().enable(), "axis enable");
+    require(cell.axis().move_to(o.geometry.axis_travel_mm, o.geometry.max_speed_mm_s), "axis move");
     T_scene_world = scene.mounts.T_scene_stripe;
     return stream(
         cell.ranger(), cell.axis(), assembler, add_profile,

@@ -15,114 +15,13 @@
 #include "daemon/service/ros_env.hpp"
 #include "daemon/service/scan_types.hpp"
 #include "io/object_model_file.hpp"
+#include "io/toml_fields.hpp"
 #include "io/toml_file.hpp"
 
 namespace rangefit::daemon {
 namespace {
 
-// line: where in the file the field (or, when it is missing, its table) stands; 0 = unknown.
-struct FieldError : std::runtime_error {
-  explicit FieldError(const std::string& what, std::uint32_t at_line = 0)
-      : std::runtime_error(what), line(at_line) {}
-  std::uint32_t line;
-};
-
-class FieldReader {
- public:
-  FieldReader(const toml::table& table, std::string path) : table_(table), path_(std::move(path)) {}
-
-  std::string field(std::string_view key) const {
-    return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
-  }
-  [[noreturn]] void fail(std::string_view key, const std::string& why) const {
-    const toml::node* n = table_.get(key);
-    throw FieldError(field(key) + ": " + why, (n ? n->source() : table_.source()).begin.line);
-  }
-
-  const toml::node* find(std::string_view key) {
-    used_.insert(std::string(key));
-    return table_.get(key);
-  }
-
-  void read(std::string_view key, std::string& out) {
-    if (const auto* n = find(key)) {
-      if (!n->is_string()) fail(key, "must be a string");
-      out = n->as_string()->get();
-    }
-  }
-  void read(std::string_view key, double& out, double lo, double hi) {
-    if (const auto* n = find(key)) {
-      if (n->is_integer()) {
-        out = static_cast<double>(n->as_integer()->get());
-      } else if (n->is_floating_point()) {
-        out = n->as_floating_point()->get();
-      } else {
-        fail(key, "must be a number");
-      }
-      if (!std::isfinite(out) || out < lo || out > hi) {
-        std::ostringstream s;
-        s << "must be in [" << lo << ", " << hi << "], got " << out;
-        fail(key, s.str());
-      }
-    }
-  }
-  void read(std::string_view key, bool& out) {
-    if (const auto* n = find(key)) {
-      if (!n->is_boolean()) fail(key, "must be true or false");
-      out = n->as_boolean()->get();
-    }
-  }
-  void read(std::string_view key, std::int64_t& out, std::int64_t lo, std::int64_t hi) {
-    if (const auto* n = find(key)) {
-      if (!n->is_integer()) fail(key, "must be an integer");
-      out = n->as_integer()->get();
-      if (out < lo || out > hi) {
-        fail(key, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
-                      std::to_string(out));
-      }
-    }
-  }
-  template <std::size_t N>
-  void read(std::string_view key, std::array<double, N>& out, double lo, double hi) {
-    if (const auto* n = find(key)) {
-      const auto* arr = n->as_array();
-      if (arr == nullptr || arr->size() != N)
-        fail(key, "must be an array of " + std::to_string(N) + " numbers");
-      for (std::size_t i = 0; i < N; ++i) {
-        const auto v = (*arr)[i].value<double>();
-        if (!v || !std::isfinite(*v) || *v < lo || *v > hi) {
-          std::ostringstream s;
-          s << "element " << i << " must be a number in [" << lo << ", " << hi << "]";
-          fail(key, s.str());
-        }
-        out[i] = *v;
-      }
-    }
-  }
-  const toml::table* sub_table(std::string_view key) {
-    const auto* n = find(key);
-    if (n == nullptr) return nullptr;
-    if (!n->is_table()) fail(key, "must be a table");
-    return n->as_table();
-  }
-  const toml::array* table_array(std::string_view key) {
-    const auto* n = find(key);
-    if (n == nullptr) return nullptr;
-    if (!n->is_array_of_tables()) fail(key, "must be an array of tables ([[" + field(key) + "]])");
-    return n->as_array();
-  }
-  // Call after reading: any key not read is a typo or a field this version does not know.
-  void reject_unknown() const {
-    for (const auto& [k, v] : table_) {
-      if (!used_.contains(std::string(k.str()))) fail(k.str(), "unknown field");
-    }
-  }
-
- private:
-  const toml::table& table_;
-  std::string path_;
-  std::set<std::string> used_;
-};
+using FieldReader = io::TomlFields;
 
 constexpr double kMaxRotarySweepRad = 6.283185307179586;  // one turn
 constexpr double kMaxLinearSweepMm = 1e4;
@@ -173,8 +72,8 @@ void read_dds(FieldReader& r, DdsConfig& d) {
   depth = d.request_depth;
   r.read("request_depth", depth, 1, 1000);
   d.request_depth = static_cast<int>(depth);
-  if (const auto* t = r.sub_table("security")) {
-    FieldReader sub(*t, r.field("security"));
+  if (r.sub_table("security") != nullptr) {
+    FieldReader sub = r.sub("security");
     read_dds_security(sub, d.security);
   }
   r.reject_unknown();
@@ -351,8 +250,8 @@ void read_device(FieldReader& r, DeviceConfig& d) {
   std::string scene;
   r.read("scene", scene);
   d.scene = scene;
-  if (const auto* t = r.sub_table("sim_fault")) {
-    FieldReader sub(*t, r.field("sim_fault"));
+  if (r.sub_table("sim_fault") != nullptr) {
+    FieldReader sub = r.sub("sim_fault");
     read_sim_fault(sub, d.sim_fault);
   }
   r.reject_unknown();
@@ -418,32 +317,32 @@ struct FusionTableError : std::runtime_error {
 DaemonConfig read_root(const toml::table& root, std::string_view source_name,
                        const std::filesystem::path& base_dir) {
   DaemonConfig c;
-  FieldReader r(root, "");
+  FieldReader r(&root, std::string(source_name));
   if (const auto* t = r.sub_table("fusion")) {
     auto fusion = fusion::parse_fusion_config(*t, source_name);
     if (!fusion.config) throw FusionTableError(fusion.error);
     c.fusion = *fusion.config;
   }
-  if (const auto* t = r.sub_table("sim")) {
-    FieldReader sub(*t, "sim");
+  if (r.sub_table("sim") != nullptr) {
+    FieldReader sub = r.sub("sim");
     read_sim(sub, c.sim);
   }
   c.sim.scene = resolve(c.sim.scene, base_dir);
-  if (const auto* t = r.sub_table("service")) {
-    FieldReader sub(*t, "service");
+  if (r.sub_table("service") != nullptr) {
+    FieldReader sub = r.sub("service");
     read_service(sub, c.service);
   }
   for (const char* name : {"http", "tcp"}) {
-    if (const auto* t = r.sub_table(name)) {
-      FieldReader sub(*t, name);
+    if (r.sub_table(name) != nullptr) {
+      FieldReader sub = r.sub(name);
       read_interface(sub, std::string_view(name) == "http" ? c.http : c.tcp);
     }
   }
   if (!c.http.listen.empty() && c.http.listen == c.tcp.listen) {
-    throw FieldError("tcp.listen: the same address as http.listen");
+    throw io::TomlError(source_name, 0, "tcp.listen: the same address as http.listen");
   }
-  if (const auto* t = r.sub_table("dds")) {
-    FieldReader sub(*t, "dds");
+  if (r.sub_table("dds") != nullptr) {
+    FieldReader sub = r.sub("dds");
     read_dds(sub, c.dds);
   }
   const toml::table* dds = root["dds"].as_table();
@@ -451,25 +350,24 @@ DaemonConfig read_root(const toml::table& root, std::string_view source_name,
     try {
       c.dds.domain_id = ros_domain_id().value_or(c.dds.domain_id);  // as a ROS 2 node would
     } catch (const std::invalid_argument& e) {
-      throw FieldError(std::string("dds.domain_id (not set): ") + e.what());
+      throw io::TomlError(source_name, 0, std::string("dds.domain_id (not set): ") + e.what());
     }
   }
   for (const auto& [key, path] : DdsSecurityConfig::documents(c.dds.security)) {
     *path = resolve(*path, base_dir);
   }
-  if (const auto* t = r.sub_table("spool")) {
-    FieldReader sub(*t, "spool");
+  if (r.sub_table("spool") != nullptr) {
+    FieldReader sub = r.sub("spool");
     read_spool(sub, c.spool);
   }
-  if (const auto* t = r.sub_table("detection")) {
-    FieldReader sub(*t, "detection");
+  if (r.sub_table("detection") != nullptr) {
+    FieldReader sub = r.sub("detection");
     read_detection(sub, c.detection);
   }
   std::set<std::string> names;
   if (const auto* arr = r.table_array("devices")) {
     for (std::size_t i = 0; i < arr->size(); ++i) {
-      const std::string path = "devices[" + std::to_string(i) + "]";
-      FieldReader sub(*(*arr)[i].as_table(), path);
+      FieldReader sub = r.element("devices", *arr, i);
       DeviceConfig& d = c.devices.emplace_back();
       read_device(sub, d);
       if (!names.insert(d.name).second) sub.fail("name", "duplicate device name");
@@ -485,18 +383,19 @@ DaemonConfig read_root(const toml::table& root, std::string_view source_name,
   for (std::size_t i = 0; i < c.devices.size(); ++i) {
     const std::string& m = c.devices[i].motion;
     if (!m.empty() && c.device(m) == nullptr) {
-      throw FieldError("devices[" + std::to_string(i) + "].motion: no device named \"" + m + "\"");
+      throw io::TomlError(
+          source_name, 0,
+          "devices[" + std::to_string(i) + "].motion: no device named \"" + m + "\"");
     }
   }
   if (const auto* t = r.sub_table("frames")) {
-    FieldReader sub(*t, "frames");
+    FieldReader sub = r.sub("frames");
     read_frames(sub, *t, c);
   }
   names.clear();
   if (const auto* arr = r.table_array("objects")) {
     for (std::size_t i = 0; i < arr->size(); ++i) {
-      const std::string path = "objects[" + std::to_string(i) + "]";
-      FieldReader sub(*(*arr)[i].as_table(), path);
+      FieldReader sub = r.element("objects", *arr, i);
       read_object(sub, c.objects.emplace_back(), base_dir);
       if (!names.insert(c.objects.back().name).second) sub.fail("name", "duplicate object name");
     }
@@ -506,7 +405,8 @@ DaemonConfig read_root(const toml::table& root, std::string_view source_name,
     const std::string& sensor =
         std::string_view(key) == "bore_sensor" ? c.service.bore_sensor : c.service.object_sensor;
     if (!sensor.empty() && c.device(sensor) == nullptr) {
-      throw FieldError(std::string("service.") + key + ": no device named \"" + sensor + "\"");
+      throw io::TomlError(source_name, 0,
+                          std::string("service.") + key + ": no device named \"" + sensor + "\"");
     }
   }
   return c;
@@ -561,9 +461,6 @@ ConfigResult parse_config(std::string_view toml_text, std::string_view source_na
     result.config = read_root(root, source_name, base_dir);
   } catch (const io::TomlError& e) {
     result.error = e.what();
-  } catch (const FieldError& e) {
-    result.error = std::string(source_name) +
-                   (e.line > 0 ? ":" + std::to_string(e.line) : std::string()) + ": " + e.what();
   } catch (const FusionTableError& e) {
     result.error = e.what();  // already "<source>: fusion.<table>.<field>: <problem>"
   }

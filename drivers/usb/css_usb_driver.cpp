@@ -85,7 +85,8 @@ void CssUsbDriver::supervise() {
   }
   const bool streaming = state_ == hal::DeviceState::kStreaming;
   lock.unlock();
-  if (streaming) transport_->control_out(Request::kStop, 0);
+  // Best effort: when the device is already gone the request fails, and close() follows anyway.
+  if (streaming) static_cast<void>(transport_->control_out(Request::kStop, 0));
   transport_->close();
   set_state(hal::DeviceState::kDisconnected, "stopped");
 }

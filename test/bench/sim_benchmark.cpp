@@ -70,7 +70,7 @@ void BM_CssFullScan(benchmark::State& state) {
     SimClock clock;
     CssRig rig(scene, caster, CssScanOptions{}, clock);
     std::vector<hal::CssRevolution> revs;
-    rig.css().start();
+    if (!rig.css().start()) return state.SkipWithError("css start failed");
     while (clock.now() < rig.scan_end()) rig.css().read(revs, std::chrono::milliseconds(500));
     points = 0;
     for (const auto& r : revs) {
@@ -118,10 +118,10 @@ void BM_StripeScan140k(benchmark::State& state) {
     const auto t0 = std::chrono::steady_clock::now();
     SimClock clock;
     StripeCell cell(scene, caster, StripeCellOptions{}, clock);
-    cell.axis().enable();
-    cell.ranger().start();
+    if (!cell.axis().enable() || !cell.ranger().start())
+      return state.SkipWithError("stripe cell start failed");
     const double travel = state.range(0) == 0 ? 175.0 : 156.0;  // ~140,000 points either way
-    cell.axis().move_to(travel, 6.3);
+    if (!cell.axis().move_to(travel, 6.3)) return state.SkipWithError("axis move failed");
     std::vector<hal::RangerProfile> out;
     while (!cell.axis().motion_complete()) cell.ranger().read(out, std::chrono::milliseconds(500));
     points = 0;
