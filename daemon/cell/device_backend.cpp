@@ -1,5 +1,12 @@
 #include "daemon/cell/device_backend.hpp"
 
+#include "daemon/cell/real_devices.hpp"
+#ifdef RANGEFIT_WITH_SIM
+#include "daemon/cell/sim_cell.hpp"
+#endif
+
+#include <stdexcept>
+
 #include "io/ply.hpp"
 
 namespace rangefit::daemon {
@@ -7,7 +14,13 @@ namespace rangefit::daemon {
 DeviceBackend::DeviceBackend(CellConfig config) : config_(std::move(config)) {
   for (const auto& d : config_.devices) {
     if (d.driver == DriverKind::kSim) {
+#ifdef RANGEFIT_WITH_SIM
       if (!sim_) sim_ = std::make_unique<SimCell>(config_);
+#else
+      throw std::runtime_error("device '" + d.name +
+                               "': driver = \"sim\", but this rangefitd was built without the "
+                               "simulated cell (RANGEFIT_WITH_SIM=OFF)");
+#endif
     } else if (d.driver == DriverKind::kReal) {
       if (!real_) real_ = std::make_unique<RealDevices>(config_);
     } else {
@@ -20,9 +33,11 @@ std::vector<NamedHealth> DeviceBackend::health() const {
   std::lock_guard lock(mutex_);
   std::vector<NamedHealth> out;
   for (const auto& [name, h] : health_) out.push_back({name, h});
+#ifdef RANGEFIT_WITH_SIM
   if (sim_) {
     for (auto& h : sim_->health()) out.push_back(std::move(h));
   }
+#endif
   if (real_) {
     for (auto& h : real_->health()) out.push_back(std::move(h));
   }
@@ -35,7 +50,9 @@ ScanOutcome DeviceBackend::scan(const ScanRequest& request, const std::atomic<bo
   if (device == nullptr) return {hal::Status::Error("unknown sensor " + request.sensor), {}};
   if (cancel) return {hal::Status::Error("cancelled"), {}};
   if (device->driver == DriverKind::kReplay) return replay(*device, progress);
+#ifdef RANGEFIT_WITH_SIM
   if (device->driver == DriverKind::kSim) return sim_->scan(*device, request, cancel, progress);
+#endif
   return real_->scan(*device, request, cancel, progress);
 }
 

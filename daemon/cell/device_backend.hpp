@@ -6,10 +6,10 @@
 // fast as possible (benchmarks, offline checks).
 
 #include <map>
+#include <memory>
 #include <mutex>
 
-#include "daemon/cell/real_devices.hpp"
-#include "daemon/cell/sim_cell.hpp"
+#include "daemon/cell/cell_devices.hpp"
 #include "daemon/service/config.hpp"
 #include "daemon/service/pipeline.hpp"
 
@@ -30,8 +30,8 @@ class DeviceBackend final : public ScanBackend {
   mutable std::mutex mutex_;
   std::map<std::string, hal::DeviceHealth> health_;
   std::map<std::string, PointCloud> replay_cache_;
-  std::unique_ptr<SimCell> sim_;       // when a device uses driver = "sim"
-  std::unique_ptr<RealDevices> real_;  // when a device uses driver = "real"
+  std::unique_ptr<CellDevices> sim_;   // when a device uses driver = "sim"
+  std::unique_ptr<CellDevices> real_;  // when a device uses driver = "real"
 };
 
 }  // namespace rangefit::daemon

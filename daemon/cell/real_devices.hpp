@@ -30,13 +30,14 @@
 #include <vector>
 
 #include "daemon/cell/driver_configs.hpp"
+#include "daemon/cell/cell_devices.hpp"
 #include "daemon/service/config.hpp"
 #include "daemon/service/pipeline.hpp"
 #include "hal/source.hpp"
 
 namespace rangefit::daemon {
 
-class RealDevices {
+class RealDevices final : public CellDevices {
  public:
   // Builds and starts every driver = "real" device; throws std::runtime_error on a transport
   // string that cannot be understood (a config error, so at start-up or reload only).
@@ -46,8 +47,8 @@ class RealDevices {
   RealDevices& operator=(const RealDevices&) = delete;
 
   ScanOutcome scan(const DeviceConfig& device, const ScanRequest& request,
-                   const std::atomic<bool>& cancel, const std::function<void()>& progress);
-  std::vector<NamedHealth> health() const;
+                   const std::atomic<bool>& cancel, const std::function<void()>& progress) override;
+  std::vector<NamedHealth> health() const override;
 
  private:
   ScanOutcome scan_stripe(const DeviceConfig& device, const ScanRequest& request,

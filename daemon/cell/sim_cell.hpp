@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "daemon/cell/cell_devices.hpp"
 #include "daemon/service/config.hpp"
 #include "daemon/service/pipeline.hpp"
 
@@ -30,7 +31,7 @@ class SimClock;
 
 namespace rangefit::daemon {
 
-class SimCell {
+class SimCell final : public CellDevices {
  public:
   // Loads the scene of every simulated scanning device; throws std::runtime_error naming the
   // device and the file when one cannot be loaded (start-up or reload, never mid-scan).
@@ -43,10 +44,10 @@ class SimCell {
 
   // device.driver must be kSim. request.sweep_* are in internal units (mm or rad).
   ScanOutcome scan(const DeviceConfig& device, const ScanRequest& request,
-                   const std::atomic<bool>& cancel, const std::function<void()>& progress);
+                   const std::atomic<bool>& cancel, const std::function<void()>& progress) override;
   // One entry per simulated HAL device: "<name>" (the sensor) and "<name>/joint", "/axis" or
   // "/angles" (the stream that moves it).
-  std::vector<NamedHealth> health() const;
+  std::vector<NamedHealth> health() const override;
 
  private:
   struct LoadedScene;

@@ -20,7 +20,9 @@ int main(int argc, char** argv) {
   rangefit::cli::add_watch_command(app, &exit_code);
   rangefit::cli::add_models_command(app, &exit_code);
   rangefit::cli::add_replay_command(app, &exit_code);
+#ifdef RANGEFIT_WITH_SIM
   rangefit::cli::add_simulate_command(app, &exit_code);
+#endif
   rangefit::cli::add_render_command(app, &exit_code);
   rangefit::cli::add_calibrate_command(app, &exit_code);
 
