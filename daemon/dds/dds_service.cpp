@@ -4,6 +4,7 @@
 
 #include "daemon/dds/dds_security.hpp"
 #include "daemon/dds/models_msg.hpp"
+#include "daemon/dds/ros_detections.hpp"
 #include "daemon/dds/ros_frames.hpp"
 
 namespace rangefit::daemon {
@@ -35,6 +36,8 @@ DdsService::DdsService(const DdsConfig& config)
       tf_(participant_, topics::tf()),
       tf_static_(participant_, topics::tf_static()),
       models_(participant_, topics::models()),
+      detections3d_(participant_, topics::detections3d()),
+      markers_(participant_, topics::markers()),
       service_(participant_) {
   requests_.also_wake_on(service_.reader());
 }
@@ -46,6 +49,8 @@ void DdsService::publish_frames(const DaemonConfig& config) {
   count(tf_static_.write(out.msg()));
   const ModelsOut models(config, frames_.world);
   count(models_.write(models.msg()));
+  shapes_.clear();
+  for (const auto& object : config.objects) shapes_[object.name] = object.model;
 }
 
 void DdsService::on_cloud(const ScanRequest&, const PointCloud& cloud) {
@@ -65,6 +70,11 @@ void DdsService::on_result(const DetectionResult& result) {
     const TfOut tf(result_stamp(result), frames_.world, part_frames(result));
     count(tf_.write(tf.msg()));
   }
+  // Every result, found or not: an empty array tells vision and rviz2 users nothing is there.
+  const Detection3DArrayOut detections3d(result, frames_.world, shapes_);
+  count(detections3d_.write(detections3d.msg()));
+  const MarkerArrayOut markers(result, frames_.world, shapes_);
+  count(markers_.write(markers.msg()));
   service_.answer(result, frames_.world);
 }
 

@@ -7,13 +7,13 @@ namespace {
 
 char* c_str(const std::string& s) { return const_cast<char*>(s.c_str()); }  // DDS only reads it
 
+}  // namespace
+
 geometry_msgs_msg_dds__Pose_ pose_in_metres(const Eigen::Isometry3d& T) {
   const Eigen::Vector3d t = T.translation() * kMetresPerMm;
   const Eigen::Quaterniond q(T.rotation());
   return {{t.x(), t.y(), t.z()}, {q.x(), q.y(), q.z(), q.w()}};
 }
-
-}  // namespace
 
 std::string part_frame(const DetectionResult& result, const PartPose& part) {
   const std::string what = result.kind == DetectKind::kBore ? "bore" : result.model;

@@ -33,6 +33,12 @@ Request request(int max_samples) {
   return {kRequest, &rangefit_msgs_msg_dds__DetectRequest__desc, request_qos(max_samples)};
 }
 Tf tf() { return {kTf, &tf2_msgs_msg_dds__TFMessage__desc, tf_qos()}; }
+Detections3d detections3d() {
+  return {kDetections3d, &vision_msgs_msg_dds__Detection3DArray__desc, latched_qos()};
+}
+Markers markers() {
+  return {kMarkers, &visualization_msgs_msg_dds__MarkerArray__desc, latched_qos()};
+}
 Tf tf_static() { return {kTfStatic, &tf2_msgs_msg_dds__TFMessage__desc, tf_static_qos()}; }
 
 }  // namespace rangefit::daemon::topics
