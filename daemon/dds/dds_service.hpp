@@ -61,7 +61,8 @@ class DdsService final : public ResultSink {
   topics::Writer<topics::Detections3d> detections3d_;
   topics::Writer<topics::Markers> markers_;
   RosDetectService service_;
-  FramesConfig frames_;                        // guarded by mutex_
+  std::string frame_prefix_;  // "<ros namespace>/" before every frame id; empty without one
+  FramesConfig frames_;       // guarded by mutex_; ids with the prefix
   std::map<std::string, ObjectModel> shapes_;  // the models' parts by model name; mutex_
   std::uint64_t write_failures_ = 0;
 };

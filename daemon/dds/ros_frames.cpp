@@ -21,11 +21,11 @@ std::string part_frame(const DetectionResult& result, const PartPose& part) {
          std::to_string(part.instance);
 }
 
-std::vector<NamedTransform> part_frames(const DetectionResult& result) {
+std::vector<NamedTransform> part_frames(const DetectionResult& result, const std::string& prefix) {
   std::vector<NamedTransform> out;
   if (!result.found) return out;
   for (const auto& part : result.parts)
-    out.push_back({part_frame(result, part), part.T_world_part});
+    out.push_back({prefix + part_frame(result, part), part.T_world_part});
   return out;
 }
 
