@@ -4,6 +4,7 @@
 
 #include <fstream>
 #include <map>
+#include <ostream>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -184,6 +185,8 @@ const Official kOfficial[] = {
      "string mesh_resource\nMeshFile mesh_file\nbool mesh_use_embedded_materials\n"},
     {"visualization_msgs", "MarkerArray", "visualization_msgs.idl", "Marker[] markers\n"},
 };
+
+void PrintTo(const Official& o, std::ostream* os) { *os << o.pkg << "/" << o.name; }
 
 class OfficialDefinition : public ::testing::TestWithParam<Official> {};
 
