@@ -6,13 +6,13 @@
 
 namespace rangefit::daemon {
 
-DdsClient::DdsClient(std::uint32_t domain_id)
-    : participant_(domain_id),
-      requests_(participant_, topics::request(1024)),
-      detections_(participant_, topics::detections_reader()),
+DdsClient::DdsClient(std::uint32_t domain_id, const std::string& ns, const std::string& partition)
+    : participant_(domain_id, {}, partition),
+      requests_(participant_, topics::request(1024, ns)),
+      detections_(participant_, topics::detections_reader(ns)),
       diagnostics_(participant_, topics::diagnostics()),
-      clouds_(participant_, topics::cloud()),
-      states_(participant_, topics::state()) {}
+      clouds_(participant_, topics::cloud(2, ns)),
+      states_(participant_, topics::state(ns)) {}
 
 bool DdsClient::wait_for_daemon(std::chrono::milliseconds timeout) {
   // Both directions: the daemon's request reader (or the request would go nowhere) and its

@@ -17,7 +17,9 @@ namespace rangefit::daemon {
 
 class DdsClient {
  public:
-  explicit DdsClient(std::uint32_t domain_id);  // throws dds::DdsError
+  // ns, partition: the daemon's [ros] namespace and [dds] partition. Throws dds::DdsError.
+  explicit DdsClient(std::uint32_t domain_id, const std::string& ns = "",
+                     const std::string& partition = "");
 
   // Waits up to timeout for the daemon's request reader to match (discovery). False on timeout.
   bool wait_for_daemon(std::chrono::milliseconds timeout);

@@ -23,7 +23,8 @@ Qos::Qos(const QosSpec& spec) : qos_(dds_create_qos()) {
   dds_qset_data_representation(qos_, 1, &xcdr1);
 }
 
-Participant::Participant(dds_domainid_t domain, const std::string& config) {
+Participant::Participant(dds_domainid_t domain, const std::string& config,
+                         const std::string& partition) {
   if (!config.empty()) {
     const dds_entity_t d = dds_create_domain(domain, config.c_str());
     if (d < 0) throw DdsError("create domain " + std::to_string(domain) + " with its config", d);
@@ -32,6 +33,17 @@ Participant::Participant(dds_domainid_t domain, const std::string& config) {
   const dds_entity_t p = dds_create_participant(domain, nullptr, nullptr);
   if (p < 0) throw DdsError("create participant on domain " + std::to_string(domain), p);
   entity_ = Entity(p);
+  if (!partition.empty()) {
+    dds_qos_t* q = dds_create_qos();
+    dds_qset_partition1(q, partition.c_str());
+    const dds_entity_t pub = dds_create_publisher(p, q, nullptr);
+    const dds_entity_t sub = dds_create_subscriber(p, q, nullptr);
+    dds_delete_qos(q);
+    if (pub < 0) throw DdsError("create publisher in partition " + partition, pub);
+    if (sub < 0) throw DdsError("create subscriber in partition " + partition, sub);
+    publisher_ = Entity(pub);
+    subscriber_ = Entity(sub);
+  }
 }
 
 dds_entity_t Participant::topic(const char* name, const dds_topic_descriptor_t* desc,

@@ -29,7 +29,7 @@ struct QosSpec {
 // One topic as both sides open it: name, wire type (the idlc descriptor of T) and QoS.
 template <class T>
 struct Topic {
-  const char* name;
+  std::string name;
   const dds_topic_descriptor_t* type;
   QosSpec qos;
 };
@@ -84,14 +84,21 @@ class Participant {
   // Throws DdsError when the domain cannot be joined (bad config, no network): start-up only.
   // config (Cyclone's configuration: file URIs and XML fragments, CYCLONEDDS_URI syntax), when
   // not empty, creates the domain with it for this participant alone instead of the process'
-  // default configuration.
-  explicit Participant(dds_domainid_t domain, const std::string& config = {});
+  // default configuration. partition, when not empty, is the one DDS partition every writer and
+  // reader of the participant is in: they match only entities of the same partition.
+  explicit Participant(dds_domainid_t domain, const std::string& config = {},
+                       const std::string& partition = {});
   dds_entity_t get() const { return entity_.get(); }
   dds_entity_t topic(const char* name, const dds_topic_descriptor_t* desc, const QosSpec& qos);
+  // The parents of writers and readers: the partition's publisher and subscriber, else the
+  // participant itself (Cyclone then makes implicit ones in the default partition).
+  dds_entity_t publisher() const { return publisher_.get() > 0 ? publisher_.get() : get(); }
+  dds_entity_t subscriber() const { return subscriber_.get() > 0 ? subscriber_.get() : get(); }
 
  private:
   Entity domain_;  // only when created with a config of its own
   Entity entity_;
+  Entity publisher_, subscriber_;  // only with a partition
 };
 
 // T is the idlc-generated C struct whose descriptor is passed in.
@@ -101,11 +108,12 @@ class Writer {
   Writer(Participant& p, const char* topic, const dds_topic_descriptor_t* desc,
          const QosSpec& qos) {
     const Qos q(qos);
-    const dds_entity_t w = dds_create_writer(p.get(), p.topic(topic, desc, qos), q.get(), nullptr);
+    const dds_entity_t w =
+        dds_create_writer(p.publisher(), p.topic(topic, desc, qos), q.get(), nullptr);
     if (w < 0) throw DdsError(std::string("create writer ") + topic, w);
     entity_ = Entity(w);
   }
-  Writer(Participant& p, const Topic<T>& t) : Writer(p, t.name, t.type, t.qos) {}
+  Writer(Participant& p, const Topic<T>& t) : Writer(p, t.name.c_str(), t.type, t.qos) {}
   // Returns false when the sample could not be written (never throws: cyclic path).
   bool write(const T& sample) { return dds_write(entity_.get(), &sample) >= 0; }
   // Number of matched readers (for clients that want to wait for the daemon).
@@ -127,14 +135,15 @@ class Reader {
   Reader(Participant& p, const char* topic, const dds_topic_descriptor_t* desc,
          const QosSpec& qos) {
     const Qos q(qos);
-    const dds_entity_t r = dds_create_reader(p.get(), p.topic(topic, desc, qos), q.get(), nullptr);
+    const dds_entity_t r =
+        dds_create_reader(p.subscriber(), p.topic(topic, desc, qos), q.get(), nullptr);
     if (r < 0) throw DdsError(std::string("create reader ") + topic, r);
     entity_ = Entity(r);
     waitset_ = Entity(dds_create_waitset(p.get()));
     condition_ = Entity(dds_create_readcondition(r, DDS_ANY_STATE));
     dds_waitset_attach(waitset_.get(), condition_.get(), 0);
   }
-  Reader(Participant& p, const Topic<T>& t) : Reader(p, t.name, t.type, t.qos) {}
+  Reader(Participant& p, const Topic<T>& t) : Reader(p, t.name.c_str(), t.type, t.qos) {}
 
   // Waits up to timeout for data; true when samples may be taken.
   bool wait(std::chrono::nanoseconds timeout) {

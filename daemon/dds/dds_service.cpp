@@ -4,6 +4,7 @@
 
 #include "daemon/dds/dds_security.hpp"
 #include "daemon/dds/models_msg.hpp"
+#include "daemon/dds/ros_detections.hpp"
 #include "daemon/dds/ros_frames.hpp"
 
 namespace rangefit::daemon {
@@ -24,28 +25,37 @@ std::string participant_config(const DdsConfig& config) {
 }  // namespace
 
 DdsService::DdsService(const DdsConfig& config)
-    : participant_(config.domain_id, participant_config(config)),
-      cloud_(participant_, topics::cloud(config.cloud_depth)),
-      detections_(participant_, topics::detections()),
-      pose_(participant_, topics::pose()),
-      state_(participant_, topics::state()),
+    : participant_(config.domain_id, participant_config(config), config.partition),
+      cloud_(participant_, topics::cloud(config.cloud_depth, config.ros_namespace)),
+      detections_(participant_, topics::detections(config.ros_namespace)),
+      pose_(participant_, topics::pose(config.ros_namespace)),
+      state_(participant_, topics::state(config.ros_namespace)),
       diagnostics_(participant_, topics::diagnostics()),
-      requests_(participant_, topics::request(config.request_depth)),
-      poses_(participant_, topics::poses()),
+      requests_(participant_, topics::request(config.request_depth, config.ros_namespace)),
+      poses_(participant_, topics::poses(config.ros_namespace)),
       tf_(participant_, topics::tf()),
       tf_static_(participant_, topics::tf_static()),
-      models_(participant_, topics::models()),
-      service_(participant_) {
+      models_(participant_, topics::models(config.ros_namespace)),
+      detections3d_(participant_, topics::detections3d(config.ros_namespace)),
+      markers_(participant_, topics::markers(config.ros_namespace)),
+      service_(participant_, config.ros_namespace),
+      frame_prefix_(config.ros_namespace.empty() ? "" : config.ros_namespace + "/") {
   requests_.also_wake_on(service_.reader());
 }
 
 void DdsService::publish_frames(const DaemonConfig& config) {
   std::lock_guard lock(mutex_);
   frames_ = config.frames;
-  const TfOut out(wall_time_now(), frames_.world, sensor_mounts(config));
+  frames_.world = frame_prefix_ + frames_.world;
+  for (auto& [device, frame] : frames_.sensors) frame = frame_prefix_ + frame;
+  auto mounts = sensor_mounts(config);
+  for (auto& mount : mounts) mount.child_frame = frame_prefix_ + mount.child_frame;
+  const TfOut out(wall_time_now(), frames_.world, std::move(mounts));
   count(tf_static_.write(out.msg()));
   const ModelsOut models(config, frames_.world);
   count(models_.write(models.msg()));
+  shapes_.clear();
+  for (const auto& object : config.objects) shapes_[object.name] = object.model;
 }
 
 void DdsService::on_cloud(const ScanRequest&, const PointCloud& cloud) {
@@ -62,9 +72,14 @@ void DdsService::on_result(const DetectionResult& result) {
     count(pose_.write(out.first_pose()));
     const PoseArrayOut poses(result, frames_.world);
     count(poses_.write(poses.msg()));
-    const TfOut tf(result_stamp(result), frames_.world, part_frames(result));
+    const TfOut tf(result_stamp(result), frames_.world, part_frames(result, frame_prefix_));
     count(tf_.write(tf.msg()));
   }
+  // Every result, found or not: an empty array tells vision and rviz2 users nothing is there.
+  const Detection3DArrayOut detections3d(result, frames_.world, shapes_, frame_prefix_);
+  count(detections3d_.write(detections3d.msg()));
+  const MarkerArrayOut markers(result, frames_.world, shapes_);
+  count(markers_.write(markers.msg()));
   service_.answer(result, frames_.world);
 }
 

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -31,7 +32,8 @@ class DdsService final : public ResultSink {
                 std::size_t queue_depth) override;
   void publish_diagnostics(std::vector<DiagStatus> statuses);
   // The frames of `config` ([frames]) for every header from now on, its sensors' mounts on
-  // rt/tf_static and its object models on rt/rangefit/models. At start-up and after each reload.
+  // rt/tf_static and its object models on rt/rangefit/models (their shapes for the meshes on
+  // rt/rangefit/markers). At start-up and after each reload.
   void publish_frames(const DaemonConfig& config);
 
   // Waits up to timeout for requests and calls handle(request, error) for each one taken; error
@@ -56,8 +58,12 @@ class DdsService final : public ResultSink {
   topics::Writer<topics::Tf> tf_;
   topics::Writer<topics::Tf> tf_static_;
   topics::Writer<topics::Models> models_;
+  topics::Writer<topics::Detections3d> detections3d_;
+  topics::Writer<topics::Markers> markers_;
   RosDetectService service_;
-  FramesConfig frames_;  // guarded by mutex_
+  std::string frame_prefix_;  // "<ros namespace>/" before every frame id; empty without one
+  FramesConfig frames_;       // guarded by mutex_; ids with the prefix
+  std::map<std::string, ObjectModel> shapes_;  // the models' parts by model name; mutex_
   std::uint64_t write_failures_ = 0;
 };
 

@@ -7,13 +7,13 @@ namespace {
 
 char* c_str(const std::string& s) { return const_cast<char*>(s.c_str()); }  // DDS only reads it
 
+}  // namespace
+
 geometry_msgs_msg_dds__Pose_ pose_in_metres(const Eigen::Isometry3d& T) {
   const Eigen::Vector3d t = T.translation() * kMetresPerMm;
   const Eigen::Quaterniond q(T.rotation());
   return {{t.x(), t.y(), t.z()}, {q.x(), q.y(), q.z(), q.w()}};
 }
-
-}  // namespace
 
 std::string part_frame(const DetectionResult& result, const PartPose& part) {
   const std::string what = result.kind == DetectKind::kBore ? "bore" : result.model;
@@ -21,11 +21,11 @@ std::string part_frame(const DetectionResult& result, const PartPose& part) {
          std::to_string(part.instance);
 }
 
-std::vector<NamedTransform> part_frames(const DetectionResult& result) {
+std::vector<NamedTransform> part_frames(const DetectionResult& result, const std::string& prefix) {
   std::vector<NamedTransform> out;
   if (!result.found) return out;
   for (const auto& part : result.parts)
-    out.push_back({part_frame(result, part), part.T_world_part});
+    out.push_back({prefix + part_frame(result, part), part.T_world_part});
   return out;
 }
 

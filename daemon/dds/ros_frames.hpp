@@ -16,10 +16,15 @@
 
 namespace rangefit::daemon {
 
+// A pose in mm as geometry_msgs/Pose in metres.
+geometry_msgs_msg_dds__Pose_ pose_in_metres(const Eigen::Isometry3d& T);
+
 // The frame a detected part is published as: "rangefit/<model or bore>/<part>/<instance>".
 std::string part_frame(const DetectionResult& result, const PartPose& part);
-// Every part of a found result as a frame below the world frame.
-std::vector<NamedTransform> part_frames(const DetectionResult& result);
+// Every part of a found result as a frame below the world frame, each id after `prefix` (the
+// ROS namespace's "cell1/").
+std::vector<NamedTransform> part_frames(const DetectionResult& result,
+                                        const std::string& prefix = "");
 
 class TfOut {
  public:

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "daemon/dds/messages.hpp"
+#include "daemon/dds/topics.hpp"
 
 namespace rangefit::daemon {
 namespace {
@@ -38,11 +39,11 @@ namespace topics {
 dds::QosSpec service_qos() { return {true, false, 10, true, 1024}; }
 }  // namespace topics
 
-RosDetectService::RosDetectService(dds::Participant& participant)
-    : requests_(participant, topics::kServiceRequest, &rangefit_msgs_srv_dds__Detect_Request__desc,
-                topics::service_qos()),
-      replies_(participant, topics::kServiceReply, &rangefit_msgs_srv_dds__Detect_Response__desc,
-               topics::service_qos()) {}
+RosDetectService::RosDetectService(dds::Participant& participant, const std::string& ns)
+    : requests_(participant, topics::in_namespace(topics::kServiceRequest, ns).c_str(),
+                &rangefit_msgs_srv_dds__Detect_Request__desc, topics::service_qos()),
+      replies_(participant, topics::in_namespace(topics::kServiceReply, ns).c_str(),
+               &rangefit_msgs_srv_dds__Detect_Response__desc, topics::service_qos()) {}
 
 int RosDetectService::take(const std::function<void(ScanRequest, const std::string&)>& handle) {
   return requests_.take_each([&](const rangefit_msgs_srv_dds__Detect_Request_& m) {

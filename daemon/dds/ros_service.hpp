@@ -27,7 +27,8 @@ dds::QosSpec service_qos();  // reliable, volatile, keep-all (ROS 2 services: re
 
 class RosDetectService {
  public:
-  explicit RosDetectService(dds::Participant& participant);  // throws dds::DdsError
+  // ns: the ROS namespace (rq/<ns>/rangefit/detectRequest). Throws dds::DdsError.
+  explicit RosDetectService(dds::Participant& participant, const std::string& ns = "");
 
   // Takes every waiting service request and calls handle(request, error) for each, as
   // DdsService::poll_requests does; remembers who asked. Returns the number handled.

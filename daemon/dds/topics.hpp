@@ -7,6 +7,9 @@
 //                               keep-all (1024): every answer reaches every matched reader
 //   rt/rangefit/pose            geometry_msgs/PoseStamped   reliable, transient-local, depth 1
 //   rt/rangefit/poses           geometry_msgs/PoseArray     every part; reliable, transient-local
+//   rt/rangefit/detections3d    vision_msgs/Detection3DArray  every part; reliable, transient-local
+//   rt/rangefit/markers         visualization_msgs/MarkerArray  a mesh per part; reliable,
+//                               transient-local (matches rviz2's reliable, volatile reader)
 //   rt/rangefit/state           rangefit_msgs/State         reliable, transient-local, depth 1
 //   rt/rangefit/models          rangefit_msgs/Models        reliable, transient-local, depth 1
 //   rt/diagnostics              diagnostic_msgs/DiagnosticArray  reliable, volatile, depth 10
@@ -15,6 +18,10 @@
 //   rt/rangefit/detect_request  rangefit_msgs/DetectRequest (read)  reliable, volatile, keep-all
 //                               (dds.request_depth unread requests; beyond, the sender resends)
 //   rq/rangefit/detectRequest, rr/rangefit/detectReply: the ROS 2 service (ros_service.hpp)
+// With a ROS namespace ([ros] namespace = "cell1") every rangefit/ topic and the service move
+// below it (rt/cell1/rangefit/cloud, rq/cell1/rangefit/detectRequest), as a node started in
+// that namespace publishes its relative names; rt/tf, rt/tf_static and rt/diagnostics stay
+// global as tf2 and diagnostic_updater use them, their frame ids prefixed "cell1/" instead.
 
 #include "daemon/dds/dds.hpp"
 #include "diagnostic_msgs.h"
@@ -22,6 +29,8 @@
 #include "rangefit_msgs.h"
 #include "sensor_msgs.h"
 #include "tf2_msgs.h"
+#include "vision_msgs.h"
+#include "visualization_msgs.h"
 
 namespace rangefit::daemon::topics {
 
@@ -35,6 +44,12 @@ inline constexpr const char* kPoses = "rt/rangefit/poses";
 inline constexpr const char* kModels = "rt/rangefit/models";
 inline constexpr const char* kTf = "rt/tf";
 inline constexpr const char* kTfStatic = "rt/tf_static";
+inline constexpr const char* kDetections3d = "rt/rangefit/detections3d";
+inline constexpr const char* kMarkers = "rt/rangefit/markers";
+
+// The DDS name of a ROS 2 topic or service topic (rt/..., rq/..., rr/...) of the default
+// namespace moved into `ns` ("cell1", "plant/cell1"; empty: unchanged).
+std::string in_namespace(const char* name, const std::string& ns);
 
 using Cloud = dds::Topic<sensor_msgs_msg_dds__PointCloud2_>;
 using Detections = dds::Topic<rangefit_msgs_msg_dds__Detection_>;
@@ -45,22 +60,28 @@ using Request = dds::Topic<rangefit_msgs_msg_dds__DetectRequest_>;
 using Poses = dds::Topic<geometry_msgs_msg_dds__PoseArray_>;
 using Models = dds::Topic<rangefit_msgs_msg_dds__Models_>;
 using Tf = dds::Topic<tf2_msgs_msg_dds__TFMessage_>;
+using Detections3d = dds::Topic<vision_msgs_msg_dds__Detection3DArray_>;
+using Markers = dds::Topic<visualization_msgs_msg_dds__MarkerArray_>;
 
-Cloud cloud(int depth = 2);
-Detections detections();         // the daemon's writer: keep-all, so no answer is replaced
-Detections detections_reader();  // the clients' reader: keep-all, deeper than the writer
-Pose pose();
-Poses poses();
-State state();
-Models models();
+// ns: the ROS namespace (see in_namespace); the global topics take none.
+Cloud cloud(int depth = 2, const std::string& ns = "");
+Detections detections(const std::string& ns = "");         // the daemon's writer: keep-all
+Detections detections_reader(const std::string& ns = "");  // clients: keep-all, deeper
+Pose pose(const std::string& ns = "");
+Poses poses(const std::string& ns = "");
+State state(const std::string& ns = "");
+Models models(const std::string& ns = "");
 Diagnostics diagnostics();
-Request request(int max_samples = 64);  // keep-all up to max_samples unread requests
-Tf tf();                                // tf2's dynamic broadcaster: reliable, volatile, depth 100
+// Keep-all up to max_samples unread requests.
+Request request(int max_samples = 64, const std::string& ns = "");
+Tf tf();         // tf2's dynamic broadcaster: reliable, volatile, depth 100
 Tf tf_static();  // tf2's static broadcaster: reliable, transient-local, depth 1
+Detections3d detections3d(const std::string& ns = "");
+Markers markers(const std::string& ns = "");
 
 // The QoS alone (benchmarks and tests that open a topic by hand).
 dds::QosSpec cloud_qos(int depth = 2);
-dds::QosSpec latched_qos();  // pose, state, models
+dds::QosSpec latched_qos();  // pose, poses, state, models, detections3d, markers
 dds::QosSpec diagnostics_qos();
 dds::QosSpec request_qos(int max_samples = 64);
 dds::QosSpec result_qos();         // rt/rangefit/detections, the daemon's writer

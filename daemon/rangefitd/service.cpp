@@ -146,7 +146,9 @@ bool Service::reload(const DaemonConfig& next, std::string* why) {
   if (next.dds.domain_id != config_.dds.domain_id ||
       next.dds.config_uri != config_.dds.config_uri || next.dds.security != config_.dds.security ||
       next.dds.cloud_depth != config_.dds.cloud_depth ||
-      next.dds.request_depth != config_.dds.request_depth) {
+      next.dds.request_depth != config_.dds.request_depth ||
+      next.dds.partition != config_.dds.partition ||
+      next.dds.ros_namespace != config_.dds.ros_namespace) {
     *why = "dds settings changed; they apply on restart only (config not reloaded)";
     return false;
   }

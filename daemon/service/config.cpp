@@ -76,6 +76,10 @@ void read_dds(FieldReader& r, DdsConfig& d) {
     FieldReader sub = r.sub("security");
     read_dds_security(sub, d.security);
   }
+  r.read("partition", d.partition);  // "": the default partition
+  if (!d.partition.empty()) {
+    if (auto why = check_partition(d.partition); !why.empty()) r.fail("partition", why);
+  }
   r.reject_unknown();
 }
 
@@ -294,6 +298,16 @@ void read_object(FieldReader& r, ObjectModelConfig& o, const std::filesystem::pa
   r.reject_unknown();
 }
 
+// [ros]: namespace = "cell1" (a leading '/', as ROS spells absolute namespaces, is dropped).
+void read_ros(FieldReader& r, DdsConfig& d) {
+  r.read("namespace", d.ros_namespace);
+  if (d.ros_namespace.starts_with('/')) d.ros_namespace.erase(0, 1);  // "/": the root, none
+  if (!d.ros_namespace.empty()) {
+    if (auto why = check_ros_namespace(d.ros_namespace); !why.empty()) r.fail("namespace", why);
+  }
+  r.reject_unknown();
+}
+
 // [frames]: world = "<frame id>" and, per device, <device name> = "<frame id>".
 void read_frames(FieldReader& r, const toml::table& t, DaemonConfig& c) {
   r.read("world", c.frames.world);
@@ -344,6 +358,10 @@ DaemonConfig read_root(const toml::table& root, std::string_view source_name,
   if (r.sub_table("dds") != nullptr) {
     FieldReader sub = r.sub("dds");
     read_dds(sub, c.dds);
+  }
+  if (const auto* t = r.sub_table("ros")) {
+    FieldReader sub(*t, "ros");
+    read_ros(sub, c.dds);
   }
   const toml::table* dds = root["dds"].as_table();
   if (dds == nullptr || !dds->contains("domain_id")) {

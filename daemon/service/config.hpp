@@ -126,6 +126,14 @@ struct DdsConfig {
   int request_depth =
       256;  // requests received, not yet taken (keep-all; the sender resends beyond)
   DdsSecurityConfig security;  // [dds.security]; off when absent
+  // [dds] partition: the one DDS partition of every writer and reader; empty: the default one.
+  // Cells in different partitions never match, also on rt/tf; ROS 2 nodes (rmw_cyclonedds) are
+  // in the default partition only, so a ROS user sets a namespace instead (or as well).
+  std::string partition;
+  // [ros] namespace: the ROS namespace of rangefitd's topics and service ("cell1":
+  // /cell1/rangefit/cloud, /cell1/rangefit/detect) and the prefix of its frame ids
+  // ("cell1/world"); no leading or trailing '/' once read. Empty: none.
+  std::string ros_namespace;
 };
 
 struct SpoolConfig {

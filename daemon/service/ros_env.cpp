@@ -23,4 +23,38 @@ std::optional<std::uint32_t> ros_domain_id() {
   return value;
 }
 
+std::string check_ros_namespace(std::string_view ns) {
+  if (ns.empty()) return "must not be empty";
+  if (ns.size() > 200) return "longer than 200 characters";
+  bool token_start = true;
+  for (char c : ns) {
+    const bool alpha = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+    const bool digit = c >= '0' && c <= '9';
+    if (c == '/') {
+      if (token_start) return "has an empty token (a leading, trailing or double '/')";
+      token_start = true;
+    } else if (alpha || (digit && !token_start)) {
+      token_start = false;
+    } else if (digit) {
+      return "has a token that starts with a digit";
+    } else {
+      return "may hold only letters, digits, '_' and '/'";
+    }
+  }
+  if (token_start) return "has an empty token (a leading, trailing or double '/')";
+  return "";
+}
+
+std::string check_partition(std::string_view p) {
+  if (p.empty()) return "must not be empty";
+  if (p.size() > 128) return "longer than 128 characters";
+  for (char c : p) {
+    if (c < 0x21 || c > 0x7e) return "may hold only printable ASCII characters without spaces";
+    if (c == '*' || c == '?' || c == '[' || c == ']' || c == '\\') {
+      return "must not hold the wildcards * ? [ ] \\";
+    }
+  }
+  return "";
+}
+
 }  // namespace rangefit::daemon

@@ -5,11 +5,21 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace rangefit::daemon {
 
 // The domain in ROS_DOMAIN_ID: nullopt when unset or empty; throws std::invalid_argument naming
 // the variable when it is not a whole number in 0 .. 232 (the DDSI port mapping's range).
 std::optional<std::uint32_t> ros_domain_id();
+
+// Empty when ns is a usable ROS namespace without its leading '/' ("cell1", "plant/cell_2":
+// tokens of letters, digits and '_' not starting with a digit, joined by single '/', at most
+// 200 characters, so every topic name stays within DDS and rmw limits), else the reason.
+std::string check_ros_namespace(std::string_view ns);
+
+// Empty when p is a usable DDS partition name (1..128 printable ASCII characters without the
+// wildcards * ? [ ] \ that Cyclone would match as a pattern), else the reason.
+std::string check_partition(std::string_view p);
 
 }  // namespace rangefit::daemon

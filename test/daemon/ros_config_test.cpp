@@ -1,5 +1,6 @@
 // The ROS 2 side of the configuration: [frames] names the world and sensor frames (checked as
-// tf2 frame ids), and ROS_DOMAIN_ID picks the domain when the config names none.
+// tf2 frame ids), ROS_DOMAIN_ID picks the domain when the config names none, [ros] namespace and
+// [dds] partition separate cells (checked as ROS namespaces and plain partition names).
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
@@ -72,6 +73,33 @@ TEST(RosConfig, UnsetRosDomainIdMeansDomainZeroAndABadOneIsAnError) {
     EXPECT_FALSE(r.config) << bad;
     EXPECT_NE(r.error.find("ROS_DOMAIN_ID"), std::string::npos) << r.error;
   }
+}
+
+TEST(RosConfig, NamespaceAndPartitionAreReadAndDefaultToNone) {
+  auto plain = parse_config(kDevice);
+  ASSERT_TRUE(plain.config) << plain.error;
+  EXPECT_EQ(plain.config->dds.ros_namespace, "");
+  EXPECT_EQ(plain.config->dds.partition, "");
+  auto set = parse_config(kDevice +
+                          "[ros]\nnamespace = \"/plant/cell_1\"\n[dds]\npartition = \"cell-1\"\n");
+  ASSERT_TRUE(set.config) << set.error;
+  EXPECT_EQ(set.config->dds.ros_namespace, "plant/cell_1") << "the leading '/' is dropped";
+  EXPECT_EQ(set.config->dds.partition, "cell-1");
+}
+
+TEST(RosConfig, BadNamespacesAndPartitionsAreErrorsNamingTheField) {
+  for (const char* bad : {"cell 1", "1cell", "cell//one", "cell/", "cell/2nd", "zelle-1"}) {
+    auto r = parse_config(kDevice + "[ros]\nnamespace = \"" + bad + "\"\n");
+    EXPECT_FALSE(r.config) << bad;
+    EXPECT_NE(r.error.find("ros.namespace"), std::string::npos) << r.error;
+  }
+  for (const char* bad : {"cell*", "cell one", "a?b"}) {
+    auto r = parse_config(kDevice + "[dds]\npartition = \"" + bad + "\"\n");
+    EXPECT_FALSE(r.config) << bad;
+    EXPECT_NE(r.error.find("dds.partition"), std::string::npos) << r.error;
+  }
+  auto unknown = parse_config(kDevice + "[ros]\nname_space = \"x\"\n");
+  EXPECT_FALSE(unknown.config);
 }
 
 }  // namespace

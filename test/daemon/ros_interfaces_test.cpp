@@ -2,7 +2,6 @@
 // rt/ topics, XCDR1 bytes, SI metres and the configured frames; the sensors' mounts latched on
 // /tf_static, every part of a detection on /tf and rt/rangefit/poses; and the service
 // /rangefit/detect answered with the caller's identity, as rmw_cyclonedds matches replies.
-#include <dds/ddsi/ddsi_serdata.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -20,6 +19,7 @@
 #include "daemon/rangefitd/service.hpp"
 #include "test/daemon/fakes.hpp"
 #include "test/daemon/replay_service.hpp"
+#include "test/daemon/xcdr_reader.hpp"
 
 namespace rangefit::daemon {
 namespace {
@@ -27,49 +27,9 @@ namespace fs = std::filesystem;
 using std::chrono::milliseconds;
 using std::chrono::seconds;
 
-std::string type_name(dds_entity_t reader) {
-  char name[256] = {};
-  dds_get_type_name(dds_get_topic(reader), name, sizeof name);
-  return name;
-}
-
-// The serialized sample as it travels: 4 bytes of encapsulation, then the CDR body.
-std::optional<std::vector<unsigned char>> take_bytes(dds_entity_t reader, seconds limit) {
-  const auto deadline = std::chrono::steady_clock::now() + limit;
-  while (std::chrono::steady_clock::now() < deadline) {
-    ddsi_serdata* sd = nullptr;
-    dds_sample_info_t info;
-    if (dds_takecdr(reader, &sd, 1, &info, DDS_ANY_STATE) == 1) {
-      std::vector<unsigned char> bytes(ddsi_serdata_size(sd));
-      ddsi_serdata_to_ser(sd, 0, bytes.size(), bytes.data());
-      ddsi_serdata_unref(sd);
-      if (info.valid_data) return bytes;
-    }
-    std::this_thread::sleep_for(milliseconds(10));
-  }
-  return std::nullopt;
-}
-
-// A little-endian XCDR1 reader, written from the CDR rules (alignment from the body's start).
-struct Cdr {
-  const std::vector<unsigned char>& b;
-  std::size_t at = 4;  // after the encapsulation header
-  void align(std::size_t n) { at = 4 + ((at - 4 + n - 1) / n) * n; }
-  template <class T>
-  T get() {
-    align(sizeof(T));
-    T v;
-    std::memcpy(&v, b.data() + at, sizeof(T));
-    at += sizeof(T);
-    return v;
-  }
-  std::string str() {
-    const auto n = get<std::uint32_t>();
-    std::string s(reinterpret_cast<const char*>(b.data() + at), n > 0 ? n - 1 : 0);
-    at += n;
-    return s;
-  }
-};
+using test::Cdr;
+using test::take_bytes;
+using test::type_name;
 
 class RosInterfacesTest : public ::testing::Test {
  protected:
