@@ -1,11 +1,13 @@
 // Teaching and calibrating on the cell, through the service: a `learn` request on the simulated
 // stripe cell learns the thesis cylinder lying on the table within the learning tests'
 // one-view tolerances (2 % size, 0.1 shape) and leaves model.toml in the spool entry, which reads
-// back as the model; a `calibrate` request over the hollow cube recovers the cell's stripe
-// geometry and writes calibration_stripe.toml and its report, applying nothing.
+// back as the model, the one `rangefit learn` writes from the spooled scan; a `calibrate` request
+// over the hollow cube recovers the cell's stripe geometry and writes calibration_stripe.toml and
+// its report, applying nothing.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -51,6 +53,15 @@ std::string text_of(const fs::path& p) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+std::string without_comments(const std::string& text) {
+  std::istringstream in(text);
+  std::string out;
+  for (std::string line; std::getline(in, line);) {
+    if (!line.starts_with("#")) out += line + "\n";
+  }
+  return out;
 }
 
 TEST(ServiceTeach, LearnRequestLearnsTheCylinderOnTheStripeCell) {
@@ -106,6 +117,15 @@ TEST(ServiceTeach, LearnRequestLearnsTheCylinderOnTheStripeCell) {
   ASSERT_EQ(model.parts.size(), 1u);
   EXPECT_NEAR(model.parts[0].shape.a1, learnt.a1, 1e-6);
   EXPECT_NE(text_of(file).find("residual"), std::string::npos);
+#ifdef RANGEFIT_CLI_PATH
+  // `rangefit learn` on the spooled scan writes the same model (its comments name the source).
+  const std::string cli = std::string(RANGEFIT_CLI_PATH) + " learn --cloud " +
+                          (fs::path(result->spool_entry) / "cloud.ply").string() +
+                          " --seed 2 --name can --out " + (dir / "cli.toml").string() +
+                          " > /dev/null";
+  ASSERT_EQ(std::system(cli.c_str()), 0);
+  EXPECT_EQ(without_comments(text_of(dir / "cli.toml")), without_comments(text_of(file)));
+#endif
   fs::remove_all(dir);
 }
 
