@@ -14,6 +14,7 @@
 
 #include "daemon/cli/cli_options.hpp"
 #include "daemon/cli/commands.hpp"
+#include "daemon/service/learn_request.hpp"
 #include "detect/model_learning.hpp"
 #include "io/cloud_io.hpp"
 #include "io/object_model_file.hpp"
@@ -30,63 +31,11 @@ struct LearnArgs {
   bool json = false;
 };
 
-nlohmann::json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
-
-nlohmann::json to_json(const LearnResult& r, std::size_t points, std::size_t views) {
-  nlohmann::json j;
-  j["learnt"] = r.learnt();
-  j["reason"] = to_string(r.reason);
-  j["name"] = r.model.name;
-  j["views"] = views;
-  j["points"] = points;
-  j["object_points"] = r.segment.object.size();
-  j["clusters"] = r.segment.clusters;
-  if (r.segment.plane.plane.valid) {
-    j["plane"] = {{"removed", r.segment.plane.removed()},
-                  {"point", vec(r.segment.plane.plane.point)},
-                  {"normal", vec(r.segment.plane.plane.normal)},
-                  {"rms_mm", r.segment.plane.plane.rms}};
-  }
-  nlohmann::json parts = nlohmann::json::array();
-  for (const LearntPart& p : r.parts) {
-    const Eigen::Quaterniond q(p.T_world_part.linear());
-    parts.push_back({{"name", p.name},
-                     {"size", {p.shape.a1, p.shape.a2, p.shape.a3}},
-                     {"shape", {p.shape.eps1, p.shape.eps2}},
-                     {"taper", {p.shape.kx, p.shape.ky}},
-                     {"center", vec(p.T_world_part.translation())},
-                     {"z_axis", vec(p.T_world_part.linear().col(2))},
-                     {"quaternion", {q.w(), q.x(), q.y(), q.z()}},
-                     {"points", p.points},
-                     {"M", p.measure},
-                     {"residual_mm", p.residual_mm},
-                     {"visible_share", p.visible_share},
-                     {"iterations", p.iterations}});
-  }
-  j["parts"] = parts;
-  nlohmann::json links = nlohmann::json::array();
-  for (const PartLink& l : r.model.links) {
-    links.push_back({{"parts", {r.model.parts[l.first].name, r.model.parts[l.second].name}},
-                     {"angle_deg", l.angle_rad * 180.0 / std::numbers::pi},
-                     {"distance_mm", l.distance_mm}});
-  }
-  j["links"] = links;
-  j["starts"] = r.starts;
-  j["time_ms"] = r.total_ms;
-  return j;
-}
-
 // The model file's header: where it came from and how well the scan supported it.
 std::string provenance(const LearnArgs& a, const LearnResult& r) {
-  std::ostringstream c;
-  c << "learnt by `rangefit learn` from";
-  for (const std::string& f : a.clouds) c << " " << f;
-  c << " (seed " << a.seed << ")\n";
-  for (const LearntPart& p : r.parts) {
-    c << p.name << ": " << p.points << " points, residual " << p.residual_mm << " mm rms, M "
-      << p.measure << ", visible share of the surface " << p.visible_share << "\n";
-  }
-  return c.str();
+  std::string source = "`rangefit learn` from";
+  for (const std::string& f : a.clouds) source += " " + f;
+  return daemon::learn_provenance(source, a.seed, r);
 }
 
 void print_text(const LearnResult& r) {
@@ -133,7 +82,7 @@ int run(const LearnArgs& a) {
   // The model goes to --out; with --out - and --json both on stdout, the JSON goes to stderr.
   std::ostream& report = (a.out == "-") ? std::cerr : std::cout;
   if (a.json) {
-    report << to_json(r, points.size(), a.clouds.size()).dump(2) << "\n";
+    report << daemon::learn_json(r, points.size(), a.clouds.size()).dump(2) << "\n";
   } else if (a.out != "-") {
     print_text(r);
   }

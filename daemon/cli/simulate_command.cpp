@@ -1,5 +1,6 @@
 #include "daemon/cli/simulate_command.hpp"
 
+#include <atomic>
 #include <cmath>
 #include <exception>
 #include <fstream>
@@ -10,21 +11,21 @@
 #include <string>
 #include <vector>
 
+#include "daemon/cell/sim_cell.hpp"
 #include "daemon/cli/commands.hpp"
 #include "daemon/cli/json_util.hpp"
-#include "fusion/css_assembler.hpp"
-#include "fusion/profile_assembler.hpp"
 #include "io/cloud_io.hpp"
-#include "sim/css_simulator.hpp"
-#include "sim/pan_tilt_head.hpp"
 #include "sim/scene_loader.hpp"
-#include "sim/sim_clock.hpp"
-#include "sim/stripe_cell.hpp"
 
 namespace rangefit::cli {
 namespace {
 
-using std::chrono::milliseconds;
+using daemon::CellConfig;
+using daemon::DeviceConfig;
+using daemon::NamedHealth;
+using daemon::ScanOutcome;
+using daemon::ScanRequest;
+using daemon::SimCell;
 
 struct SimulateArgs {
   std::string scene, sensor, out, truth, format;
@@ -61,109 +62,46 @@ nlohmann::json shape_json(const sim::Shape& shape) {
   return j;
 }
 
-nlohmann::json health_json(const hal::Device& d) {
-  const hal::DeviceHealth h = d.health();
-  return {{"device", d.name()},
-          {"state", hal::to_string(h.state)},
-          {"samples", h.counters.samples},
-          {"gaps", h.counters.gaps},
-          {"reconnects", h.counters.reconnects},
-          {"message", h.message}};
-}
-
-// A simulated device that refuses start() or a move has a broken scene or options: stop there
-// rather than write an empty or partial cloud.
-void require(const hal::Status& s, std::string_view what) {
-  if (!s) throw std::runtime_error(std::string(what) + ": " + s.message);
-}
-
-// Streams a simulated sensor and the device that moves it into the sensor's assembler, as the
-// frames arrive, until `running` turns false: the one scan loop of every sensor.
-template <class Frame, class Pose, class Assembler, class AddFrame, class AddPose>
-fusion::FusedScan stream(hal::SampleSource<Frame>& sensor, hal::SampleSource<Pose>& motion,
-                         Assembler& assembler, AddFrame add_frame, AddPose add_pose,
-                         const std::function<bool()>& running, nlohmann::json& health) {
-  assembler.begin_scan();
-  require(sensor.start(), "sensor start");
-  require(motion.start(), "motion start");
-  std::vector<Frame> frames;
-  std::vector<Pose> poses;
-  while (running()) {
-    frames.clear();
-    poses.clear();
-    motion.read(poses, milliseconds(100));
-    sensor.read(frames, milliseconds(0));
-    for (const auto& p : poses) add_pose(assembler, p);
-    for (const auto& f : frames) add_frame(assembler, f);
+// The scan as rangefitd's simulated cell takes it (daemon/cell/sim_cell.hpp): the same sim/
+// devices streaming into fusion through the service's scan loop, which checks every device's
+// Status and health, with the device's default sweep. The cloud comes back in the scene's frame
+// (no device extrinsics). health: the devices' state after the scan.
+ScanOutcome scan_scene(const SimulateArgs& a, nlohmann::json& health) {
+  CellConfig config;
+  config.sim.time_scale = 0.0;   // as fast as possible
+  config.sim.seed = a.seed - 1;  // the cell seeds its n-th scan with seed + n: the first, a.seed
+  config.sim.noise = !a.exact;
+  DeviceConfig device;
+  device.name = a.sensor;
+  device.kind = a.sensor == "pantilt" ? "pan_tilt" : a.sensor;
+  device.scene = a.scene;
+  config.devices.push_back(device);
+  SimCell cell(config);
+  ScanRequest request;
+  request.id = "simulate";
+  request.sensor = device.name;
+  const std::atomic<bool> cancel{false};
+  ScanOutcome out = cell.scan(config.devices.front(), request, cancel, [] {});
+  health = nlohmann::json::array();
+  for (const NamedHealth& h : cell.health()) {
+    health.push_back({{"device", h.name},
+                      {"state", hal::to_string(h.health.state)},
+                      {"samples", h.health.counters.samples},
+                      {"gaps", h.health.counters.gaps},
+                      {"reconnects", h.health.counters.reconnects},
+                      {"message", h.health.message}});
   }
-  health = {health_json(sensor), health_json(motion)};
-  return assembler.finish();
-}
-
-// Scans the scene with the chosen sensor; returns the scan in the sensor's world frame, the
-// pose of that frame in the scene and the devices' health.
-fusion::FusedScan scan_scene(const sim::Scene& scene, const sim::RayCaster& caster,
-                             const SimulateArgs& a, Eigen::Isometry3d& T_scene_world,
-                             nlohmann::json& health) {
-  sim::SimClock clock;
-  const auto add_profile = [](auto& assembler, const hal::RangerProfile& p) {
-    assembler.add_profile(p);
-  };
-  if (a.sensor == "css") {
-    sim::CssScanOptions o;
-    o.seed = a.seed;
-    if (!a.exact) o.css_faults.range_noise_sigma_mm = 0.06;  // thesis 4.2.1: 60 um in depth
-    sim::CssRig rig(scene, caster, o, clock);
-    fusion::CssFusionConfig config;
-    config.geometry = o.geometry;
-    config.deflection_rad = o.deflection_rad;
-    fusion::CssAssembler assembler(config);
-    T_scene_world = scene.mounts.T_scene_css;
-    return stream(
-        rig.css(), rig.joint(), assembler,
-        [](fusion::CssAssembler& f, const hal::CssRevolution& r) { f.add_revolution(r); },
-        [](fusion::CssAssembler& f, const hal::JointSample& j) { f.add_joint(j); },
-        [&] { return clock.now() < rig.scan_end() + milliseconds(300); }, health);
-  }
-  if (a.sensor == "stripe") {
-    sim::StripeCellOptions o;
-    o.seed = a.seed;
-    o.quantise = !a.exact;
-    sim::StripeCell cell(scene, caster, o, clock);
-    fusion::StripeCellFusionConfig config;
-    config.geometry = o.geometry;
-    fusion::StripeCellAssembler assembler(config);
-    require(cell.axis().enable(), "axis enable");
-    require(cell.axis().move_to(o.geometry.axis_travel_mm, o.geometry.max_speed_mm_s), "axis move");
-    T_scene_world = scene.mounts.T_scene_stripe;
-    return stream(
-        cell.ranger(), cell.axis(), assembler, add_profile,
-        [](fusion::StripeCellAssembler& f, const hal::AxisSample& s) { f.add_axis(s); },
-        [&] { return !cell.axis().motion_complete(); }, health);
-  }
-  sim::PanTiltOptions o;
-  o.seed = a.seed;
-  o.quantise = !a.exact;
-  sim::PanTiltHead head(scene, caster, o, clock);
-  fusion::PanTiltFusionConfig config;
-  config.geometry = o.geometry;
-  fusion::PanTiltAssembler assembler(config);
-  T_scene_world = scene.mounts.T_scene_pantilt;
-  return stream(
-      head.ranger(), head.angles(), assembler, add_profile,
-      [](fusion::PanTiltAssembler& f, const hal::PanTiltSample& s) { f.add_pan_tilt(s); },
-      [&] { return clock.now() < head.sweep_end(); }, health);
+  return out;
 }
 
 int run(const SimulateArgs& a) {
-  const sim::Scene scene = sim::load_scene(a.scene);
-  const sim::RayCaster caster(scene);
+  const sim::Scene scene = sim::load_scene(a.scene);  // the truth; the cell loads its own
   nlohmann::json health;
-  Eigen::Isometry3d T_scene_world = Eigen::Isometry3d::Identity();
-  fusion::FusedScan scan = scan_scene(scene, caster, a, T_scene_world, health);
-  // Fusion works in the sensor's own world frame; the cloud is written in the scene's.
-  for (auto& p : scan.cloud.points) p = T_scene_world * p;
-  for (auto& n : scan.cloud.normals) n = T_scene_world.linear() * n;
+  const ScanOutcome scan = scan_scene(a, health);
+  if (!scan.status) {
+    std::cerr << "rangefit simulate: " << scan.status.message << "\n";
+    return kExitBadInput;
+  }
   const auto precision = a.double_precision ? io::Precision::kFloat64 : io::Precision::kFloat32;
   std::optional<io::CloudFormat> format;
   if (!a.format.empty()) format = a.format == "pcd" ? io::CloudFormat::kPcd : io::CloudFormat::kPly;
@@ -182,10 +120,7 @@ int run(const SimulateArgs& a) {
   truth["seed"] = a.seed;
   truth["frame"] = "scene, mm";
   truth["points"] = scan.cloud.size();
-  truth["fusion"] = {{"bad", scan.bad},
-                     {"reason", scan.reason},
-                     {"faults", scan.faults.total()},
-                     {"dropped_frames", scan.dropped_frames}};
+  truth["fusion"] = {{"bad", false}};  // a scan fusion marks bad is an error above
   truth["devices"] = health;
   for (const auto& o : scene.objects) {
     nlohmann::json j = shape_json(o.shape);

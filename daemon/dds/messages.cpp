@@ -139,6 +139,8 @@ DetectionOut::DetectionOut(const DetectionResult& r, std::string frame)
   msg_.detect_seconds = r_.detect_seconds;
   msg_.spool_entry = c_str(r_.spool_entry);
   msg_.part_instances = {n, n, instances_.data(), false};
+  details_ = r_.details.is_null() ? std::string() : r_.details.dump();
+  msg_.details = c_str(details_);
 }
 
 geometry_msgs_msg_dds__PoseStamped_ DetectionOut::first_pose() const {
@@ -151,7 +153,7 @@ geometry_msgs_msg_dds__PoseStamped_ DetectionOut::first_pose() const {
 DetectionResult from_msg(const rangefit_msgs_msg_dds__Detection_& msg) {
   DetectionResult r;
   r.request_id = str(msg.request_id);
-  r.kind = str(msg.kind) == "object" ? DetectKind::kObject : DetectKind::kBore;
+  if (!kind_from_string(str(msg.kind), &r.kind)) r.kind = DetectKind::kBore;
   r.found = msg.found;
   r.reason = str(msg.reason);
   r.model = str(msg.model);
@@ -173,13 +175,16 @@ DetectionResult from_msg(const rangefit_msgs_msg_dds__Detection_& msg) {
   r.scan_seconds = msg.scan_seconds;
   r.detect_seconds = msg.detect_seconds;
   r.spool_entry = str(msg.spool_entry);
+  // details is JSON the service wrote; what does not parse is dropped, never thrown.
+  r.details = nlohmann::json::parse(str(msg.details), nullptr, false);
+  if (r.details.is_discarded()) r.details = nullptr;
   r.acquired_wall_ns =
       std::int64_t{msg.header.stamp.sec} * 1'000'000'000 + msg.header.stamp.nanosec;
   return r;
 }
 
 RequestOut::RequestOut(const ScanRequest& req, bool linear_sweep)
-    : req_(req), kind_(to_string(req.kind)) {
+    : req_(req), kind_(to_string(req.kind)), walls_(req.bore.walls), target_(req.target.kind) {
   convert_sweep_units(req_, linear_sweep, true);
   msg_.request_id = c_str(req_.id);
   msg_.kind = c_str(kind_);
@@ -198,6 +203,21 @@ RequestOut::RequestOut(const ScanRequest& req, bool linear_sweep)
   msg_.hypotheses = static_cast<std::uint32_t>(std::max(req_.hypotheses, 0));
   msg_.trials = static_cast<std::uint32_t>(std::max(req_.trials, 0));
   msg_.seed = req_.seed;
+  msg_.bore_outer_radius = req_.bore.outer_radius_mm * kMetresPerMm;
+  msg_.bore_walls = c_str(walls_);
+  msg_.bore_normal_keep = req_.bore.normal_keep;
+  const Eigen::Vector3d v = req_.view_dir.value_or(Eigen::Vector3d::Zero());
+  msg_.view_dir = {v.x(), v.y(), v.z()};
+  msg_.sensor_position_given = req_.sensor_position.has_value();
+  const Eigen::Vector3d sp = req_.sensor_position.value_or(Eigen::Vector3d::Zero()) * kMetresPerMm;
+  msg_.sensor_position = {sp.x(), sp.y(), sp.z()};
+  msg_.parts = static_cast<std::uint32_t>(std::max(req_.parts, 0));
+  msg_.target = c_str(target_);
+  msg_.target_edge = req_.target.edge_mm * kMetresPerMm;
+  msg_.target_bar = req_.target.bar_mm * kMetresPerMm;
+  const Eigen::Vector3d tp = req_.target.T_table_target.translation() * kMetresPerMm;
+  const Eigen::Quaterniond tq(req_.target.T_table_target.rotation());
+  msg_.target_pose = {{tp.x(), tp.y(), tp.z()}, {tq.x(), tq.y(), tq.z(), tq.w()}};
 }
 
 ScanRequest from_msg(const rangefit_msgs_msg_dds__DetectRequest_& msg, std::string* error) {
@@ -222,19 +242,40 @@ ScanRequest from_msg(const rangefit_msgs_msg_dds__DetectRequest_& msg, std::stri
   req.hypotheses = static_cast<int>(std::min(msg.hypotheses, kMaxCount));
   req.trials = static_cast<int>(std::min(msg.trials, kMaxCount));
   req.seed = msg.seed;
+  req.bore.outer_radius_mm = msg.bore_outer_radius / kMetresPerMm;
+  req.bore.walls = str(msg.bore_walls);
+  req.bore.normal_keep = msg.bore_normal_keep;
+  const Eigen::Vector3d v(msg.view_dir.x, msg.view_dir.y, msg.view_dir.z);
+  if (v != Eigen::Vector3d::Zero()) req.view_dir = v;
+  const Eigen::Vector3d sp =
+      Eigen::Vector3d(msg.sensor_position.x, msg.sensor_position.y, msg.sensor_position.z) /
+      kMetresPerMm;
+  if (msg.sensor_position_given) req.sensor_position = sp;
+  req.parts = static_cast<int>(std::min(msg.parts, kMaxCount));
+  req.target.kind = str(msg.target);
+  if (msg.target_edge != 0.0) req.target.edge_mm = msg.target_edge / kMetresPerMm;
+  if (msg.target_bar != 0.0) req.target.bar_mm = msg.target_bar / kMetresPerMm;
+  const auto& tp = msg.target_pose;
+  const Eigen::Quaterniond tq(tp.orientation.w, tp.orientation.x, tp.orientation.y,
+                              tp.orientation.z);
+  req.target.T_table_target = Eigen::Isometry3d::Identity();
+  if (tq.coeffs().allFinite() && tq.norm() > 0) {
+    req.target.T_table_target.linear() = tq.normalized().toRotationMatrix();
+  }
+  req.target.T_table_target.translation() =
+      Eigen::Vector3d(tp.position.x, tp.position.y, tp.position.z) / kMetresPerMm;
   error->clear();
-  if (kind == "bore") {
-    req.kind = DetectKind::kBore;
-  } else if (kind == "object") {
-    req.kind = DetectKind::kObject;
-  } else {
-    *error = "unknown kind \"" + kind + "\" (expected \"bore\" or \"object\")";
+  if (!kind_from_string(kind, &req.kind)) {
+    *error = "unknown kind \"" + kind + "\" (expected " + kKindNames + ")";
   }
   if (error->empty() && req.id.empty()) *error = "request_id is empty";
   const bool finite = req.bore.position_mm.allFinite() && req.bore.axis.allFinite() &&
                       std::isfinite(req.bore.radius_mm) && std::isfinite(req.sweep_start) &&
                       std::isfinite(req.sweep_end) && std::isfinite(req.sweep_speed) &&
-                      n.allFinite();
+                      n.allFinite() && std::isfinite(req.bore.outer_radius_mm) &&
+                      std::isfinite(req.bore.normal_keep) && v.allFinite() && sp.allFinite() &&
+                      std::isfinite(req.target.edge_mm) && std::isfinite(req.target.bar_mm) &&
+                      req.target.T_table_target.matrix().allFinite() && tq.coeffs().allFinite();
   if (error->empty() && !finite) *error = "non-finite number in request";
   return req;
 }

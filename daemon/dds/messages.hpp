@@ -54,7 +54,7 @@ class DetectionOut {
 
  private:
   DetectionResult r_;
-  std::string frame_, kind_;
+  std::string frame_, kind_, details_;
   std::vector<char*> names_;
   std::vector<geometry_msgs_msg_dds__Pose_> poses_;
   std::vector<double> scores_;
@@ -72,11 +72,12 @@ class RequestOut {
 
  private:
   ScanRequest req_;
-  std::string kind_;
+  std::string kind_, walls_, target_;
   rangefit_msgs_msg_dds__DetectRequest_ msg_{};
 };
 
 // Decodes a request; on a malformed one (unknown kind, non-finite numbers) returns the reason in
+// *error and a request carrying at least the id. Zero vectors and counts are "not given".
 // *error and a request carrying at least the id. Sweep values are converted with linear_sweep
 // (metres → mm) only once the sensor is known, see convert_sweep_units().
 ScanRequest from_msg(const rangefit_msgs_msg_dds__DetectRequest_& msg, std::string* error);

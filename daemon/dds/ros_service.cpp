@@ -30,6 +30,17 @@ rangefit_msgs_msg_dds__DetectRequest_ as_topic_request(
   r.hypotheses = m.hypotheses;
   r.trials = m.trials;
   r.seed = m.seed;
+  r.bore_outer_radius = m.bore_outer_radius;
+  r.bore_walls = m.bore_walls;
+  r.bore_normal_keep = m.bore_normal_keep;
+  r.view_dir = m.view_dir;
+  r.sensor_position_given = m.sensor_position_given;
+  r.sensor_position = m.sensor_position;
+  r.parts = m.parts;
+  r.target = m.target;
+  r.target_edge = m.target_edge;
+  r.target_bar = m.target_bar;
+  r.target_pose = m.target_pose;
   return r;
 }
 
@@ -96,6 +107,7 @@ void RosDetectService::answer(const DetectionResult& result, const std::string& 
   reply.detect_seconds = d.detect_seconds;
   reply.spool_entry = d.spool_entry;
   reply.part_instances = d.part_instances;
+  reply.details = d.details;
   if (!replies_.write(reply)) ++write_failures_;
 }
 

@@ -44,12 +44,27 @@ ObjectDetectOptions object_detect_options(const ObjectQuery& q, const ObjectMode
   return o;
 }
 
+ScanSensor with_request_sensor(const ScanSensor& sensor, const ScanRequest& r) {
+  ScanSensor s = sensor;
+  if (r.sensor_position) {
+    s.sensor_position = r.sensor_position;
+  } else if (r.view_dir) {
+    s.view_dir = r.view_dir;
+    s.sensor_position.reset();  // a position would be preferred over the direction given
+  }
+  return s;
+}
+
 BoreQuery bore_query(const ScanRequest& r, std::uint64_t default_seed) {
   BoreQuery q;
   q.entrance = r.bore.position_mm;
   q.axis = r.bore.axis;
   q.radius = r.bore.radius_mm;
   q.plane_normal = r.bore.plane_normal;
+  q.outer_radius = r.bore.outer_radius_mm;
+  if (r.bore.walls == "outer") q.walls = BoreWalls::kOuter;
+  if (r.bore.walls == "both") q.walls = BoreWalls::kBoth;
+  if (r.bore.normal_keep > 0.0) q.normal_keep = r.bore.normal_keep;
   q.seed = r.seed != 0 ? r.seed : default_seed;
   return q;
 }

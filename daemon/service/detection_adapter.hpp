@@ -42,6 +42,11 @@ BoreDetection bore_detection(const BoreQuery& query, const ScanSensor& sensor);
 ObjectDetectOptions object_detect_options(const ObjectQuery& query, const ObjectModel& model,
                                           const ScanSensor& sensor);
 
+// What the scan's sensor knows, with what the request says it knows instead: a view direction
+// or sensor position given in the request replaces the sensor's (offline, the CLI's options fill
+// an empty ScanSensor the same way).
+ScanSensor with_request_sensor(const ScanSensor& sensor, const ScanRequest& request);
+
 // The queries a service request carries; seed 0 in the request: default_seed (the config's).
 BoreQuery bore_query(const ScanRequest& request, std::uint64_t default_seed);
 ObjectQuery object_query(const ScanRequest& request, std::uint64_t default_seed);

@@ -8,9 +8,28 @@ Eigen::Vector3d vec(const nlohmann::json& j) {
   return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
 }
 DetectKind kind(const std::string& s) {
-  if (s == "bore") return DetectKind::kBore;
-  if (s == "object") return DetectKind::kObject;
-  throw std::invalid_argument("kind must be \"bore\" or \"object\"");
+  DetectKind k = DetectKind::kBore;
+  if (!kind_from_string(s, &k))
+    throw std::invalid_argument(std::string("kind must be ") + kKindNames);
+  return k;
+}
+
+// A pose as `rangefit calibrate --cube-pose` takes it: X, Y, Z (mm), ROLL, PITCH, YAW (rad) of
+// R = Rz(yaw) Ry(pitch) Rx(roll).
+nlohmann::json pose_array(const Eigen::Isometry3d& T) {
+  const Eigen::Vector3d ypr = T.linear().eulerAngles(2, 1, 0);
+  const Eigen::Vector3d t = T.translation();
+  return {t.x(), t.y(), t.z(), ypr[2], ypr[1], ypr[0]};
+}
+Eigen::Isometry3d pose_of(const nlohmann::json& j) {
+  if (j.size() != 6) throw std::invalid_argument("target.pose must be [x, y, z, roll, pitch, yaw]");
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = (Eigen::AngleAxisd(j.at(5).get<double>(), Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(j.at(4).get<double>(), Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(j.at(3).get<double>(), Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  T.translation() = vec(j);
+  return T;
 }
 
 }  // namespace
@@ -30,6 +49,17 @@ nlohmann::json to_json(const ScanRequest& r) {
                       {"trials", r.trials},
                       {"seed", r.seed}};
   if (r.bore.plane_normal) j["bore"]["plane_normal"] = to_array(*r.bore.plane_normal);
+  if (r.bore.outer_radius_mm > 0.0) j["bore"]["outer_radius_mm"] = r.bore.outer_radius_mm;
+  if (!r.bore.walls.empty()) j["bore"]["walls"] = r.bore.walls;
+  if (r.bore.normal_keep > 0.0) j["bore"]["normal_keep"] = r.bore.normal_keep;
+  if (r.view_dir) j["view_dir"] = to_array(*r.view_dir);
+  if (r.sensor_position) j["sensor_position_mm"] = to_array(*r.sensor_position);
+  if (r.parts != 0) j["parts"] = r.parts;
+  if (!r.target.kind.empty()) {
+    j["target"] = {{"kind", r.target.kind},
+                   {"size_mm", {r.target.edge_mm, r.target.bar_mm}},
+                   {"pose", pose_array(r.target.T_table_target)}};
+  }
   return j;
 }
 
@@ -43,18 +73,20 @@ nlohmann::json to_json(const DetectionResult& r) {
                      {"score", p.score},
                      {"instance", p.instance}});
   }
-  return {{"request_id", r.request_id},
-          {"kind", to_string(r.kind)},
-          {"model", r.model},
-          {"found", r.found},
-          {"reason", r.reason},
-          {"parts", parts},
-          {"bore_radius_mm", r.bore_radius_mm},
-          {"num_points", r.num_points},
-          {"scan_seconds", r.scan_seconds},
-          {"detect_seconds", r.detect_seconds},
-          {"spool_entry", r.spool_entry},
-          {"acquired_wall_ns", r.acquired_wall_ns}};
+  nlohmann::json j = {{"request_id", r.request_id},
+                      {"kind", to_string(r.kind)},
+                      {"model", r.model},
+                      {"found", r.found},
+                      {"reason", r.reason},
+                      {"parts", parts},
+                      {"bore_radius_mm", r.bore_radius_mm},
+                      {"num_points", r.num_points},
+                      {"scan_seconds", r.scan_seconds},
+                      {"detect_seconds", r.detect_seconds},
+                      {"spool_entry", r.spool_entry},
+                      {"acquired_wall_ns", r.acquired_wall_ns}};
+  if (!r.details.is_null()) j["details"] = r.details;
+  return j;
 }
 
 bool from_json(const nlohmann::json& j, ScanRequest& out, std::string* error) {
@@ -77,6 +109,25 @@ bool from_json(const nlohmann::json& j, ScanRequest& out, std::string* error) {
     out.hypotheses = j.value("hypotheses", 0);
     out.trials = j.value("trials", 0);
     out.seed = j.value("seed", std::uint64_t{0});
+    const auto& bore = j.at("bore");
+    out.bore.outer_radius_mm = bore.value("outer_radius_mm", 0.0);
+    out.bore.walls = bore.value("walls", std::string());
+    out.bore.normal_keep = bore.value("normal_keep", 0.0);
+    out.view_dir.reset();
+    out.sensor_position.reset();
+    if (j.contains("view_dir")) out.view_dir = vec(j.at("view_dir"));
+    if (j.contains("sensor_position_mm")) out.sensor_position = vec(j.at("sensor_position_mm"));
+    out.parts = j.value("parts", 0);
+    out.target = {};
+    if (j.contains("target")) {
+      const auto& t = j.at("target");
+      out.target.kind = t.at("kind").get<std::string>();
+      if (t.contains("size_mm")) {
+        out.target.edge_mm = t.at("size_mm").at(0).get<double>();
+        out.target.bar_mm = t.at("size_mm").at(1).get<double>();
+      }
+      if (t.contains("pose")) out.target.T_table_target = pose_of(t.at("pose"));
+    }
     return true;
   } catch (const std::exception& e) {
     *error = std::string("request: ") + e.what();
@@ -111,6 +162,7 @@ bool from_json(const nlohmann::json& j, DetectionResult& out, std::string* error
     out.detect_seconds = j.at("detect_seconds").get<double>();
     out.spool_entry = j.at("spool_entry").get<std::string>();
     out.acquired_wall_ns = j.value("acquired_wall_ns", std::int64_t{0});
+    out.details = j.value("details", nlohmann::json());
     return true;
   } catch (const std::exception& e) {
     *error = std::string("result: ") + e.what();

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "daemon/service/calibrate_request.hpp"
 #include "daemon/service/detection_adapter.hpp"
+#include "daemon/service/learn_request.hpp"
 #include "detect/bore_detector.hpp"
 #include "detect/object_detector.hpp"
 
@@ -11,9 +13,37 @@ namespace rangefit::daemon {
 
 DetectionResult ModelDetector::detect(const PointCloud& cloud, const ScanRequest& request,
                                       const ScanSensor& sensor) {
-  if (request.kind == DetectKind::kObject) return detect_object_request(cloud, request, sensor);
-  return detect_bore_request(cloud, request, sensor);
+  const ScanSensor seen = with_request_sensor(sensor, request);
+  switch (request.kind) {
+    case DetectKind::kObject:
+      return detect_object_request(cloud, request, seen);
+    case DetectKind::kLearn:
+      return learn_request(cloud, request, config_.detection.seed);
+    case DetectKind::kCalibrate:
+      return calibrate_request(cloud, request, seen, config_.detection.seed);
+    case DetectKind::kBore:
+      break;
+  }
+  return detect_bore_request(cloud, request, seen);
 }
+
+namespace {
+
+// Pose of a bore or pipe wall: origin at the entrance, z along the axis (out of the bore); score:
+// agreement of the fitted radius with the prior (informative; found is the detector's).
+PartPose wall_pose(const char* name, const Eigen::Vector3d& entrance, const Eigen::Vector3d& axis,
+                   double radius, double prior_radius) {
+  PartPose part;
+  part.name = name;
+  part.T_world_part.linear() =
+      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis).toRotationMatrix();
+  part.T_world_part.translation() = entrance;
+  const double error = std::abs(radius - prior_radius);
+  part.score = std::max(0.0, 1.0 - error / std::max(prior_radius, 1e-9));
+  return part;
+}
+
+}  // namespace
 
 DetectionResult ModelDetector::detect_bore_request(const PointCloud& cloud,
                                                    const ScanRequest& request,
@@ -27,16 +57,28 @@ DetectionResult ModelDetector::detect_bore_request(const PointCloud& cloud,
     return out;
   }
   out.bore_radius_mm = r.radius;
-  // Pose of the bore: origin at the entrance, z along the axis (out of the bore).
-  PartPose part;
-  part.name = "bore";
-  part.T_world_part.linear() =
-      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), r.axis).toRotationMatrix();
-  part.T_world_part.translation() = r.entrance;
-  // Score: agreement of the fitted radius with the prior (informative; found is the detector's).
-  const double error = std::abs(r.radius - d.prior.radius);
-  part.score = std::max(0.0, 1.0 - error / std::max(d.prior.radius, 1e-9));
-  out.parts.push_back(part);
+  // walls = outer: the one wall fitted is the outer one, against the outer radius.
+  const bool outer_only = d.options.walls == BoreWalls::kOuter && d.prior.outer_radius > 0.0;
+  out.parts.push_back(wall_pose(outer_only ? "outer" : "bore", r.entrance, r.axis, r.radius,
+                                outer_only ? d.prior.outer_radius : d.prior.radius));
+  out.details = {{"walls", request.bore.walls.empty() ? "inner" : request.bore.walls},
+                 {"plane_normal", {r.plane_normal.x(), r.plane_normal.y(), r.plane_normal.z()}},
+                 {"refined", r.refined},
+                 {"second_fit", r.second_fit}};
+  if (r.outer) {
+    // Both walls: the outer one as a second part when found, and its radius in the details.
+    nlohmann::json o = {{"found", r.outer->found}, {"wall_points", r.outer->wall}};
+    if (r.outer->found) {
+      o["radius_mm"] = r.outer->radius;
+      o["entrance_mm"] = {r.outer->entrance.x(), r.outer->entrance.y(), r.outer->entrance.z()};
+      o["axis"] = {r.outer->axis.x(), r.outer->axis.y(), r.outer->axis.z()};
+      out.parts.push_back(wall_pose("outer", r.outer->entrance, r.outer->axis, r.outer->radius,
+                                    d.prior.outer_radius));
+    } else {
+      o["reason"] = std::string(to_string(r.outer->reason));
+    }
+    out.details["outer"] = o;
+  }
   return out;
 }
 
@@ -47,6 +89,8 @@ DetectionResult ModelDetector::detect_object_request(const PointCloud& cloud,
   if (cfg == nullptr) return DetectionResult::error(request, "unknown model " + request.model);
   ScanSensor seen = sensor;
   if (seen.view.kind == SensorView::Kind::kUnknown) seen.view = cloud.sensor;  // e.g. a replay
+  // The viewpoint the request gives (as `rangefit object --viewpoint`) enables the free-space
+  // check; a view direction alone says nothing an object detector uses.
   const ObjectDetectOptions options =
       object_detect_options(object_query(request, config_.detection.seed), cfg->model, seen);
   const ObjectDetectResult r = detect_object(cfg->model, cloud.points, options);

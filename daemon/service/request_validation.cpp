@@ -22,6 +22,65 @@ std::string check_name(std::string_view text, std::string_view what, std::size_t
   return "";
 }
 
+namespace {
+
+constexpr double kMaxMm = 1e6;  // as the CLI's vectors (kMaxCoordinateMm)
+
+bool finite_within(const Eigen::Vector3d& v, double limit) {
+  return v.allFinite() && v.cwiseAbs().maxCoeff() <= limit;
+}
+
+std::string check_sensor_knowledge(ScanRequest& request) {
+  if (request.view_dir) {
+    if (!finite_within(*request.view_dir, kMaxMm) || !(request.view_dir->norm() > 1e-9))
+      return "view_dir must be finite and not zero";
+    request.view_dir->normalize();
+  }
+  if (request.sensor_position && !finite_within(*request.sensor_position, kMaxMm))
+    return "sensor_position must be finite, within +-1e6 mm";
+  return "";
+}
+
+std::string check_bore(BorePrior& bore) {
+  if (!(bore.radius_mm > 0.0)) return "bore_radius must be > 0";
+  if (!(bore.axis.norm() > 1e-9)) return "bore_axis must not be zero";
+  bore.axis.normalize();
+  if (bore.plane_normal) bore.plane_normal->normalize();
+  if (bore.walls.empty()) bore.walls = "inner";
+  if (bore.walls != "inner" && bore.walls != "outer" && bore.walls != "both")
+    return "bore walls must be \"inner\", \"outer\" or \"both\"";
+  if (!std::isfinite(bore.outer_radius_mm) || bore.outer_radius_mm < 0.0 ||
+      bore.outer_radius_mm > 1e5)
+    return "bore outer_radius must be in 0 .. 1e5 mm (0: none)";
+  if (bore.walls == "both" && !(bore.outer_radius_mm > bore.radius_mm))
+    return "bore walls \"both\" needs outer_radius larger than radius";
+  if (!std::isfinite(bore.normal_keep) || bore.normal_keep < 0.0 || bore.normal_keep > 1.0)
+    return "bore normal_keep must be in (0, 1] (0: all)";
+  return "";
+}
+
+std::string check_target(const CalibrationTarget& t) {
+  if (t.kind != "stripe") {
+    return "calibrate target must be \"stripe\" (the hollow cube on the stripe cell; the CSS "
+           "mount needs scans at several robot poses: `rangefit calibrate`)";
+  }
+  if (!(t.edge_mm > 0.0 && t.edge_mm <= kMaxMm && t.bar_mm > 0.0 && t.bar_mm < 0.5 * t.edge_mm))
+    return "target size must be an edge > 0 and a bar in (0, edge / 2), mm";
+  if (!t.T_table_target.matrix().allFinite() ||
+      !finite_within(t.T_table_target.translation(), kMaxMm))
+    return "target pose must be finite";
+  return "";
+}
+
+std::string first_device_of_kind(const DaemonConfig& config, const std::string& kind) {
+  for (const auto& d : config.devices) {
+    if (d.kind == kind) return d.name;
+  }
+  return "";
+}
+
+}  // namespace
+
 std::string validate_request(ScanRequest& request, const DaemonConfig& config) {
   if (auto why = check_name(request.id, "request_id", kMaxRequestIdLength); !why.empty())
     return why;
@@ -31,11 +90,16 @@ std::string validate_request(ScanRequest& request, const DaemonConfig& config) {
   if (!request.sensor.empty()) {  // empty: the configured default
     if (auto why = check_name(request.sensor, "sensor", kMaxNameLength); !why.empty()) return why;
   }
+  if (auto why = check_sensor_knowledge(request); !why.empty()) return why;
   if (request.kind == DetectKind::kBore) {
-    if (!(request.bore.radius_mm > 0.0)) return "bore_radius must be > 0";
-    if (!(request.bore.axis.norm() > 1e-9)) return "bore_axis must not be zero";
-    request.bore.axis.normalize();
-    if (request.bore.plane_normal) request.bore.plane_normal->normalize();
+    if (auto why = check_bore(request.bore); !why.empty()) return why;
+  } else if (request.kind == DetectKind::kLearn) {
+    if (request.parts < 0 || request.parts > 2) return "parts must be 1 or 2 (0: 1)";
+    if (request.model.empty()) request.model = "learnt";
+    if (auto why = check_name(request.model, "model", kMaxNameLength); !why.empty()) return why;
+  } else if (request.kind == DetectKind::kCalibrate) {
+    if (auto why = check_target(request.target); !why.empty()) return why;
+    if (request.sensor.empty()) request.sensor = first_device_of_kind(config, "stripe");
   } else if (config.object(request.model) == nullptr) {
     std::string known;
     for (const auto& o : config.objects) known += (known.empty() ? "" : ", ") + o.name;
@@ -58,6 +122,10 @@ std::string validate_request(ScanRequest& request, const DaemonConfig& config) {
   if (device == nullptr) {
     return request.sensor.empty() ? std::string("no sensor given and no default configured")
                                   : "unknown sensor \"" + request.sensor + "\"";
+  }
+  if (request.kind == DetectKind::kCalibrate && device->kind != request.target.kind) {
+    return "calibrate " + request.target.kind + " needs a " + request.target.kind + " sensor; \"" +
+           request.sensor + "\" is a " + device->kind;
   }
   if (!std::isfinite(request.sweep_start) || !std::isfinite(request.sweep_end) ||
       !std::isfinite(request.sweep_speed) || request.sweep_speed < 0.0) {

@@ -1,6 +1,8 @@
 #include "daemon/service/result_outcome.hpp"
 
+#include "daemon/service/calibrate_request.hpp"
 #include "detect/bore_result.hpp"
+#include "detect/model_learning.hpp"
 #include "detect/object_detector.hpp"
 
 namespace rangefit::daemon {
@@ -16,7 +18,12 @@ bool is_not_found_reason(std::string_view reason) {
                                DetectReason::kNotConfirmed, DetectReason::kNotLinked}) {
     if (reason == to_string(r)) return true;
   }
-  return false;
+  for (const LearnReason r :
+       {LearnReason::kEmptyCloud, LearnReason::kNoObject, LearnReason::kTooFewPoints}) {
+    if (reason == to_string(r)) return true;
+  }
+  // The scan did not show the calibration body well enough (calib/ says why after the prefix).
+  return reason.starts_with(kNotCalibrated);
 }
 
 Outcome outcome_of(const DetectionResult& result) {

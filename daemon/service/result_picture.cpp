@@ -22,6 +22,26 @@ Superquadric shape_of(const ObjectModel* model, const std::string& name) {
   throw std::invalid_argument("part \"" + name + "\" is not in the model " + model->name);
 }
 
+// A learn result carries its parts' shapes in its details (learn_json).
+Superquadric learnt_shape(const DetectionResult& r, const std::string& name) {
+  for (const auto& p : r.details.at("parts")) {
+    if (p.at("name").get<std::string>() != name) continue;
+    const auto &a = p.at("size"), &e = p.at("shape"), &k = p.at("taper");
+    return {a.at(0).get<double>(), a.at(1).get<double>(), a.at(2).get<double>(),
+            e.at(0).get<double>(), e.at(1).get<double>(), k.at(0).get<double>(),
+            k.at(1).get<double>()};
+  }
+  throw std::invalid_argument("part \"" + name + "\" is not in the learnt model");
+}
+
+// A pipe's outer wall (walls = both) has its own radius in the details.
+double wall_radius(const DetectionResult& r, const PartPose& p) {
+  if (p.name == "outer" && r.details.is_object() && r.details.contains("outer")) {
+    return r.details["outer"].value("radius_mm", r.bore_radius_mm);
+  }
+  return r.bore_radius_mm;
+}
+
 }  // namespace
 
 render::Drawing result_drawing(const DetectionResult& r, const ObjectModel* model) {
@@ -33,12 +53,18 @@ render::Drawing result_drawing(const DetectionResult& r, const ObjectModel* mode
     const Eigen::Vector3d c = p.T_world_part.translation(), z = p.T_world_part.linear().col(2);
     if (r.kind == DetectKind::kBore) {
       // The service's result has no entrance plane: the renderer estimates it from the scan.
-      d.bores.push_back({c, z, r.bore_radius_mm, Eigen::Vector3d::Zero(), 0.0});
-      d.legend.push_back("entrance  " + legend_vector(c) + " mm");
+      const double radius = wall_radius(r, p);
+      d.bores.push_back({c, z, radius, Eigen::Vector3d::Zero(), 0.0});
+      d.legend.push_back(p.name + " entrance  " + legend_vector(c) + " mm");
       d.legend.push_back("axis      " + legend_vector(z) + " (out of the bore)");
-      d.legend.push_back(legend_format("radius    %.3f mm, score %.3f", r.bore_radius_mm, p.score));
+      d.legend.push_back(legend_format("radius    %.3f mm, score %.3f", radius, p.score));
+    } else if (r.kind == DetectKind::kCalibrate) {
+      d.legend.push_back(p.name + "  " + legend_vector(c) + " mm, z-axis " + legend_vector(z) +
+                         " (calibrated, not applied)");
     } else {
-      d.parts.push_back({p.name, shape_of(model, p.name), p.T_world_part});
+      const Superquadric shape =
+          r.kind == DetectKind::kLearn ? learnt_shape(r, p.name) : shape_of(model, p.name);
+      d.parts.push_back({p.name, shape, p.T_world_part});
       d.legend.push_back(legend_format("[%u] ", p.instance) + p.name + "  centre " +
                          legend_vector(c) + " mm, z-axis " + legend_vector(z) +
                          legend_format(", score %.3f", p.score));

@@ -21,6 +21,7 @@ ScanSensor stripe_sensor(const hal::StripeCellGeometry& g, double from_mm, doubl
   v.direction = -g.axis_direction_cell.normalized();  // the table moves by +s, the ranger by -s
   v.sweep_min = std::min(from_mm, to_mm);
   v.sweep_max = std::max(from_mm, to_mm);
+  s.stripe = g;
   return s;
 }
 
@@ -51,6 +52,7 @@ ScanSensor transformed(const ScanSensor& s, const Eigen::Isometry3d& T) {
   v.camera_offset = R * s.view.camera_offset;
   v.direction = R * s.view.direction;
   v.pivot = T * s.view.pivot;
+  out.T_scan_fusion = T * s.T_scan_fusion;
   return out;
 }
 

@@ -18,6 +18,11 @@ struct ScanSensor {
   std::optional<Eigen::Vector3d> view_dir;         // unit, from the scene toward the sensor
   std::optional<Eigen::Vector3d> sensor_position;  // mm; preferred over view_dir when set
   SensorView view;                                 // kUnknown: nothing known
+  // The frame fusion built the scan in, seen from the scan's frame (p_scan = T p_fusion), and
+  // the stripe cell's geometry fusion used: what a calibration needs to take the fused points
+  // back to the ranger's raw profiles (daemon/service/calibrate_request.hpp).
+  Eigen::Isometry3d T_scan_fusion = Eigen::Isometry3d::Identity();
+  std::optional<hal::StripeCellGeometry> stripe;
 };
 
 // The CSS in fusion's CSS world frame (eq. 4.17): it looks along the sensor's -z at the scan

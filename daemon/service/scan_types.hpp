@@ -3,16 +3,25 @@
 // mm and rad (the DDS layer converts to and from SI metres at the wire, see messages.hpp).
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 namespace rangefit::daemon {
 
-enum class DetectKind { kBore, kObject };
+// bore, object: find it; learn: teach an object model from the scan (thesis ch. 6); calibrate:
+// the sensor's extrinsics from a scan of a calibration body (thesis 3.2), written, never applied.
+enum class DetectKind { kBore, kObject, kLearn, kCalibrate };
 const char* to_string(DetectKind k);
+// The kind of that name; false when there is none.
+bool kind_from_string(const std::string& name, DetectKind* kind);
+inline constexpr const char* kKindNames = "\"bore\", \"object\", \"learn\" or \"calibrate\"";
 
 struct BorePrior {                                        // from CAD
   Eigen::Vector3d position_mm = Eigen::Vector3d::Zero();  // a point on the bore axis, world
@@ -20,6 +29,19 @@ struct BorePrior {                                        // from CAD
   double radius_mm = 0.0;                                 // nominal radius
   // Normal of the surface around the bore, world; none: the axis (a perpendicular bore).
   std::optional<Eigen::Vector3d> plane_normal;
+  // A thick-walled pipe (as `rangefit bore --cad-outer-radius --walls`): its outer wall radius,
+  // mm (0: none) and which wall to fit: "inner" (the bore; also empty), "outer" or "both".
+  double outer_radius_mm = 0.0;
+  std::string walls;
+  double normal_keep = 0.0;  // share (0..1] of region points that get a normal; 0: all
+};
+
+// A calibration body for kind = calibrate (as `rangefit calibrate stripe --cube --cube-pose`).
+struct CalibrationTarget {
+  std::string kind;        // "stripe": the hollow six-plane cube on the stripe cell's table
+  double edge_mm = 120.0;  // cube edge
+  double bar_mm = 12.0;    // bar thickness
+  Eigen::Isometry3d T_table_target = Eigen::Isometry3d::Identity();  // where the fixture holds it
 };
 
 struct ScanRequest {
@@ -36,6 +58,13 @@ struct ScanRequest {
   int hypotheses = 0;      // m pose hypotheses per part (kind = object)
   int trials = 0;          // n RANSAC trials per hypothesis (kind = object)
   std::uint64_t seed = 0;  // seed of the detector's random sampling
+  // What the user knows of the sensor (as `rangefit bore --view-dir --sensor-position` and
+  // `rangefit object --viewpoint`), in the world frame; each replaces what the scan's sensor
+  // reports. A position is preferred over a direction.
+  std::optional<Eigen::Vector3d> view_dir;         // unit, from the scene toward the sensor
+  std::optional<Eigen::Vector3d> sensor_position;  // mm
+  int parts = 0;                                   // kind = learn: 1 or 2 parts; 0: 1
+  CalibrationTarget target;                        // kind = calibrate
 };
 
 struct PartPose {
@@ -59,6 +88,12 @@ struct DetectionResult {
   std::string spool_entry;  // empty when the scan was not spooled (e.g. rejected request)
   // When the scan's last sample was taken, wall clock (ns since the Unix epoch); 0: unknown.
   std::int64_t acquired_wall_ns = 0;
+  // What a kind reports beyond poses (JSON, mm and rad): a pipe's outer wall, the learnt model
+  // and its residuals, the calibration and its residuals, and "files": where in the spool entry
+  // the files below were written. Null when there is nothing.
+  nlohmann::json details;
+  // Files the spool writes into the entry beside the cloud (name, content), e.g. model.toml.
+  std::vector<std::pair<std::string, std::string>> files;
 
   static DetectionResult error(const ScanRequest& req, std::string why) {
     DetectionResult r;

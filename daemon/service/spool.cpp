@@ -106,6 +106,16 @@ bool Spool::write(const ScanRequest& request, const PointCloud& cloud, Detection
     // Doubles: a replay must see the very cloud the detectors saw.
     io::write_ply(tmp / "cloud.ply", cloud, io::PlyEncoding::kBinaryLittleEndian,
                   io::Precision::kFloat64);
+    // What the request made besides the result (a learnt model, a calibration and its report),
+    // named in the result by where they are once the entry is in place.
+    for (const auto& [file, text] : result.files) {
+      if (file.empty() || file.find('/') != std::string::npos || file.starts_with(".") ||
+          !write_text(tmp / file, text)) {
+        throw std::runtime_error("cannot write " + file);
+      }
+      if (!result.details.is_object()) result.details = nlohmann::json::object();
+      result.details["files"][file] = (final_path / file).string();
+    }
     if (!write_text(tmp / "request.json", to_json(request).dump(2)) ||
         !write_text(tmp / "result.json", to_json(result).dump(2))) {
       throw std::runtime_error("cannot write json");
@@ -119,6 +129,7 @@ bool Spool::write(const ScanRequest& request, const PointCloud& cloud, Detection
   } catch (const std::exception& e) {
     fs::remove_all(tmp, ec);
     result.spool_entry.clear();
+    if (result.details.is_object()) result.details.erase("files");
     *error = "spool write " + final_path.string() + ": " + e.what();
     return false;
   }

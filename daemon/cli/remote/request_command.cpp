@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "daemon/cli/cli_options.hpp"
 #include "daemon/cli/commands.hpp"
 #include "daemon/cli/option_checks.hpp"
 #include "daemon/dds/client.hpp"
@@ -29,12 +30,21 @@ struct RequestArgs {
   double radius_mm = 0;
   std::array<double, 3> sweep{};  // start, end, speed
   double timeout_s = 120;
-  std::vector<double> plane_normal;  // bore: optional
+  std::vector<double> plane_normal;     // bore: optional
+  double outer_radius_mm = 0;           // bore: a pipe's outer wall
+  std::string walls;                    // bore: inner | outer | both
+  double normal_keep = 0;               // bore: 0: all
+  std::vector<double> view_dir;         // bore: optional, replaces the sensor's
+  std::vector<double> sensor_position;  // bore --sensor-position, object --viewpoint
   int instances = 1;
   int hypotheses = 0;
   int trials = 0;
   std::uint64_t seed = 0;
+  int parts = 0;                                     // learn
+  std::vector<double> cube{120.0, 12.0}, cube_pose;  // calibrate stripe
 };
+
+Eigen::Vector3d vec3(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
 
 std::string make_id() {
   std::random_device rd;
@@ -53,14 +63,28 @@ int run(RequestArgs& a, daemon::DetectKind kind) {
   req.sweep_start = a.sweep[0];
   req.sweep_end = a.sweep[1];
   req.sweep_speed = a.sweep[2];
-  if (a.plane_normal.size() == 3) {
-    req.bore.plane_normal =
-        Eigen::Vector3d(a.plane_normal[0], a.plane_normal[1], a.plane_normal[2]);
-  }
+  if (a.plane_normal.size() == 3) req.bore.plane_normal = vec3(a.plane_normal);
+  req.bore.outer_radius_mm = a.outer_radius_mm;
+  req.bore.walls = a.walls;
+  req.bore.normal_keep = a.normal_keep;
+  if (a.view_dir.size() == 3) req.view_dir = vec3(a.view_dir);
+  if (a.sensor_position.size() == 3) req.sensor_position = vec3(a.sensor_position);
   req.instances = a.instances;
   req.hypotheses = a.hypotheses;
   req.trials = a.trials;
   req.seed = a.seed;
+  req.parts = a.parts;
+  if (kind == daemon::DetectKind::kCalibrate) {
+    req.target.kind = "stripe";
+    req.target.edge_mm = a.cube[0];
+    req.target.bar_mm = a.cube[1];
+    const std::vector<double>& v = a.cube_pose;
+    req.target.T_table_target.linear() = (Eigen::AngleAxisd(v[5], Eigen::Vector3d::UnitZ()) *
+                                          Eigen::AngleAxisd(v[4], Eigen::Vector3d::UnitY()) *
+                                          Eigen::AngleAxisd(v[3], Eigen::Vector3d::UnitX()))
+                                             .toRotationMatrix();
+    req.target.T_table_target.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
+  }
   try {
     const std::uint32_t domain = a.domain ? *a.domain : daemon::ros_domain_id().value_or(0);
     daemon::DdsClient client(domain);
@@ -106,16 +130,40 @@ void common(CLI::App* sub, RequestArgs& a) {
 void add_request_command(CLI::App& app, int* exit_code) {
   auto* cmd = app.add_subcommand("request", "ask a running rangefitd to scan and detect (DDS)");
   cmd->require_subcommand(1);
-  static RequestArgs bore_args, object_args;
+  static RequestArgs bore_args, object_args, learn_args, calibrate_args;
   auto* bore = cmd->add_subcommand("bore", "find a bore near a CAD prior");
   common(bore, bore_args);
-  bore->add_option("--position", bore_args.position_mm, "expected entrance x y z, mm (world)")
-      ->required();
-  bore->add_option("--axis", bore_args.axis, "expected axis x y z")->capture_default_str();
-  bore->add_option("--radius", bore_args.radius_mm, "expected radius, mm")->required();
-  bore->add_option("--plane-normal", bore_args.plane_normal,
-                   "normal x y z of the surface around the bore (default: the axis)")
-      ->expected(3);
+  // The names of `rangefit bore` (--cad-*) are accepted beside the short ones; vectors as
+  // X,Y,Z or X Y Z.
+  bore->add_option("--position,--cad-entrance", bore_args.position_mm,
+                   "expected entrance x y z, mm (world)")
+      ->required()
+      ->delimiter(',');
+  bore->add_option("--axis,--cad-axis", bore_args.axis, "expected axis x y z")
+      ->capture_default_str()
+      ->delimiter(',');
+  bore->add_option("--radius,--cad-radius", bore_args.radius_mm, "expected radius, mm")
+      ->required()
+      ->check(finite_range(1e-3, 1e5));
+  add_vector_option(bore, "--plane-normal,--cad-plane-normal", bore_args.plane_normal,
+                    "normal x y z of the surface around the bore (default: the axis)");
+  bore->add_option("--outer-radius,--cad-outer-radius", bore_args.outer_radius_mm,
+                   "a thick-walled pipe's outer wall radius, mm (the bore is its inner wall)")
+      ->check(finite_range(1e-3, 1e5));
+  bore->add_option("--walls", bore_args.walls,
+                   "which wall of a pipe to fit: inner (the bore, default), outer "
+                   "(--cad-outer-radius, else --cad-radius) or both (the outer one as \"outer\")")
+      ->check(CLI::IsMember({"inner", "outer", "both"}));
+  add_vector_option(bore, "--view-dir", bore_args.view_dir,
+                    "direction x y z from the part toward the sensor (default: what the "
+                    "sensor reports)")
+      ->check(finite_range(-kMaxCoordinateMm, kMaxCoordinateMm));
+  add_vector_option(bore, "--sensor-position", bore_args.sensor_position,
+                    "sensor position x y z, mm, instead of --view-dir")
+      ->check(finite_range(-kMaxCoordinateMm, kMaxCoordinateMm));
+  bore->add_option("--normal-keep", bore_args.normal_keep,
+                   "share (0..1] of region points that get a normal (thesis: 0.2)")
+      ->check(finite_range(0.001, 1.0));
   bore->callback([exit_code] { *exit_code = run(bore_args, daemon::DetectKind::kBore); });
   auto* object = cmd->add_subcommand("object", "find a configured object model");
   common(object, object_args);
@@ -128,7 +176,36 @@ void add_request_command(CLI::App& app, int* exit_code) {
       ->check(CLI::Range(1, 10000));
   object->add_option("--trials", object_args.trials, "n: RANSAC trials per hypothesis")
       ->check(CLI::Range(1, 10000));
+  add_vector_option(object, "--viewpoint", object_args.sensor_position,
+                    "sensor position x y z, mm (default: what the sensor reports)")
+      ->check(finite_range(-kMaxCoordinateMm, kMaxCoordinateMm));
   object->callback([exit_code] { *exit_code = run(object_args, daemon::DetectKind::kObject); });
+  auto* learn = cmd->add_subcommand(
+      "learn", "scan and learn an object model (as `rangefit learn`); model.toml in the spool");
+  common(learn, learn_args);
+  learn->add_option("--name", learn_args.model, "the model's name (default: learnt)");
+  learn->add_option("--parts", learn_args.parts, "parts of the model: 1, or 2 (head and shaft)")
+      ->check(CLI::Range(1, 2));
+  learn->callback([exit_code] { *exit_code = run(learn_args, daemon::DetectKind::kLearn); });
+  auto* calibrate = cmd->add_subcommand(
+      "calibrate", "scan a calibration body and calibrate; written to the spool, never applied");
+  calibrate->require_subcommand(1);
+  auto* stripe = calibrate->add_subcommand(
+      "stripe", "the stripe cell from one sweep over the hollow cube (as `rangefit calibrate`)");
+  common(stripe, calibrate_args);
+  stripe->add_option("--cube", calibrate_args.cube, "cube EDGE,BAR (mm)")
+      ->expected(2)
+      ->delimiter(',')
+      ->check(finite_range(1.0, kMaxCoordinateMm));
+  stripe
+      ->add_option("--cube-pose", calibrate_args.cube_pose,
+                   "cube pose on the table X,Y,Z,ROLL,PITCH,YAW (mm, rad)")
+      ->required()
+      ->expected(6)
+      ->delimiter(',')
+      ->check(finite_range(-kMaxCoordinateMm, kMaxCoordinateMm));
+  stripe->callback(
+      [exit_code] { *exit_code = run(calibrate_args, daemon::DetectKind::kCalibrate); });
 }
 
 }  // namespace rangefit::cli

@@ -1,0 +1,177 @@
+// The request fields that reach what `rangefit bore|learn|calibrate` take (a pipe's walls, the
+// sensor the user knows, the parts to learn, the calibration body) survive the DDS wire in
+// metres and the JSON of HTTP/TCP and the spool in mm, with the same names and defaults; an older
+// client's request means what it meant; validation names the field that is wrong.
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "daemon/dds/messages.hpp"
+#include "daemon/service/json_codec.hpp"
+#include "daemon/service/request_validation.hpp"
+
+namespace rangefit::daemon {
+namespace {
+
+ScanRequest pipe_request() {
+  ScanRequest req;
+  req.id = "pipe-1";
+  req.kind = DetectKind::kBore;
+  req.bore.radius_mm = 6.0;
+  req.bore.outer_radius_mm = 8.0;
+  req.bore.walls = "both";
+  req.bore.normal_keep = 0.25;
+  req.view_dir = Eigen::Vector3d(0.0, -0.48, 0.877);
+  req.sensor_position = Eigen::Vector3d(10.0, -150.0, 520.0);
+  return req;
+}
+
+ScanRequest calibrate_request() {
+  ScanRequest req;
+  req.id = "cal-1";
+  req.kind = DetectKind::kCalibrate;
+  req.target.kind = "stripe";
+  req.target.edge_mm = 150.0;
+  req.target.bar_mm = 15.0;
+  req.target.T_table_target.linear() =
+      Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  req.target.T_table_target.translation() = Eigen::Vector3d(5.0, 3.0, 130.0);
+  return req;
+}
+
+DaemonConfig css_and_stripe() {
+  DaemonConfig config;
+  DeviceConfig css, stripe;
+  css.name = css.kind = "css";
+  stripe.name = stripe.kind = "stripe";
+  config.devices = {css, stripe};
+  config.service.bore_sensor = "css";
+  config.service.object_sensor = "stripe";
+  return config;
+}
+
+void expect_same_pipe(const ScanRequest& back, const ScanRequest& req) {
+  EXPECT_NEAR(back.bore.outer_radius_mm, 8.0, 1e-12);
+  EXPECT_EQ(back.bore.walls, "both");
+  EXPECT_EQ(back.bore.normal_keep, 0.25);
+  ASSERT_TRUE(back.view_dir);
+  EXPECT_EQ(*back.view_dir, *req.view_dir);
+  ASSERT_TRUE(back.sensor_position);
+  EXPECT_LT((*back.sensor_position - *req.sensor_position).norm(), 1e-9);
+}
+
+TEST(RequestKinds, PipeWallsAndSensorKnowledgeRoundTripTheWireAndJson) {
+  const ScanRequest req = pipe_request();
+  const RequestOut out(req, false);
+  std::string error;
+  const ScanRequest wire = from_msg(out.msg(), &error);
+  EXPECT_EQ(error, "");
+  expect_same_pipe(wire, req);
+  ScanRequest json;
+  ASSERT_TRUE(from_json(to_json(req), json, &error)) << error;
+  expect_same_pipe(json, req);
+}
+
+TEST(RequestKinds, LearnAndCalibrateRoundTripTheWireAndJson) {
+  ScanRequest learn;
+  learn.id = "learn-1";
+  learn.kind = DetectKind::kLearn;
+  learn.model = "mallet";
+  learn.parts = 2;
+  std::string error;
+  const RequestOut learn_out(learn, true);
+  const ScanRequest learn_back = from_msg(learn_out.msg(), &error);
+  EXPECT_EQ(error, "");
+  EXPECT_EQ(learn_back.kind, DetectKind::kLearn);
+  EXPECT_EQ(learn_back.parts, 2);
+  EXPECT_EQ(learn_back.model, "mallet");
+
+  const ScanRequest cal = calibrate_request();
+  const RequestOut cal_out(cal, true);
+  for (const ScanRequest& back : {from_msg(cal_out.msg(), &error), [&] {
+                                    ScanRequest j;
+                                    EXPECT_TRUE(from_json(to_json(cal), j, &error)) << error;
+                                    return j;
+                                  }()}) {
+    EXPECT_EQ(back.kind, DetectKind::kCalibrate);
+    EXPECT_EQ(back.target.kind, "stripe");
+    EXPECT_NEAR(back.target.edge_mm, 150.0, 1e-9);
+    EXPECT_NEAR(back.target.bar_mm, 15.0, 1e-9);
+    EXPECT_TRUE(back.target.T_table_target.isApprox(cal.target.T_table_target, 1e-9));
+  }
+}
+
+TEST(RequestKinds, AnOlderClientsRequestHasNoPipeAndNoSensorOverride) {
+  ScanRequest req;
+  req.id = "old";
+  req.bore.radius_mm = 5.0;
+  const RequestOut out(req, false);
+  std::string error;
+  ScanRequest back = from_msg(out.msg(), &error);
+  EXPECT_EQ(error, "");
+  EXPECT_FALSE(back.view_dir);
+  EXPECT_FALSE(back.sensor_position);
+  EXPECT_EQ(back.bore.outer_radius_mm, 0.0);
+  EXPECT_EQ(validate_request(back, css_and_stripe()), "");
+  EXPECT_EQ(back.bore.walls, "inner");
+  // A JSON request with only a kind and a prior, as the HTTP/TCP interfaces take it.
+  ScanRequest json;
+  nlohmann::json full = to_json(ScanRequest{});
+  full.merge_patch(nlohmann::json::parse(
+      R"({"id": "j", "kind": "bore", "bore": {"position_mm": [0, 0, 285.8], "axis": [0, 0, 1],
+          "radius_mm": 6, "outer_radius_mm": 8, "walls": "outer"}, "view_dir": [0, 0, 2]})"));
+  ASSERT_TRUE(from_json(full, json, &error)) << error;
+  EXPECT_EQ(validate_request(json, css_and_stripe()), "");
+  EXPECT_EQ(json.bore.walls, "outer");
+  EXPECT_EQ(*json.view_dir, Eigen::Vector3d::UnitZ());  // normalised
+}
+
+TEST(RequestKinds, ValidationNamesWhatIsWrong) {
+  const DaemonConfig config = css_and_stripe();
+  const auto reason = [&](auto change) {
+    ScanRequest r = pipe_request();
+    change(r);
+    return validate_request(r, config);
+  };
+  EXPECT_EQ(reason([](ScanRequest&) {}), "");
+  EXPECT_EQ(reason([](ScanRequest& r) { r.bore.walls = "middle"; }),
+            "bore walls must be \"inner\", \"outer\" or \"both\"");
+  EXPECT_EQ(reason([](ScanRequest& r) { r.bore.outer_radius_mm = 5.0; }),
+            "bore walls \"both\" needs outer_radius larger than radius");
+  EXPECT_EQ(reason([](ScanRequest& r) { r.bore.normal_keep = 1.5; }),
+            "bore normal_keep must be in (0, 1] (0: all)");
+  EXPECT_EQ(reason([](ScanRequest& r) { r.view_dir = Eigen::Vector3d::Zero(); }),
+            "view_dir must be finite and not zero");
+  ScanRequest learn;
+  learn.id = "l";
+  learn.kind = DetectKind::kLearn;
+  learn.parts = 3;
+  EXPECT_EQ(validate_request(learn, config), "parts must be 1 or 2 (0: 1)");
+  learn.parts = 0;
+  EXPECT_EQ(validate_request(learn, config), "");
+  EXPECT_EQ(learn.model, "learnt");
+  EXPECT_EQ(learn.sensor, "stripe");
+  ScanRequest cal = calibrate_request();
+  EXPECT_EQ(validate_request(cal, config), "");
+  EXPECT_EQ(cal.sensor, "stripe");  // the stripe target's sensor
+  cal = calibrate_request();
+  cal.sensor = "css";
+  EXPECT_EQ(validate_request(cal, config),
+            "calibrate stripe needs a stripe sensor; \"css\" is a css");
+  cal = calibrate_request();
+  cal.target.bar_mm = 100.0;
+  EXPECT_EQ(validate_request(cal, config),
+            "target size must be an edge > 0 and a bar in (0, edge / 2), mm");
+  // An unknown kind on the wire is refused by name.
+  ScanRequest bad = pipe_request();
+  RequestOut out(bad, false);
+  rangefit_msgs_msg_dds__DetectRequest_ msg = out.msg();
+  msg.kind = const_cast<char*>("teach");
+  std::string error;
+  (void)from_msg(msg, &error);
+  EXPECT_EQ(error,
+            "unknown kind \"teach\" (expected \"bore\", \"object\", \"learn\" or \"calibrate\")");
+}
+
+}  // namespace
+}  // namespace rangefit::daemon

@@ -1,0 +1,246 @@
+// Teaching and calibrating on the cell, through the service: a `learn` request on the simulated
+// stripe cell learns the thesis cylinder lying on the table within the learning tests'
+// one-view tolerances (2 % size, 0.1 shape) and leaves model.toml in the spool entry, which reads
+// back as the model, the one `rangefit learn` writes from the spooled scan; a `calibrate` request
+// over the hollow cube recovers the cell's stripe geometry and writes calibration_stripe.toml and
+// its report, applying nothing.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <numbers>
+#include <sstream>
+
+#include "daemon/rangefitd/service.hpp"
+#include "detect/model_learning.hpp"
+#include "io/object_model_file.hpp"
+#include "sim/scene_objects.hpp"
+#include "test/daemon/replay_service.hpp"
+#include "test/detect/learn_scenes.hpp"
+
+namespace rangefit::daemon {
+namespace {
+namespace fs = std::filesystem;
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+DaemonConfig stripe_cell(const fs::path& dir, const fs::path& scene) {
+  DaemonConfig config;
+  config.dds.domain_id = test::dds_test_domain();
+  config.spool.directory = dir / "spool";
+  config.spool.pictures = false;
+  config.sim.time_scale = 0.0;
+  config.sim.seed = 4;
+  DeviceConfig stripe;
+  stripe.name = stripe.kind = "stripe";
+  stripe.scene = scene;
+  config.devices.push_back(stripe);
+  config.service.object_sensor = "stripe";
+  return config;
+}
+
+std::optional<DetectionResult> run(Service& service, const ScanRequest& req) {
+  EXPECT_TRUE(service.board().reserve(req.id));
+  if (const auto refused = service.admit(req)) return refused;
+  return service.board().wait_for(req.id, std::chrono::seconds(120));
+}
+
+std::string text_of(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string without_comments(const std::string& text) {
+  std::istringstream in(text);
+  std::string out;
+  for (std::string line; std::getline(in, line);) {
+    if (!line.starts_with("#")) out += line + "\n";
+  }
+  return out;
+}
+
+TEST(ServiceTeach, LearnRequestLearnsTheCylinderOnTheStripeCell) {
+  const fs::path dir = test::fresh_test_dir("rangefit_service_learn");
+  // The thesis cylinder (r 30, half length 50) lying along x. Standing, the stripe cell sees
+  // its top and barely its sides, and one view leaves the height to the volume term (4.7 %
+  // too tall, measured): the learning tests' views look at the side as well.
+  const Superquadric truth = sim::cylinder_model();
+  Eigen::Isometry3d T_truth = Eigen::Isometry3d::Identity();
+  T_truth.linear() =
+      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX())
+          .toRotationMatrix();
+  T_truth.translation() = Eigen::Vector3d(0, 0, truth.a1);
+  std::ofstream(dir / "scene.toml")
+      << "[[object]]\nname = \"table\"\ntype = \"plane\"\nsize = [1000, 1000]\n"
+      << "[[object]]\nname = \"can\"\ntype = \"superquadric\"\nposition = [0, 0, " << truth.a1
+      << "]\nz_axis = [1, 0, 0]\na = [" << truth.a1 << ", " << truth.a2 << ", " << truth.a3
+      << "]\neps = [" << truth.eps1 << ", " << truth.eps2 << "]\n";
+  const DaemonConfig config = stripe_cell(dir, dir / "scene.toml");
+  hal::MonotonicClock clock;
+  Service service(config, clock);
+  auto loop = std::make_unique<test::ServiceLoop>(service);
+  ScanRequest req;
+  req.id = "teach-can";
+  req.kind = DetectKind::kLearn;
+  req.model = "can";
+  req.seed = 2;
+  const auto result = run(service, req);
+  loop.reset();
+  ASSERT_TRUE(result);
+  ASSERT_TRUE(result->found) << result->reason;
+  ASSERT_EQ(result->parts.size(), 1u);
+  const auto& part = result->details.at("parts").at(0);
+  const auto& a = part.at("size");
+  const Superquadric learnt{a.at(0).get<double>(),
+                            a.at(1).get<double>(),
+                            a.at(2).get<double>(),
+                            part.at("shape").at(0).get<double>(),
+                            part.at("shape").at(1).get<double>(),
+                            part.at("taper").at(0).get<double>(),
+                            part.at("taper").at(1).get<double>()};
+  const test::ShapeError e =
+      test::shape_error(learnt, result->parts[0].T_world_part, truth, T_truth);
+  EXPECT_LT(e.size, 0.02) << result->details.dump();
+  EXPECT_LT(e.shape, 0.1) << result->details.dump();
+  EXPECT_LT((result->parts[0].T_world_part.translation() - T_truth.translation()).norm(), 2.0);
+  EXPECT_GT(part.at("residual_mm").get<double>(), 0.0);
+  // The model file is in the entry, named in the result, and reads back as the learnt model.
+  const fs::path file = result->details.at("files").at("model.toml").get<std::string>();
+  EXPECT_EQ(file, fs::path(result->spool_entry) / "model.toml");
+  const ObjectModel model = io::read_object_model(file);
+  EXPECT_EQ(model.name, "can");
+  ASSERT_EQ(model.parts.size(), 1u);
+  EXPECT_NEAR(model.parts[0].shape.a1, learnt.a1, 1e-6);
+  EXPECT_NE(text_of(file).find("residual"), std::string::npos);
+#ifdef RANGEFIT_CLI_PATH
+  // `rangefit learn` on the spooled scan writes the same model (its comments name the source).
+  const std::string cli = std::string(RANGEFIT_CLI_PATH) + " learn --cloud " +
+                          (fs::path(result->spool_entry) / "cloud.ply").string() +
+                          " --seed 2 --name can --out " + (dir / "cli.toml").string() +
+                          " > /dev/null";
+  ASSERT_EQ(std::system(cli.c_str()), 0);
+  EXPECT_EQ(without_comments(text_of(dir / "cli.toml")), without_comments(text_of(file)));
+#endif
+  fs::remove_all(dir);
+}
+
+TEST(ServiceTeach, LearnOnAnEmptyTableIsNotFound) {
+  const fs::path dir = test::fresh_test_dir("rangefit_service_learn_empty");
+  std::ofstream(dir / "scene.toml") << "[[object]]\nname = \"table\"\ntype = \"plane\"\n";
+  const DaemonConfig config = stripe_cell(dir, dir / "scene.toml");
+  hal::MonotonicClock clock;
+  Service service(config, clock);
+  auto loop = std::make_unique<test::ServiceLoop>(service);
+  ScanRequest req;
+  req.id = "teach-nothing";
+  req.kind = DetectKind::kLearn;
+  const auto result = run(service, req);
+  loop.reset();
+  ASSERT_TRUE(result);
+  EXPECT_FALSE(result->found);
+  EXPECT_EQ(result->reason, to_string(LearnReason::kNoObject));
+  EXPECT_FALSE(fs::exists(fs::path(result->spool_entry) / "model.toml"));
+  fs::remove_all(dir);
+}
+
+// The hollow cube of twelve bars (sim/calibration_scans.hpp) as a scene file, held by its
+// fixture at T above the table.
+void write_cube_scene(const fs::path& path, double edge, double bar, const Eigen::Isometry3d& T) {
+  std::ofstream out(path);
+  out.precision(12);
+  out << "[[object]]\nname = \"table\"\ntype = \"plane\"\nsize = [2000, 2000]\n";
+  const double c = 0.5 * edge - 0.5 * bar;
+  const Eigen::Vector3d rpy = T.linear().eulerAngles(2, 1, 0).reverse() / kDeg;
+  int n = 0;
+  for (int a = 0; a < 3; ++a) {
+    for (int s1 = -1; s1 <= 1; s1 += 2) {
+      for (int s2 = -1; s2 <= 1; s2 += 2) {
+        Eigen::Vector3d size = Eigen::Vector3d::Constant(bar), centre = Eigen::Vector3d::Zero();
+        size[a] = edge;
+        centre[(a + 1) % 3] = s1 * c;
+        centre[(a + 2) % 3] = s2 * c;
+        const Eigen::Vector3d p = T * centre;
+        out << "[[object]]\nname = \"bar" << n++ << "\"\ntype = \"box\"\nsize = [" << size.x()
+            << ", " << size.y() << ", " << size.z() << "]\nposition = [" << p.x() << ", " << p.y()
+            << ", " << p.z() << "]\nrpy_deg = [" << rpy.x() << ", " << rpy.y() << ", " << rpy.z()
+            << "]\n";
+      }
+    }
+  }
+}
+
+TEST(ServiceTeach, CalibrateRequestRecoversTheStripeCellAndAppliesNothing) {
+  const fs::path dir = test::fresh_test_dir("rangefit_service_calibrate");
+  // Held on a corner, a body diagonal tilted toward the ranger (as test/calib's fixture).
+  const Eigen::Vector3d b(0.0, -std::sin(18.0 * kDeg), std::cos(18.0 * kDeg));
+  Eigen::Isometry3d T_cube = Eigen::Isometry3d::Identity();
+  T_cube.linear() = (Eigen::AngleAxisd(20.0 * kDeg, b) *
+                     Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::Ones().normalized(), b))
+                        .toRotationMatrix();
+  T_cube.translation() = Eigen::Vector3d(5.0, 3.0, 130.0);
+  write_cube_scene(dir / "cube.toml", 120.0, 12.0, T_cube);
+  DaemonConfig config = stripe_cell(dir, dir / "cube.toml");
+  config.sim.noise = false;
+  hal::MonotonicClock clock;
+  Service service(config, clock);
+  auto loop = std::make_unique<test::ServiceLoop>(service);
+  ScanRequest req;
+  req.id = "calibrate-stripe";
+  req.kind = DetectKind::kCalibrate;
+  req.target.kind = "stripe";
+  req.target.T_table_target = T_cube;
+  const auto result = run(service, req);
+  loop.reset();
+  ASSERT_TRUE(result);
+  ASSERT_TRUE(result->found) << result->reason << " " << result->details.dump();
+  EXPECT_FALSE(result->details.at("applied").get<bool>());
+  EXPECT_LT(result->details.at("rms_mm").get<double>(), 0.05);
+  // The simulated cell runs on the configured geometry: the calibration must come back to it.
+  const hal::StripeCellGeometry truth = config.fusion.stripe_cell.geometry;
+  const auto& f = result->details.at("fusion.stripe_cell");
+  const auto v = [](const nlohmann::json& j) {
+    return Eigen::Vector3d(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>());
+  };
+  EXPECT_LT((v(f.at("ranger_position_cell_mm")) - truth.ranger_position_cell_mm).norm(), 0.05);
+  EXPECT_LT((v(f.at("ranger_rpy_cell_rad")) - truth.ranger_rpy_cell_rad).norm(), 0.01 * kDeg);
+  EXPECT_LT(
+      std::acos(std::min(
+          1.0,
+          v(f.at("axis_direction_cell")).normalized().dot(truth.axis_direction_cell.normalized()))),
+      0.01 * kDeg);
+  const auto& files = result->details.at("files");
+  const fs::path toml = files.at("calibration_stripe.toml").get<std::string>();
+  const fs::path report = files.at("calibration_stripe.toml.report.txt").get<std::string>();
+  EXPECT_EQ(toml.parent_path(), fs::path(result->spool_entry));
+  EXPECT_NE(text_of(toml).find("[fusion.stripe_cell]"), std::string::npos);
+  EXPECT_NE(text_of(report).find("refinement"), std::string::npos);
+  // Never applied: the running configuration is the one it started with.
+  EXPECT_EQ(service.config_copy().fusion.stripe_cell.geometry.ranger_position_cell_mm,
+            truth.ranger_position_cell_mm);
+  fs::remove_all(dir);
+}
+
+TEST(ServiceTeach, CalibrateRefusesATargetItCannotScanAndASensorOfAnotherKind) {
+  const fs::path dir = test::fresh_test_dir("rangefit_service_calibrate_refused");
+  std::ofstream(dir / "scene.toml") << "[[object]]\nname = \"table\"\ntype = \"plane\"\n";
+  const DaemonConfig config = stripe_cell(dir, dir / "scene.toml");
+  hal::MonotonicClock clock;
+  Service service(config, clock);
+  ScanRequest req;
+  req.id = "calibrate-css";
+  req.kind = DetectKind::kCalibrate;
+  req.target.kind = "css";
+  const auto refused = service.admit(req);
+  ASSERT_TRUE(refused);
+  EXPECT_NE(refused->reason.find("calibrate target must be \"stripe\""), std::string::npos)
+      << refused->reason;
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace rangefit::daemon
