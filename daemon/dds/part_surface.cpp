@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "sim/mesh_export.hpp"
+#include "io/shape_mesh.hpp"
 
 namespace rangefit::daemon {
 namespace {
@@ -13,8 +13,8 @@ constexpr int kRings = 16, kSegments = 24, kBoreSegments = 32;
 
 PartSurface bore_surface(double r) {
   const double depth = drawn_bore_depth_mm(r);
-  io::TriangleMesh cylinder = sim::tessellate(sim::CylinderShape{r, depth}, 2, kBoreSegments);
-  // The simulator's cylinder is closed; a bore is open at both ends, so the cap triangles (those
+  io::TriangleMesh cylinder = io::cylinder_mesh(r, depth, kBoreSegments);
+  // The cylinder mesh is closed; a bore is open at both ends, so the cap triangles (those
   // with a vertex on the axis) go, and the tube moves from z in [-d/2, d/2] to [-d, 0].
   PartSurface s;
   s.mesh.vertices = cylinder.vertices;
@@ -39,7 +39,7 @@ std::optional<PartSurface> shape_of(const DetectionResult& result, const PartPos
   for (const ModelPart& p : model->second.parts) {
     if (p.name != part.name || !p.shape.valid()) continue;
     PartSurface s;
-    s.mesh = sim::tessellate(sim::SuperquadricShape{p.shape}, kRings, kSegments);
+    s.mesh = io::superquadric_mesh(p.shape, kRings, kSegments);
     return s;
   }
   return std::nullopt;

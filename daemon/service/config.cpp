@@ -359,8 +359,8 @@ DaemonConfig read_root(const toml::table& root, std::string_view source_name,
     FieldReader sub = r.sub("dds");
     read_dds(sub, c.dds);
   }
-  if (const auto* t = r.sub_table("ros")) {
-    FieldReader sub(*t, "ros");
+  if (r.sub_table("ros") != nullptr) {
+    FieldReader sub = r.sub("ros");
     read_ros(sub, c.dds);
   }
   const toml::table* dds = root["dds"].as_table();
