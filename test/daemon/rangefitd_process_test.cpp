@@ -72,6 +72,14 @@ TEST(RangefitdProcess, NotifiesReadyWatchdogReloadRefusalAndStopping) {
   EXPECT_NE(refused.find("READY=1"), std::string::npos) << refused;
   EXPECT_NE(refused.find("service.queue_capacity"), std::string::npos) << refused;
   EXPECT_NE(sock.wait_for("WATCHDOG=1", std::chrono::milliseconds(30000)), "");
+  // A listen address outside the unit's IPAddressAllow= is refused on reload too.
+  if (std::string(RANGEFITD_IP_ADDRESS_ALLOW).find("any") == std::string::npos) {
+    write_config(config, dir / "spool", domain, "[http]\nlisten = \"198.51.100.1:8080\"\n");
+    kill(pid, SIGHUP);
+    const std::string outside = sock.wait_for("reload refused", std::chrono::milliseconds(30000));
+    EXPECT_NE(outside.find("http.listen \"198.51.100.1:8080\""), std::string::npos) << outside;
+    EXPECT_NE(outside.find("IPAddressAllow"), std::string::npos) << outside;
+  }
 
   kill(pid, SIGTERM);
   EXPECT_NE(sock.wait_for("STOPPING=1", std::chrono::milliseconds(30000)), "");
