@@ -3,6 +3,7 @@
 #include <httplib.h>
 #include <sys/socket.h>
 
+#include <atomic>
 #include <charconv>
 #include <fstream>
 #include <iterator>
@@ -41,6 +42,21 @@ std::pair<time_t, time_t> sec_usec(std::chrono::milliseconds ms) {
   return {static_cast<time_t>(ms.count() / 1000), static_cast<time_t>((ms.count() % 1000) * 1000)};
 }
 
+// One of the clients waiting for a result, counted while it holds its thread.
+class WaitSlot {
+ public:
+  WaitSlot(std::atomic<int>& waiting, int limit)
+      : waiting_(waiting), held_(waiting.fetch_add(1) < limit) {}
+  ~WaitSlot() { waiting_.fetch_sub(1); }
+  WaitSlot(const WaitSlot&) = delete;
+  WaitSlot& operator=(const WaitSlot&) = delete;
+  bool held() const { return held_; }
+
+ private:
+  std::atomic<int>& waiting_;
+  bool held_;
+};
+
 }  // namespace
 
 struct HttpServer::Impl {
@@ -49,6 +65,7 @@ struct HttpServer::Impl {
   httplib::Server server;
   std::thread thread;
   int port = -1;
+  std::atomic<int> waiting{0};  // POST /v1/detect requests waiting for their result
 
   Impl(Backend& b, HttpOptions o) : backend(b), options(std::move(o)) {}
   void routes();
@@ -75,8 +92,15 @@ void HttpServer::Impl::routes() {
       if (request.is_discarded() || !request.is_object()) {
         return error_answer(Status::kBadRequest, "the body must be one JSON object");
       }
-      const std::string wait = req.get_param_value("wait");
-      return backend.detect(request, !(wait == "0" || wait == "false"));
+      const std::string wait_param = req.get_param_value("wait");
+      if (wait_param == "0" || wait_param == "false") return backend.detect(request, false);
+      const WaitSlot slot(waiting, options.max_waiting);
+      if (!slot.held()) {
+        return error_answer(Status::kBusy, "busy: " + std::to_string(options.max_waiting) +
+                                               " clients already wait for their results; retry, "
+                                               "or send with ?wait=0 and poll /v1/results/ID");
+      }
+      return backend.detect(request, true);
     });
   });
   // Ids are the service's own (letters, digits, '-', '_', '.'), so no path can be built from one.
@@ -152,7 +176,8 @@ HttpServer::~HttpServer() { stop(); }
 bool HttpServer::start(std::string* error) {
   Impl& m = *impl_;
   m.routes();
-  const int threads = std::max(1, m.options.threads);
+  m.options.max_waiting = std::max(0, m.options.max_waiting);
+  const int threads = std::max(m.options.threads, m.options.max_waiting + kFreeThreads);
   m.server.new_task_queue = [threads] {
     return new httplib::ThreadPool(static_cast<std::size_t>(threads));
   };
@@ -161,7 +186,7 @@ bool HttpServer::start(std::string* error) {
   const auto [ws, wu] = sec_usec(m.options.write_timeout);
   m.server.set_read_timeout(rs, ru);
   m.server.set_write_timeout(ws, wu);
-  m.server.set_keep_alive_timeout(std::max<time_t>(1, rs));
+  m.server.set_keep_alive_max_count(1);  // one request per connection (see the header)
   // httplib listens with a backlog of 5: a burst of clients (50 robots after a cell restart)
   // overflows it and the kernel drops or resets connections. Keep the socket it binds and raise
   // the backlog after its listen() (Linux takes a second listen() as the new backlog).

@@ -12,6 +12,8 @@
 // Every JSON answer carries "status" as in backend.hpp ("ok", "busy", "timeout", ...), the HTTP
 // code matches it (200, 503, 504, ...), and errors say why in "error". Bodies over the limit get
 // 413 without being read; a client that stops sending is dropped after the read timeout.
+// httplib serves a connection on one thread for as long as it is open, so connections are not
+// kept alive: an idle client between two requests would hold a thread as a waiting one does.
 
 #include <chrono>
 #include <cstddef>
@@ -32,12 +34,22 @@ struct StaticFile {
   std::string_view body;  // must outlive the server
 };
 
+// Threads an HttpServer keeps beyond its waiting clients, for everything else.
+inline constexpr int kFreeThreads = 4;
+
 struct HttpOptions {
   ListenAddress listen;                          // loopback by default; port 0: any free port
   std::size_t max_body_bytes = 64 * 1024;        // a detection request is well under 1 KiB
   std::chrono::milliseconds read_timeout{5000};  // per read: a silent client is dropped after it
   std::chrono::milliseconds write_timeout{5000};
-  int threads = 8;                // requests served at once; more wait in line for a thread
+  // Clients that wait for their detection's result (POST /v1/detect without ?wait=0) each hold
+  // a server thread until it is there, which may be a whole scan. At most max_waiting wait at
+  // once; the next gets 503 busy with Retry-After (it may also ask with ?wait=0 and poll), so
+  // the threads beyond them stay free for the state, the results and the page.
+  int max_waiting = 4;
+  // Requests served at once; more wait in line for a thread. Raised to max_waiting +
+  // kFreeThreads when lower.
+  int threads = 8;
   std::string write_token;        // empty: read-only (every POST /v1/detect is forbidden)
   std::vector<StaticFile> files;  // the browser page
 };

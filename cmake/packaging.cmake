@@ -26,8 +26,14 @@ set(RANGEFIT_SYSTEMD_UNIT_DIR lib/systemd/system CACHE STRING
 # Who may talk to rangefitd over IP (the unit's IPAddressAllow=): DDS peers and the clients of
 # its [http]/[tcp] interfaces, whose listen addresses must lie in these ranges.
 set(RANGEFITD_IP_ADDRESS_ALLOW
-    "localhost link-local multicast 10.0.0.0/8 172.16.0.0/12 192.168.0.0/16"
+    "localhost link-local multicast 10.0.0.0/8 172.16.0.0/12 192.168.0.0/16 fc00::/7"
     CACHE STRING "IPAddressAllow= of the rangefitd unit (systemd.resource-control)")
+# rangefitd is built with the same list and refuses a configuration whose [http]/[tcp] listen
+# address or DDS interface lies outside it (daemon/service/address_check.hpp): the socket would
+# bind and then never see a client.
+set_source_files_properties(
+  ${PROJECT_SOURCE_DIR}/daemon/service/ip_allow.cpp DIRECTORY ${PROJECT_SOURCE_DIR}/daemon/service
+  PROPERTIES COMPILE_DEFINITIONS "RANGEFITD_IP_ADDRESS_ALLOW=\"${RANGEFITD_IP_ADDRESS_ALLOW}\"")
 # udev and sysusers read <prefix>/lib/{udev/rules.d,sysusers.d} for both /usr and /usr/local.
 set(RANGEFIT_UDEV_RULES_DIR lib/udev/rules.d CACHE STRING
     "Directory of the udev rule giving rangefitd the CSS, relative to the prefix or absolute")

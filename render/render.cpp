@@ -14,6 +14,7 @@
 
 #include "render/colour_map.hpp"
 #include "render/model_geometry.hpp"
+#include "render/sensor_direction.hpp"
 
 namespace rangefit::render {
 namespace {
@@ -83,6 +84,12 @@ std::pair<Eigen::Vector3d, std::string> sensor_direction(const PointCloud& cloud
         models.extent.empty() ? centroid(cloud.points) : centroid(models.extent);
     const Eigen::Vector3d d = *o.sensor_position - c;
     if (finite(d)) return {d, "sensor view"};
+  }
+  // The sensor the scan says took it, looking at the models (or at the scan's middle).
+  const Eigen::Vector3d target =
+      models.extent.empty() ? centroid(cloud.points) : centroid(models.extent);
+  if (const auto toward = toward_scan_sensor(cloud.sensor, target)) {
+    return {*toward, "sensor view"};
   }
   if (!drawing.bores.empty() && finite(drawing.bores.front().axis)) {
     return {drawing.bores.front().axis, "along the bore axis"};

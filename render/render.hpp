@@ -29,8 +29,9 @@ struct RenderOptions {
   // the smallest model size, at least 0.5 mm.
   double distance_scale_mm = 0.0;
   // Where the sensor was, for the first panel: the direction from the scene toward it (e.g. the
-  // bore options' view_dir), or its position. Neither: along the first bore's axis, or obliquely
-  // from above (-y, +z) when there is no bore.
+  // bore options' view_dir), or its position. Neither: from the sensor the cloud says took it
+  // (cloud.sensor, render/sensor_direction.hpp), else along the first bore's axis, else
+  // obliquely from above (-y, +z).
   std::optional<Eigen::Vector3d> toward_sensor;
   std::optional<Eigen::Vector3d> sensor_position;
   // Frame the models with their own size around them (the whole scan when there are none, or

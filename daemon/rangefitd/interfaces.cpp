@@ -16,9 +16,13 @@ Interfaces::Interfaces(Service& service, const DaemonConfig& config)
     o.listen = *api::parse_listen_address(config.http.listen, &why);  // checked with the config
     o.write_token = config.http.token;
     o.max_body_bytes = config.http.max_request_bytes;
-    // Clients waiting for their result hold a thread each (the running one, the queued ones):
-    // enough are left for the page and the readers.
-    o.threads = static_cast<int>(std::clamp<std::size_t>(config.service.queue_capacity + 6, 8, 64));
+    // Clients waiting for their result hold a thread each: as many as the queue can hold and
+    // the scan running (more would be answered busy by the queue anyway), up to 32; the rest
+    // are told busy at the door (or poll with ?wait=0). The threads beyond those serve the
+    // page, the state and the results, so a full queue never starves them.
+    o.max_waiting =
+        static_cast<int>(std::clamp<std::size_t>(config.service.queue_capacity + 1, 1, 32));
+    o.threads = o.max_waiting + 2 * api::kFreeThreads;
     for (const web::PageFile& f : web::page_files()) o.files.push_back({f.path, f.type, f.body});
     http_ = std::make_unique<api::HttpServer>(backend_, std::move(o));
   }

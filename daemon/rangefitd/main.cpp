@@ -17,6 +17,7 @@
 #include "daemon/rangefitd/interfaces.hpp"
 #include "daemon/rangefitd/service.hpp"
 #include "daemon/rangefitd/systemd_notify.hpp"
+#include "daemon/service/address_check.hpp"
 #include "daemon/service/config.hpp"
 
 namespace {
@@ -89,13 +90,23 @@ CommandLine parse_command_line(int argc, char** argv) {
   return cl;
 }
 
+// "" when the config's interfaces lie inside the unit's IPAddressAllow= this build knows.
+std::string allowed_addresses_error(const daemon::DaemonConfig& config) {
+  try {
+    return daemon::check_allowed_addresses(config, daemon::built_ip_allow());
+  } catch (const std::exception& e) {  // a list CMake was given that systemd would refuse too
+    return e.what();
+  }
+}
+
 // SIGHUP: re-reads config_path and swaps it in between scans; a refused one changes nothing.
 bool reload(daemon::Service& service, const std::string& config_path, daemon::Notifier& notifier) {
   notifier.notify("RELOADING=1");
   spdlog::info("SIGHUP: reloading {}", config_path);
   auto next = daemon::load_config(config_path);
   std::string why = next.error;
-  if (next.config && service.reload(*next.config, &why)) {
+  if (next.config) why = allowed_addresses_error(*next.config);
+  if (next.config && why.empty() && service.reload(*next.config, &why)) {
     spdlog::set_level(spdlog::level::from_str(next.config->service.log_level));
     spdlog::info("configuration reloaded");
     notifier.notify("READY=1\nSTATUS=configuration reloaded");
@@ -128,6 +139,12 @@ int main(int argc, char** argv) {
     return 1;
   }
   setup_logging(loaded.config->service.log_level);
+  // The unit drops every peer outside its IPAddressAllow=: a socket there would never be reached.
+  if (const std::string why = allowed_addresses_error(*loaded.config); !why.empty()) {
+    spdlog::critical("{}: {}", config_path, why);
+    notifier.notify("STATUS=config error: " + why);
+    return 1;
+  }
   notifier.notify("STATUS=starting");
 
   hal::MonotonicClock clock;

@@ -19,6 +19,7 @@ class FakeBackend : public Backend {
   int capacity = 1000;  // requests in flight before busy
   std::atomic<int> detections{0};
   std::filesystem::path cloud_file;  // served for every finished id
+  std::atomic<bool> hold{false};     // detections do not finish while set (a long scan)
 
   Answer detect(const nlohmann::json& request, bool wait) override {
     if (!request.contains("kind")) return error_answer(Status::kBadRequest, "request: no kind");
@@ -57,7 +58,7 @@ class FakeBackend : public Backend {
   }
 
   Answer state() override {
-    return {Status::kOk, {{"state", "ready"}, {"queue", in_flight_.load()}}};
+    return {Status::kOk, {{"state", "ready"}, {"in_flight", in_flight_.load()}}};
   }
 
   std::optional<std::filesystem::path> result_file(const std::string& id,
@@ -76,6 +77,7 @@ class FakeBackend : public Backend {
  private:
   nlohmann::json finish(const std::string& id) {
     std::this_thread::sleep_for(detect_time);
+    while (hold) std::this_thread::sleep_for(std::chrono::milliseconds(1));
     const nlohmann::json r = {{"request_id", id}, {"found", true}, {"bore_radius_mm", 5.0}};
     {
       std::lock_guard lock(mutex_);

@@ -210,7 +210,9 @@ TEST_F(Http, BusyCellAnswers503) {
 
 TEST_F(Http, FiftyConcurrentClientsAllGetAnswers) {
   backend_.detect_time = std::chrono::milliseconds(20);
-  start();
+  HttpOptions o;
+  o.max_waiting = 50;  // every one may wait: all 50 connections are served at once
+  start(o);
   std::vector<std::future<int>> clients;
   for (int i = 0; i < 50; ++i) {
     clients.push_back(std::async(std::launch::async, [this] {
@@ -237,11 +239,12 @@ int silent_client(int port) {
 
 TEST_F(Http, SlowClientsAreDroppedAndDoNotBlockOthers) {
   HttpOptions o;
-  o.threads = 4;
+  o.max_waiting = 1;
+  o.threads = 1 + kFreeThreads;
   o.read_timeout = std::chrono::milliseconds(300);
   start(o);
   std::vector<int> slow;
-  for (int i = 0; i < 4; ++i) slow.push_back(silent_client(server_->port()));  // every thread
+  for (int i = 0; i < o.threads; ++i) slow.push_back(silent_client(server_->port()));  // all
   EXPECT_EQ(client().Post("/v1/detect", kRequest, "application/json")->status, 200);
   for (const int fd : slow) {
     ASSERT_GE(fd, 0);
@@ -254,6 +257,70 @@ TEST_F(Http, SlowClientsAreDroppedAndDoNotBlockOthers) {
     ::close(fd);
   }
   EXPECT_EQ(backend_.detections, 1);
+}
+
+// A waiting client holds a server thread until its result is there. More waiting clients than
+// the server has threads, while the cell is busy: the ones over the bound hear busy at once, the
+// state still answers, and the ones waiting get their results when the scans end.
+TEST_F(Http, WaitingClientsBeyondTheBoundHearBusyAndTheStateStillAnswers) {
+  HttpOptions o;
+  o.max_waiting = 3;
+  o.threads = 4;  // raised to 3 + kFreeThreads
+  start(o);
+  backend_.hold = true;  // every scan runs until released
+  const int clients = 12;
+  ASSERT_GT(clients, o.max_waiting + kFreeThreads);
+  std::vector<std::future<httplib::Result>> waiters;
+  for (int i = 0; i < clients; ++i) {
+    waiters.push_back(std::async(std::launch::async, [this, i] {
+      const nlohmann::json request = {{"kind", "bore"},
+                                      {"id", std::string("w").append(std::to_string(i))}};
+      return client().Post("/v1/detect", request.dump(), "application/json");
+    }));
+  }
+  // On a failed assertion too: the scans end before the waiters' futures are joined.
+  const std::unique_ptr<std::atomic<bool>, void (*)(std::atomic<bool>*)> release(
+      &backend_.hold, [](std::atomic<bool>* hold) { *hold = false; });
+  // Those over the bound are answered while the others still wait.
+  int busy = 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (busy < clients - o.max_waiting && std::chrono::steady_clock::now() < deadline) {
+    for (auto& w : waiters) {
+      if (!w.valid() || w.wait_for(std::chrono::seconds(0)) != std::future_status::ready) continue;
+      const httplib::Result r = w.get();
+      ASSERT_TRUE(r) << "a client over the bound got no answer";
+      EXPECT_EQ(r->status, 503) << r->body;
+      EXPECT_EQ(r->get_header_value("Retry-After"), "1");
+      EXPECT_EQ(body(r)["status"], "busy");
+      EXPECT_NE(body(r)["error"].get<std::string>().find("wait=0"), std::string::npos) << r->body;
+      ++busy;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_EQ(busy, clients - o.max_waiting);
+  // Every thread but the waiters' is free: the state and the results list answer now.
+  auto reader = client();
+  reader.set_read_timeout(5, 0);
+  const auto state = reader.Get("/v1/state");
+  ASSERT_TRUE(state) << "GET /v1/state got no answer while clients waited";
+  EXPECT_EQ(state->status, 200);
+  EXPECT_EQ(body(state)["in_flight"], o.max_waiting);
+  const auto recent = reader.Get("/v1/results?n=5");
+  ASSERT_TRUE(recent);
+  EXPECT_EQ(recent->status, 200);
+  // A client that does not wait is still taken.
+  EXPECT_EQ(client().Post("/v1/detect?wait=0", kRequest, "application/json")->status, 202);
+
+  backend_.hold = false;
+  int found = 0;
+  for (auto& w : waiters) {
+    if (!w.valid()) continue;
+    const httplib::Result r = w.get();
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 200) << r->body;
+    found += body(r)["found"] == true;
+  }
+  EXPECT_EQ(found, o.max_waiting);
 }
 
 TEST_F(Http, PortInUseIsAnError) {

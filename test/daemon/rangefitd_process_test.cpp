@@ -72,6 +72,14 @@ TEST(RangefitdProcess, NotifiesReadyWatchdogReloadRefusalAndStopping) {
   EXPECT_NE(refused.find("READY=1"), std::string::npos) << refused;
   EXPECT_NE(refused.find("service.queue_capacity"), std::string::npos) << refused;
   EXPECT_NE(sock.wait_for("WATCHDOG=1", std::chrono::milliseconds(30000)), "");
+  // A listen address outside the unit's IPAddressAllow= is refused on reload too.
+  if (std::string(RANGEFITD_IP_ADDRESS_ALLOW).find("any") == std::string::npos) {
+    write_config(config, dir / "spool", domain, "[http]\nlisten = \"198.51.100.1:8080\"\n");
+    kill(pid, SIGHUP);
+    const std::string outside = sock.wait_for("reload refused", std::chrono::milliseconds(30000));
+    EXPECT_NE(outside.find("http.listen \"198.51.100.1:8080\""), std::string::npos) << outside;
+    EXPECT_NE(outside.find("IPAddressAllow"), std::string::npos) << outside;
+  }
 
   kill(pid, SIGTERM);
   EXPECT_NE(sock.wait_for("STOPPING=1", std::chrono::milliseconds(30000)), "");
@@ -92,6 +100,26 @@ TEST(RangefitdProcess, BrokenConfigAtStartFailsWithTheFieldName) {
   std::ifstream err(dir / "err.txt");
   const std::string text((std::istreambuf_iterator<char>(err)), {});
   EXPECT_NE(text.find("dds.domain_id"), std::string::npos) << text;
+  fs::remove_all(dir);
+}
+
+// The unit drops every peer outside its IPAddressAllow=: rangefitd refuses to listen there
+// (the build's default list has no "any", so every address is outside it).
+TEST(RangefitdProcess, AListenAddressOutsideTheUnitsAllowListIsRefusedAtStart) {
+  const fs::path dir = fs::temp_directory_path() / "rangefitd_process_test_allow";
+  fs::create_directories(dir);
+  std::ofstream(dir / "wide.toml") << "[http]\nlisten = \"0.0.0.0:0\"\n";
+  const std::string cmd = std::string(RANGEFITD_PATH) + " --config " +
+                          (dir / "wide.toml").string() + " 2>" + (dir / "err.txt").string();
+  const bool any = std::string(RANGEFITD_IP_ADDRESS_ALLOW).find("any") != std::string::npos;
+  if (any) GTEST_SKIP() << "this build's IPAddressAllow= is " << RANGEFITD_IP_ADDRESS_ALLOW;
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  std::ifstream err(dir / "err.txt");
+  const std::string text((std::istreambuf_iterator<char>(err)), {});
+  EXPECT_NE(text.find("http.listen \"0.0.0.0:0\""), std::string::npos) << text;
+  EXPECT_NE(text.find(RANGEFITD_IP_ADDRESS_ALLOW), std::string::npos) << text;
   fs::remove_all(dir);
 }
 

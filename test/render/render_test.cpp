@@ -11,6 +11,8 @@
 #include "render/colour_map.hpp"
 #include "render/model_geometry.hpp"
 #include "render/render.hpp"
+#include "sim/stripe_scan.hpp"
+#include "sim/stripe_sweep.hpp"
 #include "sim/superquadric_raycast.hpp"
 #include "test/render/picture_checks.hpp"
 
@@ -110,6 +112,102 @@ TEST(Render, SuperquadricOutlineAndDistanceColours) {
     EXPECT_GT(part_colour.g, 150) << int(part_colour.r) << " " << int(part_colour.b);
     EXPECT_LT(part_colour.r, 120);
     EXPECT_EQ(pixel(r.image, c + Eigen::Vector2d(0.0, 120.0)), kFarColour);
+  }
+}
+
+// A sphere on the table scanned by the stripe cell (laser from above, camera 45 degrees off to
+// +y): with no view given, the first panel looks from the sensor the cloud says took it, and the
+// model's outline and the scanned cap sit where that view puts them.
+TEST(Render, AStripeScanIsDrawnFromItsOwnSensor) {
+  sim::ScenePart sphere;
+  sphere.name = "sphere";
+  sphere.model.a1 = sphere.model.a2 = sphere.model.a3 = 30.0;
+  const Eigen::Vector3d c(10.0, -5.0, 30.0);
+  sphere.T_world_part.translation() = c;
+  sim::ScanSetup setup;
+  setup.step_mm = 1.0;
+  setup.max_points = 40000;
+  setup.noise_mm = 0.0;
+  const Eigen::AlignedBox3d cover(Eigen::Vector3d(-45, -50, 0), Eigen::Vector3d(65, 40, 65));
+  const sim::StripeSweep sweep = sim::make_sweep(setup, cover);
+  sim::StripeScan scan = sim::scan_stripe(sim::PartCaster({sphere}), sweep, {}, 1);
+  scan.cloud.sensor = sweep.view();  // as the cell's scan loop records it
+  ASSERT_GT(scan.cloud.size(), 5000u);
+
+  Drawing drawing;
+  drawing.parts.push_back({sphere.name, sphere.model, sphere.T_world_part});
+  RenderOptions o;
+  o.panel_width = o.panel_height = 400;
+  o.look_at = c;
+  o.px_per_mm = 4.0;
+  o.colouring = Colouring::kModelDistance;
+  const Rendering r = render_scan(scan.cloud, drawing, o);
+  keep(r.image, "sphere_stripe_sensor_view");
+
+  // From between the laser apex and the camera of the profile through the sphere's centre.
+  const sim::ProfilePose pose = sweep.pose(sweep.position_of(c));
+  const Eigen::Vector3d toward =
+      ((pose.apex - c).normalized() + (pose.camera - c).normalized()).normalized();
+  EXPECT_TRUE(r.sensor.title.starts_with("sensor view")) << r.sensor.title;
+  // (It looks at the middle of the wireframe, within a hair of the centre.)
+  EXPECT_NEAR((r.sensor.view.toward - toward).norm(), 0.0, 1e-3) << r.sensor.view.toward;
+  // Not the default oblique view (from -y): the camera is on +y.
+  EXPECT_GT(r.sensor.view.toward.y(), 0.2);
+
+  const Panel& p = r.sensor;
+  const OrthoView& v = p.view;
+  // The wireframe's lines on the side facing the sensor are drawn where this view projects
+  // them (but where the part's axes, drawn over them, cross or run along them).
+  const std::vector<Polyline> wireframe = part_wireframe(drawing.parts.front());
+  const auto under_an_axis = [&](const Eigen::Vector2d& q) {
+    for (const Polyline& axis : wireframe) {
+      if (axis.role == LineRole::kModel) continue;
+      for (std::size_t k = 1; k < axis.points.size(); ++k) {
+        const Eigen::Vector2d a = p.pixel(axis.points[k - 1]), b = p.pixel(axis.points[k]);
+        const double t = std::clamp((q - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+        if ((a + t * (b - a) - q).norm() < 4.0) return true;
+      }
+    }
+    return false;
+  };
+  int checked = 0, drawn = 0;
+  for (const Polyline& line : wireframe) {
+    if (line.role != LineRole::kModel) continue;
+    for (std::size_t k = 0; k < line.points.size(); k += 3) {
+      const Eigen::Vector2d q = p.pixel(line.points[k]);
+      if (line.normals[k].dot(v.toward) < 0.5 || under_an_axis(q)) continue;
+      ++checked;
+      drawn += colour_near(r.image, q, kModelColour);
+    }
+  }
+  EXPECT_GT(checked, 40);
+  EXPECT_EQ(drawn, checked);
+  // The silhouette is a circle of 30 mm = 120 px around the centre, seen from any side: the
+  // scanned cap fills it (green, on the model) and the table shows beside it (grey, far from
+  // the model).
+  const Eigen::Vector2d centre = p.pixel(c);
+  EXPECT_NEAR((centre - Eigen::Vector2d(200.0, 200.0)).norm(), 0.0, 1e-9);
+  // (Most of a 7 x 7 patch: wireframe lines cross the cap; its lower rim, which the camera
+  // sees at a grazing angle, is sparse.)
+  const auto green_share = [&](const Eigen::Vector2d& q) {
+    int green = 0;
+    for (int dy = -3; dy <= 3; ++dy) {
+      for (int dx = -3; dx <= 3; ++dx) {
+        const Rgb px = pixel(r.image, q + Eigen::Vector2d(dx, dy));
+        green += px.g > 150 && px.r < 120;
+      }
+    }
+    return green / 49.0;
+  };
+  for (const double w : {0.4, 2.5, 3.5, 4.3, 5.0, 6.0}) {  // the upper half, away from the rim
+    const Eigen::Vector2d inside =
+        centre + 0.6 * 120.0 * Eigen::Vector2d(std::cos(w), -std::abs(std::sin(w)));
+    EXPECT_GT(green_share(inside), 0.6) << "angle " << w;
+  }
+  for (const double side : {-1.0, 1.0}) {  // the table to the left and right of the sphere
+    const Eigen::Vector2d beside = centre + Eigen::Vector2d(side * 1.3 * 120.0, -12.0);
+    EXPECT_EQ(pixel(r.image, beside), kFarColour) << "side " << side;
+    EXPECT_NE(pixel(r.image, centre + Eigen::Vector2d(side * 1.12 * 120.0, -12.0)), kModelColour);
   }
 }
 

@@ -231,5 +231,62 @@ TEST(Interfaces, ABusyCellAnswersBusyAndATimedOutScanTimeoutOnEveryInterface) {
   EXPECT_EQ(daemon.stop(), 0) << daemon.log();
 }
 
+// Waiting clients hold a server thread each: more of them than the server has threads, while
+// the cell is busy scanning. Those over the bound hear busy at once, the state answers all the
+// while, and every waiter gets its result or a clear error (here: the slow scans time out).
+TEST(Interfaces, MoreWaitingClientsThanServerThreadsLeaveTheStateAnswering) {
+  // queue_capacity 1: two may wait (the running scan and the queued one), 2 + 8 threads.
+  WebDaemon daemon("waiters", "queue_capacity = 1\nscan_timeout_s = 1.0", 1.0);
+  ASSERT_TRUE(daemon.wait_ready()) << daemon.log();
+  json slow = kBore;
+  slow["sweep"] = {-0.03, 0.03, 0.02};  // 3 s at the real pace: outlasts scan_timeout_s
+  const int clients = 14;
+  std::vector<std::future<httplib::Result>> waiters;
+  for (int i = 0; i < clients; ++i) {
+    slow["id"] = std::string("waiter-").append(std::to_string(i));
+    waiters.push_back(std::async(std::launch::async, [&daemon, request = slow.dump()] {
+      return daemon.client().Post("/v1/detect", request, "application/json");
+    }));
+  }
+  // While they wait (or are answered), the state answers every time it is asked.
+  int states = 0, states_while_waiting = 0;
+  for (bool waiting = true; waiting;) {
+    waiting = false;
+    for (auto& w : waiters) {
+      waiting = waiting || w.wait_for(std::chrono::seconds(0)) != std::future_status::ready;
+    }
+    auto reader = daemon.client(false);
+    reader.set_read_timeout(10, 0);
+    const auto state = reader.Get("/v1/state");
+    ASSERT_TRUE(state) << "GET /v1/state got no answer while clients waited";
+    EXPECT_EQ(state->status, 200) << state->body;
+    ++states;
+    states_while_waiting += waiting;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  EXPECT_GT(states_while_waiting, 0);
+  int busy = 0, timed_out = 0;
+  for (auto& w : waiters) {
+    const httplib::Result r = w.get();
+    ASSERT_TRUE(r) << "a waiting client got no answer";
+    const json body = parse(r);
+    if (r->status == 503) {
+      ++busy;
+      EXPECT_EQ(body["status"], "busy") << r->body;
+      EXPECT_EQ(r->get_header_value("Retry-After"), "1");
+    } else {
+      EXPECT_EQ(r->status, 504) << r->body;
+      EXPECT_EQ(body["status"], "timeout") << r->body;
+      ++timed_out;
+    }
+    EXPECT_FALSE(body.value("error", std::string()).empty()) << r->body;
+  }
+  EXPECT_EQ(busy + timed_out, clients);
+  EXPECT_GE(busy, clients - 2);
+  EXPECT_GE(timed_out, 1);
+  EXPECT_TRUE(daemon.alive());
+  EXPECT_EQ(daemon.stop(), 0) << daemon.log();
+}
+
 }  // namespace
 }  // namespace rangefit::test
