@@ -11,6 +11,7 @@
 
 #include "daemon/dds/dds.hpp"
 #include "daemon/dds/messages.hpp"
+#include "daemon/dds/reply_gate.hpp"
 #include "daemon/dds/ros_service.hpp"
 #include "daemon/dds/topics.hpp"
 #include "daemon/service/config.hpp"
@@ -57,7 +58,8 @@ class DdsService final : public ResultSink {
   topics::Writer<topics::Tf> tf_static_;
   topics::Writer<topics::Models> models_;
   RosDetectService service_;
-  FramesConfig frames_;  // guarded by mutex_
+  ReplyGate reply_gate_;  // an answer waits (bounded) for its requester's result reader
+  FramesConfig frames_;   // guarded by mutex_
   std::uint64_t write_failures_ = 0;
 };
 
