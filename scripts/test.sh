@@ -9,4 +9,4 @@ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DRANGEFIT_BUILD_TESTS=ON \
   -DRANGEFIT_BUILD_BENCHMARKS=ON -DRANGEFIT_SANITIZE=OFF
 cmake --build "$build" -j"$(nproc)"
 # Tests labelled hil need the qemu VM (test/hil); .ci/run runs them separately.
-ctest --test-dir "$build" --output-on-failure -j"$(nproc)" -LE hil
+ctest --test-dir "$build" --output-on-failure -j"$(nproc)" -LE "hil|soak"

@@ -155,6 +155,11 @@ class Reader {
   // Samples are loaned from Cyclone and returned before take_each returns.
   template <class F>
   int take_each(F&& f) {
+    return take_each_with_info([&](const T& sample, const dds_sample_info_t&) { f(sample); });
+  }
+  // The same with each sample's info (f(const T&, const dds_sample_info_t&)): who wrote it.
+  template <class F>
+  int take_each_with_info(F&& f) {
     int count = 0;
     for (;;) {
       void* samples[16] = {};
@@ -163,7 +168,7 @@ class Reader {
       if (n <= 0) break;
       for (dds_return_t i = 0; i < n; ++i) {
         if (infos[i].valid_data) {
-          f(*static_cast<const T*>(samples[i]));
+          f(*static_cast<const T*>(samples[i]), infos[i]);
           ++count;
         }
       }

@@ -22,6 +22,12 @@ std::string participant_config(const DdsConfig& config) {
   return with_dds_security(uri, config.security);
 }
 
+// How long an answer waits for its requester's result reader to be matched. A client that
+// started its reader just before sending is matched within milliseconds on one host; one that
+// never reads costs this once (ReplyGate). rmw_cyclonedds waits 100 ms; a loaded cell's
+// discovery (or a sanitizer build) can take longer.
+constexpr auto kReplyReaderWait = std::chrono::milliseconds(500);
+
 }  // namespace
 
 DdsService::DdsService(const DdsConfig& config)
@@ -39,6 +45,7 @@ DdsService::DdsService(const DdsConfig& config)
       detections3d_(participant_, topics::detections3d(config.ros_namespace)),
       markers_(participant_, topics::markers(config.ros_namespace)),
       service_(participant_, config.ros_namespace),
+      reply_gate_(requests_.get(), detections_.get(), kReplyReaderWait),
       frame_prefix_(config.ros_namespace.empty() ? "" : config.ros_namespace + "/") {
   requests_.also_wake_on(service_.reader());
 }
@@ -65,6 +72,7 @@ void DdsService::on_cloud(const ScanRequest&, const PointCloud& cloud) {
 }
 
 void DdsService::on_result(const DetectionResult& result) {
+  reply_gate_.wait_for_reader(result.request_id);  // before the lock: clouds and state go on
   std::lock_guard lock(mutex_);
   const DetectionOut out(result, frames_.world);
   count(detections_.write(out.msg()));
@@ -100,11 +108,13 @@ void DdsService::publish_diagnostics(std::vector<DiagStatus> statuses) {
 int DdsService::poll_requests(std::chrono::nanoseconds timeout,
                               const std::function<void(ScanRequest, const std::string&)>& handle) {
   if (!requests_.wait(timeout)) return 0;
-  const int topic = requests_.take_each([&](const rangefit_msgs_msg_dds__DetectRequest_& msg) {
-    std::string error;
-    ScanRequest req = from_msg(msg, &error);
-    handle(std::move(req), error);
-  });
+  const int topic = requests_.take_each_with_info(
+      [&](const rangefit_msgs_msg_dds__DetectRequest_& msg, const dds_sample_info_t& info) {
+        std::string error;
+        ScanRequest req = from_msg(msg, &error);
+        reply_gate_.note(req.id, info.publication_handle);  // handle() may answer at once
+        handle(std::move(req), error);
+      });
   return topic + service_.take(handle);
 }
 

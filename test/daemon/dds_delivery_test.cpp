@@ -126,6 +126,40 @@ TEST_F(DdsDeliveryTest, EightyConcurrentClientsEachGetTheirOneAnswer) {
   EXPECT_GT(found.load(), 0);
 }
 
+// A client whose result reader starts only after its requests went out (a slow subscriber,
+// or one whose reader is matched by the daemon later than its writer): quick "bad request"
+// answers must wait for that reader instead of being written into the gap, where transient-local
+// would hand the reader only the last of them.
+TEST_F(DdsDeliveryTest, AnswersReachAClientWhoseResultReaderStartsAfterItsRequests) {
+  start();
+  dds::Participant participant(config_.dds.domain_id);
+  topics::Writer<topics::Request> requests(participant, topics::request(64));
+  const auto deadline = Clock::now() + seconds(20);
+  while (requests.matched() == 0 && Clock::now() < deadline) {
+    std::this_thread::sleep_for(milliseconds(5));
+  }
+  ASSERT_GT(requests.matched(), 0) << "the daemon's request reader was not discovered";
+  constexpr int kRequests = 10;
+  for (int i = 0; i < kRequests; ++i) {
+    const RequestOut out(bore("early-" + std::to_string(i), 0.0), false);  // "bad request"
+    ASSERT_TRUE(requests.write(out.msg()));
+  }
+  std::this_thread::sleep_for(milliseconds(100));  // the daemon has taken and answered them
+  topics::Reader<topics::Detections> results(participant, topics::detections_reader());
+  std::set<std::string> answered;
+  const auto until = Clock::now() + seconds(10);
+  while (answered.size() < kRequests && Clock::now() < until) {
+    results.wait(milliseconds(100));
+    results.take_each([&](const rangefit_msgs_msg_dds__Detection_& m) {
+      const DetectionResult r = from_msg(m);
+      EXPECT_EQ(r.reason.rfind("bad request: ", 0), 0u) << r.reason;
+      answered.insert(r.request_id);
+    });
+  }
+  EXPECT_EQ(answered.size(), static_cast<std::size_t>(kRequests))
+      << "answers written before the client's result reader was matched were lost";
+}
+
 // rangefitd's main loop on one thread: steps the service and, when asked, reloads on the same
 // thread (as SIGHUP does), recording when the reload returned.
 class ReloadingLoop {
