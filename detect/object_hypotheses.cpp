@@ -144,6 +144,10 @@ double table_margin_mm(const ObjectDetectOptions& o, double min_size_mm, double 
   return std::max(o.plane_margin_mm, 0.1 * min_size_mm) + 3.0 * noise_mm;
 }
 
+double rest_tolerance_mm(const ObjectDetectOptions& o, double max_size_mm, double noise_mm) {
+  return o.rest_noise_factor * noise_mm + o.rest_size_share * max_size_mm;
+}
+
 std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t a, std::uint64_t b) {
   std::uint64_t s = seed;
   s ^= splitmix64(s) + a * 0x632BE59BD9B4E019ull;

@@ -236,11 +236,11 @@ inline void print_varied_case(sim::VariedTarget target, bool pan_tilt, std::uint
       const PartScores& sc = p.scores;
       std::printf(
           "  found %s at %.1f %.1f %.1f (%s): M %.3f I %zu S %zu cover %.2f of %d/%d "
-          "seen-through %.2f size %d %.3f residual %.2f continues %.3f\n",
+          "seen-through %.2f size %d %.3f residual %.2f continues %.3f lowest %.2f\n",
           p.name.c_str(), p.center().x(), p.center().y(), p.center().z(),
           nearest(p.center()).c_str(), sc.measure, sc.interior, sc.surface, sc.coverage,
           sc.measurable, sc.facing, sc.seen_through, sc.size_determined ? 1 : 0, sc.size_scale,
-          sc.residual_mm, sc.continuation);
+          sc.residual_mm, sc.continuation, sc.lowest_mm);
     }
   }
   for (const Rejection& j : r.rejections) {
