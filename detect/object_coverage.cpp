@@ -12,6 +12,11 @@ namespace {
 // sparsely (or not at all), and its lines of sight graze the part's own measured surface.
 constexpr double kMinIncidenceCosine = 0.25;
 
+// Exponents up to this make flat faces with rounded edges; the rest-on-table check takes those
+// edges as sharp (this exponent).
+constexpr double kFlatEdgeExponent = 0.5;
+constexpr double kSharpExponent = 0.02;
+
 // Eyes of an unknown sensor are this far away along their direction (mm): beyond any scene.
 constexpr double kFarEye = 1e4;
 
@@ -55,6 +60,41 @@ FarEyes far_eyes(const SuperquadricMetric& m, const Eigen::Isometry3d& T, double
   if (plane && plane->valid) e.dir[e.count++] = plane->normal.normalized();
   e.dir[e.count++] = towards;
   return e;
+}
+
+// Height of the posed part's lowest point above the plane (along its normal): the minimum over a
+// coarse grid of the surface's parametrisation, then over finer grids around it. The coverage's
+// samples alone leave a rounded bottom up to a few tenths of a millimetre above its lowest point,
+// as much as the rest-on-table check must tell apart.
+double lowest_height(const Superquadric& sq, const Eigen::Isometry3d& T, const pca::Plane& plane) {
+  constexpr int kEta = 16, kOmega = 32, kRefinements = 4;
+  const Eigen::Vector3d n = T.linear().transpose() * plane.normal;  // part frame
+  const double base = plane.normal.dot(T.translation() - plane.point);
+  const auto height = [&](double eta, double omega) {
+    eta = std::clamp(eta, -0.5 * std::numbers::pi, 0.5 * std::numbers::pi);
+    return base + n.dot(surface_point(sq, eta, omega));
+  };
+  double d_eta = std::numbers::pi / kEta, d_omega = 2.0 * std::numbers::pi / kOmega;
+  double best_eta = 0.0, best_omega = 0.0, best = INFINITY;
+  for (int i = 0; i <= kEta; ++i) {
+    for (int j = 0; j < kOmega; ++j) {
+      const double eta = -0.5 * std::numbers::pi + i * d_eta,
+                   omega = -std::numbers::pi + j * d_omega;
+      const double h = height(eta, omega);
+      if (h < best) best = h, best_eta = eta, best_omega = omega;
+    }
+  }
+  for (int r = 0; r < kRefinements; ++r) {
+    d_eta *= 0.4, d_omega *= 0.4;
+    const double e0 = best_eta, o0 = best_omega;
+    for (int i = -2; i <= 2; ++i) {
+      for (int j = -2; j <= 2; ++j) {
+        const double h = height(e0 + i * d_eta, o0 + j * d_omega);
+        if (h < best) best = h, best_eta = e0 + i * d_eta, best_omega = o0 + j * d_omega;
+      }
+    }
+  }
+  return best;
 }
 
 }  // namespace
@@ -132,9 +172,20 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
     }
   }
   SurfaceCoverage c;
+  if (o.removed_plane && o.removed_plane->valid) {
+    // Sinking is judged on the model itself and standing above the table on its sharp hull: a
+    // flat-faced part's rounded edges (eps 0.1) lie a few per cent inside the real object's
+    // edges, so a box tilted onto an edge rests on the table while its model stands ~3 mm above.
+    below = std::max(0.0, -lowest_height(sq, T, *o.removed_plane));
+    Superquadric sharp = sq;
+    if (sharp.eps1 <= kFlatEdgeExponent) sharp.eps1 = kSharpExponent;
+    if (sharp.eps2 <= kFlatEdgeExponent) sharp.eps2 = kSharpExponent;
+    lowest = lowest_height(sharp, T, *o.removed_plane);
+  }
   c.below_plane_mm = below;
   c.lowest_mm = std::isfinite(lowest) ? lowest : 0.0;
   c.min_size_mm = sq.min_size();
+  c.max_size_mm = sq.max_size();
   c.facing = facing;
   if (measurable == 0) return c;
   c.measurable = measurable;

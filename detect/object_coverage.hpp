@@ -46,9 +46,12 @@ struct SurfaceCoverage {
                                 // have measured them
   double covered = 0.0;         // share of them with a scan point near them
   double seen_through = 0.0;    // share of them the sensor saw past: free space
-  double below_plane_mm = 0.0;  // how far the part reaches through the removed plane
-  double lowest_mm = 0.0;       // height of its lowest point above the removed plane
+  double below_plane_mm = 0.0;  // how far the part (as modelled) reaches through the removed plane
+  double lowest_mm = 0.0;       // height of its lowest point above the removed plane, its flat
+                                // faces' rounded edges taken as sharp (refined on the surface's
+                                // parametrisation, to ~0.01 mm)
   double min_size_mm = 0.0;     // the part's smallest size parameter
+  double max_size_mm = 0.0;     // and its largest
 };
 
 // Samples are spread over the surface evenly in the part's normalised coordinates (exactly even

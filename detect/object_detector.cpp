@@ -57,7 +57,7 @@ bool options_ok(const ObjectDetectOptions& o) {
          o.min_coverage_unknown_sensor >= 0.0 && o.max_seen_through >= 0.0 &&
          o.max_size_deviation > 0.0 && o.max_candidates >= 1 && o.min_measurable_samples >= 0 &&
          o.min_measurable_share >= 0.0 && o.max_continuation >= 0.0 && o.plane_margin_mm >= 0.0 &&
-         valid(o.sensor);
+         o.rest_noise_factor >= 0.0 && o.rest_size_share >= 0.0 && valid(o.sensor);
 }
 
 // The check of eq. 5.2-5.4 that a hypothesis fails (see ObjectDetectOptions::max_measure).
@@ -169,10 +169,10 @@ void run_batch(const HypothesisContext& ctx, const Superquadric& part, std::size
 
 // The rest_on_plane check for a part, or the lowest part of an object (see
 // ObjectDetectOptions::rest_on_plane); noise_mm is the table's noise.
-std::optional<Rejection> floating(double lowest_mm, double min_size_mm, bool plane_removed,
+std::optional<Rejection> floating(double lowest_mm, double max_size_mm, bool plane_removed,
                                   double noise_mm, const ObjectDetectOptions& o) {
   if (!o.rest_on_plane || !plane_removed) return std::nullopt;
-  const double limit = table_margin_mm(o, min_size_mm, noise_mm);
+  const double limit = rest_tolerance_mm(o, max_size_mm, noise_mm);
   if (lowest_mm > limit) {
     return Rejection{0, Check::kFloating, lowest_mm, limit, Eigen::Vector3d::Zero()};
   }
@@ -238,11 +238,12 @@ std::optional<Rejection> judge_part(const HypothesisContext& ctx, const Superqua
     scores->measurable = c.measurable;
     scores->coverage = c.covered;
     scores->seen_through = c.seen_through;
+    scores->lowest_mm = c.lowest_mm;
   }
   std::optional<Rejection> why =
       unconfirmed(c, o, cover.sensor.kind != SensorView::Kind::kUnknown, alone, noise_mm);
   if (!why && alone) {
-    why = floating(c.lowest_mm, part.min_size(), cover.removed_plane.has_value(), noise_mm, o);
+    why = floating(c.lowest_mm, part.max_size(), cover.removed_plane.has_value(), noise_mm, o);
   }
   if (!why) why = misfit(ctx, part, T, others, noise_mm, scores);
   if (!why) why = continues(ctx, part, T, others, noise_mm, scores);
@@ -762,7 +763,7 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
                        single, &part.scores, &seen);
       if (why) why->part = p;
       if (seen.lowest_mm < lowest) {
-        lowest = seen.lowest_mm, lowest_size = model.parts[p].shape.min_size(), lowest_part = p;
+        lowest = seen.lowest_mm, lowest_size = model.parts[p].shape.max_size(), lowest_part = p;
       }
       facing += seen.facing, measurable += seen.measurable;
     }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "detect/pose_fit.hpp"
+#include "detect/sensor_view.hpp"
 
 namespace rangefit {
 namespace {
@@ -141,6 +142,10 @@ Eigen::Isometry3d refine(const HypothesisContext& ctx, const Superquadric& part,
 
 double table_margin_mm(const ObjectDetectOptions& o, double min_size_mm, double noise_mm) {
   return std::max(o.plane_margin_mm, 0.1 * min_size_mm) + 3.0 * noise_mm;
+}
+
+double rest_tolerance_mm(const ObjectDetectOptions& o, double max_size_mm, double noise_mm) {
+  return o.rest_noise_factor * noise_mm + o.rest_size_share * max_size_mm;
 }
 
 std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t a, std::uint64_t b) {
@@ -290,6 +295,14 @@ PartHypothesis generate_hypothesis(const HypothesisContext& ctx, const Superquad
   const ExplainedBy none({}, o);
   const ExplainedBy set_aside(ctx.seed_excluded, o);
   const double table_margin = table_margin_mm(o, part.min_size(), ctx.table_noise_mm);
+  // Of the moment starts, only those resting on the table are taken: a patch of a lying box's top
+  // face fits the box standing through the table (its long axis along the normal) as well as the
+  // box lying on it, and the trial would be lost.
+  if (ctx.table) {
+    init.admissible = [&](const Eigen::Isometry3d& T) {
+      return sinks_by(part, T, *ctx.table) <= table_margin;
+    };
+  }
   double best_measure = std::numeric_limits<double>::infinity();
   for (int trial = 0; trial < o.trials; ++trial) {
     // A random seed point and a random patch within the smallest size parameter (5.1.2); seeds
@@ -306,6 +319,13 @@ PartHypothesis generate_hypothesis(const HypothesisContext& ctx, const Superquad
     for (std::size_t i = 0; i < want; ++i) {  // partial Fisher-Yates
       std::swap(nbr[i], nbr[i + uniform_index(state, nbr.size() - i)]);
       sample.push_back(ctx.points[nbr[i]]);
+    }
+    // With the sensor known but no single viewpoint (a sweep), the patch was seen from the eye
+    // that lit its seed point: the part lies behind the patch from there. Both sides fit a flat
+    // patch equally well, and a box set on the wrong side of its face stays there.
+    if (!o.viewpoint) {
+      const Eyes eyes = sensor_eyes(o.sensor, c);
+      init.viewpoint = eyes.count > 0 ? std::optional<Eigen::Vector3d>(eyes.at[0]) : std::nullopt;
     }
     const PoseFitResult fit = fit_pose_from_moments(part, sample, init);
     if (!fit.ok()) continue;

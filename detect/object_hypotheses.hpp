@@ -42,6 +42,10 @@ struct HypothesisContext {
 // for the RANSAC trials, the below-plane check and the rest-on-plane check.
 double table_margin_mm(const ObjectDetectOptions& options, double min_size_mm, double noise_mm);
 
+// How far a confirmed part's lowest point may be from the table (ObjectDetectOptions::
+// rest_noise_factor): the scan's noise and a small share of the part's largest size (its tilt).
+double rest_tolerance_mm(const ObjectDetectOptions& options, double max_size_mm, double noise_mm);
+
 // A part already placed (another part of the same compound object): the points it explains
 // (G < 1 + refine_trim of its own, or 1 + gamma without trimming) stay out of the refinement
 // and scores of the part being fitted, so a head does not drag its shaft towards itself.

@@ -222,7 +222,9 @@ PoseFitResult fit_pose_from_moments(const Superquadric& sq, std::span<const Eige
       T.linear() = R;
       T.translation() = c - (s == 0 ? 1.0 : -1.0) * depth * normal;
       const PoseFitResult r = fit_pose(sq, points, T, short_options);
-      if (r.ok() && r.measure < best.measure) best = r;
+      if (r.ok() && r.measure < best.measure &&
+          (!init.admissible || init.admissible(r.T_world_part)))
+        best = r;
     }
   }
   if (!std::isfinite(best.measure)) return best;

@@ -5,6 +5,7 @@
 // damping and stopping rules are those of eq. 2.58-2.65 (Madsen/Nielsen/Tingleff).
 
 #include <Eigen/Geometry>
+#include <functional>
 #include <optional>
 #include <span>
 
@@ -53,6 +54,10 @@ struct MomentInitOptions {
   // When set, the part centre is assumed on the far side of the surface seen from here (a
   // single-view scan sees the front of each part); when not, both sides are tried.
   std::optional<Eigen::Vector3d> viewpoint;
+  // When set, only candidate poses it accepts (after their short fit) are chosen: a flat patch
+  // fits every candidate equally well, and the one picked by M alone may be a part standing
+  // through the table when the other would rest on it. None accepted: no fit (not ok()).
+  std::function<bool(const Eigen::Isometry3d&)> admissible;
 };
 
 // Thesis 5.1.2: the z-axis is tried along each of the three central-moment directions of the

@@ -8,9 +8,10 @@
 //   object_benchmark --methods [--seeds N] thesis methods A-D vs ours, like table 5.5
 //   object_benchmark --noise [--seeds N]  TP rate vs noise on the three-sphere scene (fig. 5.29)
 //   object_benchmark --varied [--seeds N] [--per-factor] [--pan-tilt] [--no-sensor] [--held-out]
-//                                         TP, wrong, missed and false positives on seeded varied
+//                    [--target TARGET]    TP, wrong, missed and false positives on seeded varied
 //                                         stripe scans (object_varied_report.hpp), per target
-//                                         and per factor; tuning seeds, or the held-out ones
+//                                         (or one) and per factor; tuning seeds, or the held-out
+//                                         ones
 //   object_benchmark --varied-case TARGET SEED [--pan-tilt] [--no-sensor]
 //                                         one varied scene in detail: drawn parts, result,
 //                                         rejections and the scene part each place is on
@@ -407,7 +408,7 @@ int main(int argc, char** argv) {
   bool tp = false, methods = false, noise = false, varied = false;
   bool per_factor = false, pan_tilt = false, sensor_known = true, held_out = false;
   std::vector<char*> rest = {argv[0]};
-  std::string case_target;
+  std::string case_target, only_target;
   std::uint64_t case_seed = 0;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--tp")) {
@@ -429,6 +430,8 @@ int main(int argc, char** argv) {
     } else if (!std::strcmp(argv[i], "--varied-case") && i + 2 < argc) {
       case_target = argv[++i];
       case_seed = std::strtoull(argv[++i], nullptr, 10);
+    } else if (!std::strcmp(argv[i], "--target") && i + 1 < argc) {
+      only_target = argv[++i];
     } else if (!std::strcmp(argv[i], "--seeds") && i + 1 < argc) {
       seeds = std::max(1, std::atoi(argv[++i]));
     } else {
@@ -438,7 +441,14 @@ int main(int argc, char** argv) {
   if (tp) rangefit::print_tp(seeds);
   if (methods) rangefit::print_methods(seeds);
   if (noise) rangefit::print_noise(seeds);
-  if (varied) rangefit::bench::print_varied(seeds, per_factor, pan_tilt, sensor_known, held_out);
+  if (varied) {
+    const auto only = rangefit::sim::varied_target_from(only_target);
+    if (!only_target.empty() && !only) {
+      std::fprintf(stderr, "unknown target %s\n", only_target.c_str());
+      return 2;
+    }
+    rangefit::bench::print_varied(seeds, per_factor, pan_tilt, sensor_known, held_out, only);
+  }
   if (!case_target.empty()) {
     const auto target = rangefit::sim::varied_target_from(case_target);
     if (!target) {

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -134,9 +135,10 @@ inline std::vector<Factor> varied_factors() {
   };
 }
 
-// One block of the report: every target over `seeds` seeds from `first`.
+// One block of the report: every target (or only `only`) over `seeds` seeds from `first`.
 inline void print_varied_block(const char* title, std::uint64_t first, int seeds, bool pan_tilt,
-                               bool sensor_known, bool per_factor) {
+                               bool sensor_known, bool per_factor,
+                               std::optional<sim::VariedTarget> only) {
   std::printf("\n%s: seeds %llu..%llu, %s, sensor %s\n", title,
               static_cast<unsigned long long>(first),
               static_cast<unsigned long long>(first + static_cast<std::uint64_t>(seeds) - 1),
@@ -146,6 +148,7 @@ inline void print_varied_block(const char* title, std::uint64_t first, int seeds
                                        sim::VariedTarget::kMallet, sim::VariedTarget::kThreeSpheres,
                                        sim::VariedTarget::kNone};
   for (sim::VariedTarget target : targets) {
+    if (only && target != *only) continue;
     std::vector<VariedCase> cases;
     for (int i = 0; i < seeds; ++i) {
       cases.push_back(
@@ -233,11 +236,11 @@ inline void print_varied_case(sim::VariedTarget target, bool pan_tilt, std::uint
       const PartScores& sc = p.scores;
       std::printf(
           "  found %s at %.1f %.1f %.1f (%s): M %.3f I %zu S %zu cover %.2f of %d/%d "
-          "seen-through %.2f size %d %.3f residual %.2f continues %.3f\n",
+          "seen-through %.2f size %d %.3f residual %.2f continues %.3f lowest %.2f\n",
           p.name.c_str(), p.center().x(), p.center().y(), p.center().z(),
           nearest(p.center()).c_str(), sc.measure, sc.interior, sc.surface, sc.coverage,
           sc.measurable, sc.facing, sc.seen_through, sc.size_determined ? 1 : 0, sc.size_scale,
-          sc.residual_mm, sc.continuation);
+          sc.residual_mm, sc.continuation, sc.lowest_mm);
     }
   }
   for (const Rejection& j : r.rejections) {
@@ -250,13 +253,13 @@ inline void print_varied_case(sim::VariedTarget target, bool pan_tilt, std::uint
 // The tuning seeds, or the held-out seeds (never looked at while tuning: run them only to
 // report).
 inline void print_varied(int seeds, bool per_factor, bool pan_tilt, bool sensor_known,
-                         bool held_out) {
+                         bool held_out, std::optional<sim::VariedTarget> only = std::nullopt) {
   if (held_out) {
     print_varied_block("Held-out seeds", sim::kHeldOutSeedBase, seeds, pan_tilt, sensor_known,
-                       per_factor);
+                       per_factor, only);
   } else {
     print_varied_block("Tuning seeds", sim::kTuningSeedBase, seeds, pan_tilt, sensor_known,
-                       per_factor);
+                       per_factor, only);
   }
 }
 
