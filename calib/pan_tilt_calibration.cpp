@@ -1,6 +1,8 @@
 #include "calib/pan_tilt_calibration.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 
 #include "detect/normals.hpp"
@@ -96,6 +98,21 @@ HeadState step(const HeadState& s, const Vector8d& h) {
   return o;
 }
 
+// Median distance between neighbouring profiles' points (same fan ray): a pan step of a few
+// tenths of a degree is several mm at the cube, and a patch smaller than that has no normal.
+double profile_spacing(const PointCloud& c) {
+  std::vector<double> d;
+  for (int r = 0; r + 1 < c.grid.rows; ++r) {
+    for (int k = 0; k < c.grid.cols; k += 8) {
+      const std::int32_t a = c.grid.at(r, k), b = c.grid.at(r + 1, k);
+      if (a >= 0 && b >= 0) d.push_back((c.points[a] - c.points[b]).norm());
+    }
+  }
+  if (d.empty()) return 0.0;
+  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+  return d[d.size() / 2];
+}
+
 // The six planes of one sweep under the estimate, as points tagged with their true plane;
 // `missing` counts the planes not found.
 std::vector<PlanePoint> plane_points(const Sweep& sw, const HeadState& st,
@@ -115,7 +132,7 @@ std::vector<PlanePoint> plane_points(const Sweep& sw, const HeadState& st,
     }
   }
   NormalOptions no;
-  no.radius = o.normal_radius_mm;
+  no.radius = std::max(o.normal_radius_mm, 1.5 * profile_spacing(cloud));
   no.view_dir = towards.normalized();
   const NormalEstimate estimate = estimate_normals_organised(cloud, near, no);
   std::vector<Vector3d> normals(sw.pts.size(), Vector3d::Zero());
@@ -200,13 +217,17 @@ PanTiltCalibrationResult calibrate_pan_tilt(const PanTiltCalibrationInput& input
   result.geometry.t_w_mm = st.t_w;
   result.geometry.pan_zero_rad = st.pan_zero;
   result.geometry.tilt_zero_rad = st.tilt_zero;
-  const Eigen::FullPivLU<PanTiltMatrix8d> lu(fit.lin.jtj);
-  if (!lu.isInvertible()) {
+  // Inverted with unit diagonal: the angles' rows are ~(750 mm)^2 times the translations', too
+  // far apart for a rank test on the raw matrix.
+  const Vector8d d = fit.lin.jtj.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+  const PanTiltMatrix8d scaled = d.asDiagonal() * fit.lin.jtj * d.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<PanTiltMatrix8d> eig(scaled);
+  if (eig.info() != Eigen::Success || !(eig.eigenvalues()[0] > 1e-12 * eig.eigenvalues()[7])) {
     result.reason = "the sweeps do not determine the head (sweep at two or more tilt angles)";
     return result;
   }
   const double sigma2 = 2.0 * fit.lin.cost / std::max(1.0, n - 8.0);
-  result.covariance = sigma2 * lu.inverse();
+  result.covariance = sigma2 * d.asDiagonal() * scaled.inverse() * d.asDiagonal();
   const Vector8d sd = result.covariance.diagonal().cwiseSqrt();
   result.t_s_sigma_mm = sd.head<3>();
   result.t_w_sigma_mm = sd.segment<3>(3);
