@@ -1,5 +1,6 @@
 #include "detect/model_learning.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -90,14 +91,44 @@ const char* to_string(LearnReason reason) {
       return "too few object points to fit";
     case LearnReason::kInvalidOptions:
       return "invalid options";
+    case LearnReason::kNonFinitePoints:
+      return "the cloud holds NaN or infinite coordinates";
+    case LearnReason::kAllAtOnePoint:
+      return "all points are at the same place: nothing to fit";
+    case LearnReason::kCollinear:
+      return "the points lie on a line: no surface to fit";
   }
   return "unknown";
+}
+
+LearnReason check_learn_points(std::span<const Eigen::Vector3d> points) {
+  for (const Eigen::Vector3d& p : points) {
+    if (!p.allFinite()) return LearnReason::kNonFinitePoints;
+  }
+  if (points.size() < kMinLearnPoints) return LearnReason::kTooFewPoints;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : points) mean += p;
+  mean /= static_cast<double>(points.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const Eigen::Vector3d& p : points) cov += (p - mean) * (p - mean).transpose();
+  cov /= static_cast<double>(points.size());
+  // Spreads (1 sigma) along the principal axes, ascending. A part is mm across at the least,
+  // so a spread of a micrometre is none; a line is a second spread 1e-4 of the first or less.
+  const Eigen::Vector3d sd =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov, Eigen::EigenvaluesOnly)
+          .eigenvalues()
+          .cwiseMax(0.0)
+          .cwiseSqrt();
+  constexpr double kNoSpreadMm = 1e-3;
+  if (!(sd[2] > kNoSpreadMm)) return LearnReason::kAllAtOnePoint;
+  if (!(sd[1] > std::max(kNoSpreadMm, 1e-4 * sd[2]))) return LearnReason::kCollinear;
+  return LearnReason::kLearnt;
 }
 
 PartFit learn_part(std::span<const Eigen::Vector3d> object_points,
                    const std::optional<pca::Plane>& plane, const LearnOptions& options) {
   PartFit out;
-  if (object_points.size() < 20) return out;
+  if (check_learn_points(object_points) != LearnReason::kLearnt) return out;
   const std::vector<Eigen::Vector3d> coarse = spread(object_points, options.start_points);
   const std::vector<Eigen::Vector3d> fine = spread(object_points, options.fit_points);
   // Ellipsoid, cylinder-like, box-like and pinched (eps > 1) starts; tapered ones standing.
@@ -156,6 +187,11 @@ LearnResult learn_model(std::span<const Eigen::Vector3d> points, const LearnOpti
     return r;
   }
   if (points.empty()) return r;  // kEmptyCloud
+  // Nothing below can make sense of these; say so rather than return a fit.
+  if (const LearnReason why = check_learn_points(points); why != LearnReason::kLearnt) {
+    r.reason = why;
+    return r;
+  }
   SegmentOptions seg = options.segment;
   seg.plane.seed = options.seed;
   seg.keep = options.parts;
@@ -165,6 +201,11 @@ LearnResult learn_model(std::span<const Eigen::Vector3d> points, const LearnOpti
     return r;
   }
   const std::vector<Eigen::Vector3d> object = gather(points, r.segment.object);
+  // A wire (or a line of noise) left beside the table.
+  if (const LearnReason why = check_learn_points(object); why != LearnReason::kLearnt) {
+    r.reason = why;
+    return r;
+  }
   std::optional<pca::Plane> plane;
   if (r.segment.plane.removed()) plane = r.segment.plane.plane;
   LearnOptions o = options;
