@@ -42,8 +42,11 @@ std::vector<Eigen::Vector3d> gather(std::span<const Eigen::Vector3d> points,
   return out;
 }
 
-ShapeFitOptions fit_options(const LearnOptions& o, double reference_volume, int iterations) {
+ShapeFitOptions fit_options(const LearnOptions& o, double reference_volume, int iterations,
+                            const std::optional<Eigen::Vector4d>& support = std::nullopt) {
   ShapeFitOptions f;
+  f.support_plane = support;
+  f.support_weight = o.support_weight;
   f.max_iterations = iterations;
   f.reference_volume = reference_volume;
   f.volume_weight = o.volume_weight;
@@ -135,6 +138,14 @@ PartFit learn_part(std::span<const Eigen::Vector3d> object_points,
   static constexpr StartShape kShapes[] = {{1.0, 1.0}, {0.3, 1.0},       {0.3, 0.3},
                                            {1.6, 1.6}, {0.3, 1.0, -0.6}, {1.0, 1.0, -0.6}};
   std::vector<PosedSuperquadric> starts = learn_starts(coarse, plane, kShapes);
+  // A single part stands on the table (its normal turned towards it); a part of a compound
+  // object need not reach it.
+  std::optional<Eigen::Vector4d> support;
+  if (plane && plane->valid && options.parts == 1 && options.support_weight > 0.0) {
+    Eigen::Vector3d n = plane->normal.normalized();
+    if (n.dot(pca::centroid(object_points) - plane->point) < 0.0) n = -n;
+    support = Eigen::Vector4d(n.x(), n.y(), n.z(), n.dot(plane->point));
+  }
   if (options.parts > 1 && plane) {
     // A part of a compound object need not reach down to the table (a mallet's shaft).
     const std::vector<PosedSuperquadric> free = learn_starts(coarse, std::nullopt, kShapes);
@@ -158,8 +169,8 @@ PartFit learn_part(std::span<const Eigen::Vector3d> object_points,
   auto finish = [&](int from, int to) {
     for (int k = from; k < to; ++k) {
       if (!short_fits[k].ok) continue;
-      ShapeFitResult f =
-          fit_superquadric(fine, short_fits[k].part, fit_options(options, v0, options.iterations));
+      ShapeFitResult f = fit_superquadric(fine, short_fits[k].part,
+                                          fit_options(options, v0, options.iterations, support));
       if (f.ok && (!out.fit.ok || f.cost < out.fit.cost)) out.fit = f;
     }
   };

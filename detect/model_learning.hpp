@@ -43,7 +43,9 @@ struct LearnOptions {
   double retry_residual_mm = 0.0;
   double retry_noise_factor = 3.0;
   double volume_weight = 0.05;  // the fit's volume term (ShapeFitOptions; 0: none)
-  bool radial = true;           // radial distance residual (ShapeFitOptions::radial)
+  // One part only: its end along the table normal held on the table (ShapeFitOptions; 0: off).
+  double support_weight = 0.1;
+  bool radial = true;  // radial distance residual (ShapeFitOptions::radial)
   bool fit_taper = true;
   double max_taper = 1.0;
   double visible_tolerance_mm = 0;  // 0: 2 x the fit's radial rms + the segmentation gap / 2

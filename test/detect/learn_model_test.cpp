@@ -63,13 +63,15 @@ struct ThesisCase {
   double size_two, shape_two;  // what two views reach (the goal: 1 %, 0.05)
 };
 
-// The goals are met except for the cone, whose tip (a taper of -1) is where the radial distance
-// is least exact: 2.3 % from one view and 1.4 % from two (measured; the limits below).
+// The goals are met except for the cone from two views: its tip (a taper of -1) is where the
+// radial distance is least exact, 1.9 % from one view and 1.3 % from two (measured; the limit
+// below). Fitted from the true model, the same points give 0.8 %: the fits from the starts end in
+// a flatter valley of a1, a3 and the taper.
 const ThesisCase kThesis[] = {
     {"cylinder", sim::cylinder_model(), 0.02, 0.1, 0.01, 0.05},
     {"box", sim::box_model(), 0.02, 0.1, 0.01, 0.05},
     {"sphere", sim::sphere_model(), 0.02, 0.1, 0.01, 0.05},
-    {"cone", sim::cone_model(), 0.025, 0.1, 0.015, 0.05},
+    {"cone", sim::cone_model(), 0.02, 0.1, 0.015, 0.05},
 };
 
 #if defined(__SANITIZE_ADDRESS__)
