@@ -4,6 +4,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "detect/normals.hpp"
 #include "detect/point_cloud.hpp"
@@ -14,6 +15,8 @@ namespace {
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 using Vector8d = Eigen::Matrix<double, 8, 1>;
+
+constexpr double kMinTiltSpreadRad = 0.1 * 3.14159265358979323846 / 180.0;
 
 struct HeadState {
   Vector3d t_s = Vector3d::Zero(), t_w = Vector3d::Zero();
@@ -172,6 +175,18 @@ PanTiltCalibrationResult calibrate_pan_tilt(const PanTiltCalibrationInput& input
   if (sweeps.size() < 2) {
     result.reason =
         "need sweeps at two or more tilt angles (got " + std::to_string(sweeps.size()) + ")";
+    return result;
+  }
+  // Tilts a tenth of a degree apart or less are one tilt.
+  double tilt_lo = std::numeric_limits<double>::infinity(), tilt_hi = -tilt_lo;
+  for (const Sweep& sw : sweeps) {
+    for (const RawPoint& p : sw.pts) {
+      tilt_lo = std::min(tilt_lo, p.tilt);
+      tilt_hi = std::max(tilt_hi, p.tilt);
+    }
+  }
+  if (total > 0 && !(tilt_hi - tilt_lo > kMinTiltSpreadRad)) {
+    result.reason = "all sweeps at one tilt angle: need sweeps at two or more tilt angles";
     return result;
   }
   if (total < 6 * options.planes.min_points) {

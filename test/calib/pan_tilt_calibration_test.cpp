@@ -77,6 +77,10 @@ TEST(PanTiltCalibration, OneTiltIsAClearError) {
   EXPECT_FALSE(r.ok);
   EXPECT_NE(r.reason.find("two or more tilt angles"), std::string::npos) << r.reason;
   EXPECT_FALSE(run_pan_tilt(PanTiltSweeps{}, nominal).ok);
+  // Two sweeps, both at the same tilt.
+  const auto same = run_pan_tilt(pan_tilt_sweeps(nominal, 0.0, 1, {3.0, 3.0}, 0.5), nominal);
+  EXPECT_FALSE(same.ok);
+  EXPECT_NE(same.reason.find("two or more tilt angles"), std::string::npos) << same.reason;
 }
 
 TEST(PanTiltCalibration, SweepsThatMissTheCubeNameTheMissingPlanes) {
