@@ -1,31 +1,13 @@
 #include "calib/raw_sweep_text.hpp"
 
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 
+#include "calib/text_fields.hpp"
+
 namespace rangefit::calib {
-namespace {
-
-std::vector<std::string_view> words(std::string_view line) {
-  std::vector<std::string_view> out;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
-    std::size_t j = i;
-    while (j < line.size() && line[j] != ' ' && line[j] != '\t' && line[j] != '\r') ++j;
-    if (j > i) out.push_back(line.substr(i, j - i));
-    i = j;
-  }
-  return out;
-}
-
-bool number(std::string_view w, double& v) {
-  const auto r = std::from_chars(w.data(), w.data() + w.size(), v);
-  return r.ec == std::errc() && r.ptr == w.data() + w.size() && std::isfinite(v);
-}
-
-}  // namespace
+using text_fields::number;
+using text_fields::words;
 
 RawSweepParse parse_raw_sweep(std::string_view text, std::string_view source) {
   RawSweepParse out;
@@ -37,13 +19,8 @@ RawSweepParse parse_raw_sweep(std::string_view text, std::string_view source) {
     return out;
   };
   while (!text.empty()) {
-    const std::size_t end = text.find('\n');
-    std::string_view line = text.substr(0, end);
-    text = end == std::string_view::npos ? std::string_view() : text.substr(end + 1);
+    const std::string_view line = text_fields::next_line(text);
     ++line_no;
-    if (const std::size_t hash = line.find('#'); hash != std::string_view::npos) {
-      line = line.substr(0, hash);
-    }
     const auto w = words(line);
     if (w.empty()) continue;
     if (!header) {

@@ -144,7 +144,30 @@ struct Problem {
       lin.g += jrow * r;
     }
     lin.jtj.triangularView<Eigen::StrictlyLower>() = lin.jtj.transpose();
+    add_support(x, n, lin);
     return lin;
+  }
+
+  // The end of the part along -z (or +z when z points down) on the support plane.
+  void add_support(const PosedSuperquadric& x, std::size_t n, Lin& lin) const {
+    if (!o.support_plane) return;
+    const Eigen::Vector3d nrm = o.support_plane->head<3>();
+    const Eigen::Matrix3d R = x.T_world_part.linear();
+    const double up = nrm.dot(R.col(2));
+    constexpr double kCosAlong = 0.9986;  // 3 deg
+    if (std::abs(up) < kCosAlong) return;
+    const double s = up > 0.0 ? 1.0 : -1.0, a3 = x.shape.a3;
+    const double k = std::sqrt(o.support_weight * static_cast<double>(n));
+    const double r =
+        k * (nrm.dot(x.T_world_part.translation()) - s * a3 * up - (*o.support_plane)[3]);
+    Eigen::Matrix<double, kN, 1> j = Eigen::Matrix<double, kN, 1>::Zero();
+    j.head<3>() = k * nrm;
+    // z = R e_z, R <- R exp([w]x): d(n . z) / dw = (e_z x R^T n) . w.
+    j.segment<3>(3) = -k * s * a3 * Eigen::Vector3d::UnitZ().cross(R.transpose() * nrm);
+    j[6 + 2] = -k * s * a3 * up;  // d / d log a3
+    lin.cost += 0.5 * r * r;
+    lin.jtj.noalias() += j * j.transpose();
+    lin.g.noalias() += j * r;
   }
 
   PosedSuperquadric step(const PosedSuperquadric& x, const Vector& h) const {

@@ -1,5 +1,6 @@
 #include "detect/model_learning.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -41,8 +42,11 @@ std::vector<Eigen::Vector3d> gather(std::span<const Eigen::Vector3d> points,
   return out;
 }
 
-ShapeFitOptions fit_options(const LearnOptions& o, double reference_volume, int iterations) {
+ShapeFitOptions fit_options(const LearnOptions& o, double reference_volume, int iterations,
+                            const std::optional<Eigen::Vector4d>& support = std::nullopt) {
   ShapeFitOptions f;
+  f.support_plane = support;
+  f.support_weight = o.support_weight;
   f.max_iterations = iterations;
   f.reference_volume = reference_volume;
   f.volume_weight = o.volume_weight;
@@ -90,20 +94,58 @@ const char* to_string(LearnReason reason) {
       return "too few object points to fit";
     case LearnReason::kInvalidOptions:
       return "invalid options";
+    case LearnReason::kNonFinitePoints:
+      return "the cloud holds NaN or infinite coordinates";
+    case LearnReason::kAllAtOnePoint:
+      return "all points are at the same place: nothing to fit";
+    case LearnReason::kCollinear:
+      return "the points lie on a line: no surface to fit";
   }
   return "unknown";
+}
+
+LearnReason check_learn_points(std::span<const Eigen::Vector3d> points) {
+  for (const Eigen::Vector3d& p : points) {
+    if (!p.allFinite()) return LearnReason::kNonFinitePoints;
+  }
+  if (points.size() < kMinLearnPoints) return LearnReason::kTooFewPoints;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : points) mean += p;
+  mean /= static_cast<double>(points.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const Eigen::Vector3d& p : points) cov += (p - mean) * (p - mean).transpose();
+  cov /= static_cast<double>(points.size());
+  // Spreads (1 sigma) along the principal axes, ascending. A part is mm across at the least,
+  // so a spread of a micrometre is none; a line is a second spread 1e-4 of the first or less.
+  const Eigen::Vector3d sd =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov, Eigen::EigenvaluesOnly)
+          .eigenvalues()
+          .cwiseMax(0.0)
+          .cwiseSqrt();
+  constexpr double kNoSpreadMm = 1e-3;
+  if (!(sd[2] > kNoSpreadMm)) return LearnReason::kAllAtOnePoint;
+  if (!(sd[1] > std::max(kNoSpreadMm, 1e-4 * sd[2]))) return LearnReason::kCollinear;
+  return LearnReason::kLearnt;
 }
 
 PartFit learn_part(std::span<const Eigen::Vector3d> object_points,
                    const std::optional<pca::Plane>& plane, const LearnOptions& options) {
   PartFit out;
-  if (object_points.size() < 20) return out;
+  if (check_learn_points(object_points) != LearnReason::kLearnt) return out;
   const std::vector<Eigen::Vector3d> coarse = spread(object_points, options.start_points);
   const std::vector<Eigen::Vector3d> fine = spread(object_points, options.fit_points);
   // Ellipsoid, cylinder-like, box-like and pinched (eps > 1) starts; tapered ones standing.
   static constexpr StartShape kShapes[] = {{1.0, 1.0}, {0.3, 1.0},       {0.3, 0.3},
                                            {1.6, 1.6}, {0.3, 1.0, -0.6}, {1.0, 1.0, -0.6}};
   std::vector<PosedSuperquadric> starts = learn_starts(coarse, plane, kShapes);
+  // A single part stands on the table (its normal turned towards it); a part of a compound
+  // object need not reach it.
+  std::optional<Eigen::Vector4d> support;
+  if (plane && plane->valid && options.parts == 1 && options.support_weight > 0.0) {
+    Eigen::Vector3d n = plane->normal.normalized();
+    if (n.dot(pca::centroid(object_points) - plane->point) < 0.0) n = -n;
+    support = Eigen::Vector4d(n.x(), n.y(), n.z(), n.dot(plane->point));
+  }
   if (options.parts > 1 && plane) {
     // A part of a compound object need not reach down to the table (a mallet's shaft).
     const std::vector<PosedSuperquadric> free = learn_starts(coarse, std::nullopt, kShapes);
@@ -127,8 +169,8 @@ PartFit learn_part(std::span<const Eigen::Vector3d> object_points,
   auto finish = [&](int from, int to) {
     for (int k = from; k < to; ++k) {
       if (!short_fits[k].ok) continue;
-      ShapeFitResult f =
-          fit_superquadric(fine, short_fits[k].part, fit_options(options, v0, options.iterations));
+      ShapeFitResult f = fit_superquadric(fine, short_fits[k].part,
+                                          fit_options(options, v0, options.iterations, support));
       if (f.ok && (!out.fit.ok || f.cost < out.fit.cost)) out.fit = f;
     }
   };
@@ -156,6 +198,11 @@ LearnResult learn_model(std::span<const Eigen::Vector3d> points, const LearnOpti
     return r;
   }
   if (points.empty()) return r;  // kEmptyCloud
+  // Nothing below can make sense of these; say so rather than return a fit.
+  if (const LearnReason why = check_learn_points(points); why != LearnReason::kLearnt) {
+    r.reason = why;
+    return r;
+  }
   SegmentOptions seg = options.segment;
   seg.plane.seed = options.seed;
   seg.keep = options.parts;
@@ -165,6 +212,11 @@ LearnResult learn_model(std::span<const Eigen::Vector3d> points, const LearnOpti
     return r;
   }
   const std::vector<Eigen::Vector3d> object = gather(points, r.segment.object);
+  // A wire (or a line of noise) left beside the table.
+  if (const LearnReason why = check_learn_points(object); why != LearnReason::kLearnt) {
+    r.reason = why;
+    return r;
+  }
   std::optional<pca::Plane> plane;
   if (r.segment.plane.removed()) plane = r.segment.plane.plane;
   LearnOptions o = options;

@@ -43,7 +43,9 @@ struct LearnOptions {
   double retry_residual_mm = 0.0;
   double retry_noise_factor = 3.0;
   double volume_weight = 0.05;  // the fit's volume term (ShapeFitOptions; 0: none)
-  bool radial = true;           // radial distance residual (ShapeFitOptions::radial)
+  // One part only: its end along the table normal held on the table (ShapeFitOptions; 0: off).
+  double support_weight = 0.1;
+  bool radial = true;  // radial distance residual (ShapeFitOptions::radial)
   bool fit_taper = true;
   double max_taper = 1.0;
   double visible_tolerance_mm = 0;  // 0: 2 x the fit's radial rms + the segmentation gap / 2
@@ -51,10 +53,13 @@ struct LearnOptions {
 
 enum class LearnReason {
   kLearnt,
-  kEmptyCloud,      // no points
-  kNoObject,        // nothing left after the plane removal, or only clusters below min_points
-  kTooFewPoints,    // the object (or a part of it) has too few points to fit
-  kInvalidOptions,  // parts not 1 or 2, non-positive counts
+  kEmptyCloud,       // no points
+  kNoObject,         // nothing left after the plane removal, or only clusters below min_points
+  kTooFewPoints,     // the object (or a part of it) has too few points to fit
+  kInvalidOptions,   // parts not 1 or 2, non-positive counts
+  kNonFinitePoints,  // a NaN or infinite coordinate in the input
+  kAllAtOnePoint,    // the points (or the object's) span no extent: all the same point
+  kCollinear,        // the points (or the object's) lie on a line: no surface to fit
 };
 const char* to_string(LearnReason reason);
 
@@ -79,7 +84,15 @@ struct LearnResult {
   bool learnt() const { return reason == LearnReason::kLearnt; }
 };
 
+// Fewer points than this (in the input, the object or a part) are too few to fit 13 parameters.
+inline constexpr std::size_t kMinLearnPoints = 20;
+
 LearnResult learn_model(std::span<const Eigen::Vector3d> points, const LearnOptions& options = {});
+
+// Why these points cannot be fitted before any fit is tried: non-finite, fewer than
+// kMinLearnPoints, all at one point or on a line (from the spread along their principal axes);
+// kLearnt when they can.
+LearnReason check_learn_points(std::span<const Eigen::Vector3d> points);
 
 // One part fitted to given object points (no segmentation): the starts, the best kept_starts
 // fitted to convergence, the best of those. `plane` closes the underside when given.

@@ -2,92 +2,22 @@
 // body (calib/). The result is never applied: it is written as a TOML fragment with the fields
 // of the configuration it replaces, beside the configuration unless --out says where, with a
 // report of residuals and uncertainties next to it; the operator reviews it and includes it.
+// The stripe cell is here; css and pantilt are calibrate_css.cpp and calibrate_pan_tilt.cpp.
 #include <Eigen/Geometry>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "calib/raw_sweep_text.hpp"
 #include "calib/stripe_calibration.hpp"
-#include "daemon/cli/cli_options.hpp"
+#include "daemon/cli/calibrate_output.hpp"
 #include "daemon/cli/commands.hpp"
-#include "daemon/cli/option_checks.hpp"
-#include "fusion/config.hpp"
 
 namespace rangefit::cli {
 namespace {
 
-namespace fs = std::filesystem;
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
-
-struct CommonArgs {
-  std::vector<std::string> scans;
-  std::string config, out;
-  std::uint64_t seed = 1;
-};
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot open");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::string vec(const Eigen::Vector3d& v) {
-  std::ostringstream s;
-  s.precision(10);
-  s << "[" << v.x() << ", " << v.y() << ", " << v.z() << "]";
-  return s.str();
-}
-
-// The start values: the configuration's [fusion] table, or the defaults without --config.
-fusion::FusionConfig start_config(const CommonArgs& a) {
-  if (a.config.empty()) return {};
-  const fusion::FusionConfigResult r = fusion::load_fusion_config(a.config);
-  if (!r.config) throw std::runtime_error(r.error);
-  return *r.config;
-}
-
-// --out, else beside the configuration (or here without one).
-fs::path out_path(const CommonArgs& a, const std::string& name) {
-  if (!a.out.empty()) return a.out;
-  const fs::path dir = a.config.empty() ? fs::path(".") : fs::path(a.config).parent_path();
-  return (dir.empty() ? fs::path(".") : dir) / name;
-}
-
-void write_result(const fs::path& out, const std::string& toml, const std::string& report) {
-  fs::path report_path = out;
-  report_path += ".report.txt";
-  std::ofstream(out) << toml;
-  std::ofstream(report_path) << report;
-  if (!fs::exists(out) || !fs::exists(report_path)) {
-    throw std::runtime_error(out.string() + ": cannot write");
-  }
-  std::cout << report << "written: " << out.string() << " (review it, then include it in the "
-            << "configuration; nothing was applied)\nreport: " << report_path.string() << "\n";
-}
-
-calib::RawSweep load_sweep(const std::string& path, calib::SweepKind kind) {
-  calib::RawSweepParse p = calib::parse_raw_sweep(read_text(path), path);
-  if (!p.sweep) throw std::runtime_error(p.error);
-  if (p.sweep->kind != kind) throw std::runtime_error(path + ": not a sweep of this kind");
-  return std::move(*p.sweep);
-}
-
-Eigen::Isometry3d pose_of(const std::vector<double>& v) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = (Eigen::AngleAxisd(v[5], Eigen::Vector3d::UnitZ()) *
-                Eigen::AngleAxisd(v[4], Eigen::Vector3d::UnitY()) *
-                Eigen::AngleAxisd(v[3], Eigen::Vector3d::UnitX()))
-                   .toRotationMatrix();
-  T.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
-  return T;
-}
+using namespace calibrate;
 
 int run_stripe(const CommonArgs& a, const std::vector<double>& cube,
                const std::vector<double>& pose) {
@@ -136,29 +66,6 @@ int run_stripe(const CommonArgs& a, const std::vector<double>& cube,
   return kExitOk;
 }
 
-void add_common(CLI::App* cmd, CommonArgs& a) {
-  cmd->add_option("--scans", a.scans, "raw scan file(s) (calib/raw_sweep_text.hpp)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--config", a.config,
-                  "configuration with the [fusion] start values (default: built-in defaults)")
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--out", a.out, "result TOML (default: beside --config)");
-  cmd->add_option("--seed", a.seed, "RANSAC seed");
-}
-
-template <class Run>
-void on_run(CLI::App* cmd, int* exit_code, Run run) {
-  cmd->callback([exit_code, run] {
-    try {
-      *exit_code = run();
-    } catch (const std::exception& e) {
-      std::cerr << "rangefit calibrate: " << e.what() << "\n";
-      *exit_code = kExitBadInput;
-    }
-  });
-}
-
 }  // namespace
 
 void add_calibrate_command(CLI::App& app, int* exit_code) {
@@ -175,18 +82,12 @@ void add_calibrate_command(CLI::App& app, int* exit_code) {
       std::vector<double> cube{120.0, 12.0}, pose;
     };
     auto a = std::make_shared<Args>();
-    add_common(s, a->common);
-    s->add_option("--cube", a->cube, "cube EDGE,BAR (mm)")
-        ->expected(2)
-        ->delimiter(',')
-        ->check(finite_range(1.0, kMaxCoordinateMm));
-    s->add_option("--cube-pose", a->pose, "cube pose on the table X,Y,Z,ROLL,PITCH,YAW (mm, rad)")
-        ->required()
-        ->expected(6)
-        ->delimiter(',')
-        ->check(finite_range(-kMaxCoordinateMm, kMaxCoordinateMm));
+    add_common(s, a->common, "one raw stripe sweep (calib/raw_sweep_text.hpp)");
+    add_cube_options(s, a->cube, a->pose, "table");
     on_run(s, exit_code, [a] { return run_stripe(a->common, a->cube, a->pose); });
   }
+  add_calibrate_css(cmd, exit_code);
+  add_calibrate_pan_tilt(cmd, exit_code);
 }
 
 }  // namespace rangefit::cli

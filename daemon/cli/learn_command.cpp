@@ -75,7 +75,8 @@ int run(const LearnArgs& a) {
            : (!a.out.empty() && a.out != "-") ? std::filesystem::path(a.out).stem().string()
                                               : "learnt";
   const LearnResult r = learn_model(points, o);
-  if (r.reason == LearnReason::kInvalidOptions) {
+  if (r.reason == LearnReason::kInvalidOptions || r.reason == LearnReason::kNonFinitePoints ||
+      r.reason == LearnReason::kAllAtOnePoint || r.reason == LearnReason::kCollinear) {
     std::cerr << "rangefit learn: " << to_string(r.reason) << "\n";
     return kExitBadInput;
   }

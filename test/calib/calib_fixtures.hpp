@@ -6,7 +6,10 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <vector>
 
+#include "hal/pan_tilt_geometry.hpp"
+#include "hal/samples.hpp"
 #include "hal/stripe_geometry.hpp"
 
 namespace rangefit::test {
@@ -43,6 +46,50 @@ inline hal::StripeCellGeometry perturbed_cell(const hal::StripeCellGeometry& nom
        Eigen::AngleAxisd(tilt.z(), Eigen::Vector3d::UnitZ()) * nominal.axis_direction_cell)
           .normalized();
   return g;
+}
+
+// The pan-tilt head's configured layout: the ranger 60 mm in front of the unit's centre and
+// 50 mm below its pan axis (t_s), the unit at the world origin.
+inline hal::PanTiltGeometry configured_head() {
+  hal::PanTiltGeometry g;
+  g.t_s_mm = Eigen::Vector3d(0.0, -50.0, 60.0);
+  return g;
+}
+
+// The true head: t_s and t_w up to `mm` off in every component, both zeros up to `deg`.
+inline hal::PanTiltGeometry perturbed_head(const hal::PanTiltGeometry& nominal, std::uint64_t seed,
+                                           double mm = 10.0, double deg = 3.0) {
+  std::mt19937_64 rng(seed);
+  hal::PanTiltGeometry g = nominal;
+  for (int i = 0; i < 3; ++i) g.t_s_mm[i] += mm * draw(rng);
+  for (int i = 0; i < 3; ++i) g.t_w_mm[i] += mm * draw(rng);
+  g.pan_zero_rad += deg * kDeg * draw(rng);
+  g.tilt_zero_rad += deg * kDeg * draw(rng);
+  return g;
+}
+
+// The cube 750 mm in front of the head (its world z), body diagonal between the laser (at the
+// head) and the camera (baseline along +y), turned about it so no edge lies in the laser plane.
+inline Eigen::Isometry3d cube_before_head() {
+  const Eigen::Vector3d b(0.0, std::sin(15.0 * kDeg), -std::cos(15.0 * kDeg));
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = (Eigen::AngleAxisd(20.0 * kDeg, b) *
+                Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::Ones().normalized(), b))
+                   .toRotationMatrix();
+  T.translation() = Eigen::Vector3d(4.0, -6.0, 750.0);
+  return T;
+}
+
+// Reported angles of one sweep: pan -12..12 deg in `step_deg` at a held tilt.
+inline std::vector<hal::PanTiltSample> pan_sweep(double tilt_deg, double step_deg = 0.1) {
+  std::vector<hal::PanTiltSample> out;
+  for (double p = -12.0; p <= 12.0 + 1e-9; p += step_deg) {
+    hal::PanTiltSample s;
+    s.pan_rad = p * kDeg;
+    s.tilt_rad = tilt_deg * kDeg;
+    out.push_back(s);
+  }
+  return out;
 }
 
 inline double angle_between(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {

@@ -1,20 +1,46 @@
 // Spread over many seeds against the reported covariance (what the tests check with few seeds):
-//   build/test/calib/calib_report [SEEDS]      (default 20)
-// Prints, per parameter, the rms error over the seeds and the mean reported 1 sigma, and their
-// ratio (1: the covariance is right).
+//   build/test/calib/calib_report [SEEDS] [stripe|css|pantilt|all]     (default 20 all)
+// Per calibration and parameter: the rms error over the seeds, the mean reported 1 sigma and
+// their ratio (1: the covariance is right; the goal is within a factor of 1.5), all at 0.06 mm
+// noise.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
+#include <vector>
 
 #include "calib/stripe_calibration.hpp"
 #include "calib_fixtures.hpp"
+#include "css_fixtures.hpp"
+#include "pan_tilt_fixtures.hpp"
 #include "sim/calibration_scans.hpp"
 
 using namespace rangefit;
 using namespace rangefit::test;
 
-int main(int argc, char** argv) {
-  const int seeds = argc > 1 ? std::atoi(argv[1]) : 20;
+namespace {
+
+// Errors and reported sigmas of one parameter over the seeds.
+struct Spread {
+  const char* name;
+  double scale;  // to the printed unit
+  double err2 = 0.0, sigma = 0.0;
+};
+
+void print(const char* title, int n, std::vector<Spread>& s) {
+  std::printf("%s, 0.06 mm noise, %d seeds\n", title, n);
+  double worst = 1.0;
+  for (Spread& p : s) {
+    const double rms = std::sqrt(p.err2 / n) * p.scale, sigma = p.sigma / n * p.scale;
+    const double ratio = rms / sigma;
+    worst = std::max({worst, ratio, 1.0 / ratio});
+    std::printf("  %-14s rms error %.5f  reported sigma %.5f  ratio %.2f\n", p.name, rms, sigma,
+                ratio);
+  }
+  std::printf("  worst factor %.2f (goal <= 1.5)\n", worst);
+}
+
+void stripe(int seeds) {
   const hal::StripeCellGeometry nominal;
   const hal::StripeCellGeometry truth = perturbed_cell(nominal, 7);
   const calib::CalibrationCube cube;
@@ -22,39 +48,115 @@ int main(int argc, char** argv) {
       sim::calibration_cube_scene(cube.edge_mm, cube.bar_mm, cube_on_table(), true);
   std::vector<double> axis;
   for (double a = 60.0; a <= 340.0; a += 1.0) axis.push_back(a);
-  double err2[6] = {}, sd[6] = {};
+  std::vector<Spread> s = {{"x mm", 1.0},        {"y mm", 1.0},        {"z mm", 1.0},
+                           {"rx deg", 1 / kDeg}, {"ry deg", 1 / kDeg}, {"rz deg", 1 / kDeg}};
   int n = 0;
-  for (int s = 0; s < seeds; ++s) {
+  for (int k = 0; k < seeds; ++k) {
     const auto profiles = sim::simulate_stripe_sweep(
-        scene, truth, axis, {.sigma_mm = 0.06, .seed = 100000u + static_cast<unsigned>(s)});
+        scene, truth, axis, {.sigma_mm = 0.06, .seed = 100000u + static_cast<unsigned>(k)});
     calib::StripeCalibrationInput in;
     in.profiles = profiles;
     in.axis_mm = axis;
     in.T_table_cube = cube_on_table();
     const auto r = calib::calibrate_stripe_cell(in, nominal);
     if (!r.ok) {
-      std::printf("seed %d: %s\n", s, r.reason.c_str());
+      std::printf("stripe seed %d: %s\n", k, r.reason.c_str());
       continue;
     }
     const Eigen::Vector3d dp = r.geometry.ranger_position_cell_mm - truth.ranger_position_cell_mm;
     const Eigen::AngleAxisd w(truth.T_cell_ranger().linear().transpose() *
                               r.geometry.T_cell_ranger().linear());
     const Eigen::Vector3d dw = w.angle() * w.axis();
-    for (int k = 0; k < 3; ++k) {
-      err2[k] += dp[k] * dp[k];
-      err2[3 + k] += dw[k] * dw[k];
-      sd[k] += r.position_sigma_mm[k];
-      sd[3 + k] += r.rotation_sigma_rad[k];
+    for (int i = 0; i < 3; ++i) {
+      s[i].err2 += dp[i] * dp[i];
+      s[3 + i].err2 += dw[i] * dw[i];
+      s[i].sigma += r.position_sigma_mm[i];
+      s[3 + i].sigma += r.rotation_sigma_rad[i];
     }
     ++n;
   }
-  const char* names[6] = {"x mm", "y mm", "z mm", "rx deg", "ry deg", "rz deg"};
-  std::printf("stripe cell, 0.06 mm noise, 1 mm profiles, %d seeds\n", n);
-  for (int k = 0; k < 6; ++k) {
-    const double scale = k < 3 ? 1.0 : 1.0 / kDeg;
-    const double rms = std::sqrt(err2[k] / n) * scale, sigma = sd[k] / n * scale;
-    std::printf("  %-7s rms error %.5f  reported sigma %.5f  ratio %.2f\n", names[k], rms, sigma,
-                rms / sigma);
+  print("stripe cell, 1 mm profiles", n, s);
+}
+
+void css(int seeds) {
+  const hal::CssGeometry g;
+  const CssMountTruth truth = perturbed_mount(g, 3);
+  std::vector<Spread> s = {{"omega_zero deg", 1 / kDeg}, {"mount y mm", 1.0},
+                           {"mount z mm", 1.0},          {"mount rx deg", 1 / kDeg},
+                           {"mount ry deg", 1 / kDeg},   {"mount rz deg", 1 / kDeg}};
+  Spread axis{"bore axis deg", 1 / kDeg};
+  int n = 0;
+  for (int k = 0; k < seeds; ++k) {
+    const auto r = calib::calibrate_css_mount(
+        css_sphere_scans(g, truth, 0.06, 200000u + static_cast<unsigned>(k), 7), g, 0.0,
+        {.sphere_radius_mm = kRadius});
+    if (!r.ok) {
+      std::printf("css seed %d: %s\n", k, r.reason.c_str());
+      continue;
+    }
+    const Eigen::AngleAxisd w(truth.mount.linear().transpose() * r.T_joint_css.linear());
+    const Eigen::Vector3d dw = w.angle() * w.axis();
+    const Eigen::Vector3d dt = r.T_joint_css.translation() - truth.mount.translation();
+    const double e[6] = {
+        r.omega_zero_rad - truth.omega_zero, dt.y(), dt.z(), dw.x(), dw.y(), dw.z()};
+    for (int i = 0; i < 6; ++i) {
+      s[i].err2 += e[i] * e[i];
+      s[i].sigma += std::sqrt(r.covariance(i, i));
+    }
+    // The predicted bore-axis error against the true one: the sensor's z-axis at omega = 0.
+    const auto z_at_zero = [](const Eigen::Matrix3d& R, double zero) {
+      return Eigen::Vector3d(Eigen::AngleAxisd(-zero, Eigen::Vector3d::UnitY()) * R.col(2));
+    };
+    const double da =
+        std::acos(std::min(1.0, z_at_zero(r.T_joint_css.linear(), r.omega_zero_rad)
+                                    .dot(z_at_zero(truth.mount.linear(), truth.omega_zero))));
+    axis.err2 += da * da;
+    axis.sigma += r.axis_sigma_rad;
+    ++n;
   }
+  s.push_back(axis);
+  print("CSS mount, 8 sphere scans of 7 revolutions", n, s);
+}
+
+void pan_tilt(int seeds) {
+  const hal::PanTiltGeometry nominal = configured_head();
+  const hal::PanTiltGeometry truth = perturbed_head(nominal, 7);
+  std::vector<Spread> s = {{"t_s x mm", 1.0},          {"t_s y mm", 1.0},
+                           {"t_s z mm", 1.0},          {"t_w x mm", 1.0},
+                           {"t_w y mm", 1.0},          {"t_w z mm", 1.0},
+                           {"pan zero deg", 1 / kDeg}, {"tilt zero deg", 1 / kDeg}};
+  int n = 0;
+  for (int k = 0; k < seeds; ++k) {
+    const auto r = run_pan_tilt(
+        pan_tilt_sweeps(truth, 0.06, 300000u + 10u * static_cast<unsigned>(k)), nominal);
+    if (!r.ok) {
+      std::printf("pan-tilt seed %d: %s\n", k, r.reason.c_str());
+      continue;
+    }
+    Eigen::Matrix<double, 8, 1> e;
+    e << r.geometry.t_s_mm - truth.t_s_mm, r.geometry.t_w_mm - truth.t_w_mm,
+        r.geometry.pan_zero_rad - truth.pan_zero_rad,
+        r.geometry.tilt_zero_rad - truth.tilt_zero_rad;
+    for (int i = 0; i < 8; ++i) {
+      s[i].err2 += e[i] * e[i];
+      s[i].sigma += std::sqrt(r.covariance(i, i));
+    }
+    ++n;
+  }
+  print("pan-tilt head, 3 sweeps at tilt -6/0/6 deg", n, s);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int seeds = argc > 1 ? std::atoi(argv[1]) : 20;
+  const std::string which = argc > 2 ? argv[2] : "all";
+  if (seeds < 2 || (which != "all" && which != "stripe" && which != "css" && which != "pantilt")) {
+    std::fprintf(stderr, "usage: calib_report [SEEDS >= 2] [stripe|css|pantilt|all]\n");
+    return 1;
+  }
+  if (which == "all" || which == "stripe") stripe(seeds);
+  if (which == "all" || which == "css") css(seeds);
+  if (which == "all" || which == "pantilt") pan_tilt(seeds);
   return 0;
 }

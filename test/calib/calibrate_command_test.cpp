@@ -9,9 +9,12 @@
 #include <sstream>
 
 #include "calib/calibration_cube.hpp"
+#include "calib/css_scan_text.hpp"
 #include "calib/raw_sweep_text.hpp"
 #include "calib_fixtures.hpp"
+#include "css_fixtures.hpp"
 #include "fusion/config.hpp"
+#include "pan_tilt_fixtures.hpp"
 #include "sim/calibration_scans.hpp"
 
 #ifdef RANGEFIT_CLI_PATH
@@ -78,6 +81,121 @@ TEST(CalibrateCommand, StripeWritesAnIncludableFragmentBesideTheConfigAndAReport
   const hal::StripeCellGeometry& g = parsed.config->stripe_cell.geometry;
   EXPECT_LT((g.ranger_position_cell_mm - truth.ranger_position_cell_mm).norm(), 0.05);
   EXPECT_LT(angle_between(g.T_cell_ranger().linear(), truth.T_cell_ranger().linear()), 0.01 * kDeg);
+  fs::remove_all(dir);
+}
+
+std::string pose_arg(const Eigen::Isometry3d& T) {
+  const Eigen::Vector3d ypr = T.linear().eulerAngles(2, 1, 0);
+  std::ostringstream pose;
+  pose.precision(17);
+  pose << T.translation().x() << "," << T.translation().y() << "," << T.translation().z() << ","
+       << ypr[2] << "," << ypr[1] << "," << ypr[0];
+  return pose.str();
+}
+
+TEST(CalibrateCommand, CssWritesTheMountFieldsAndAReportWithTheBoreAxisError) {
+  const fs::path dir = temp_dir("css");
+  const hal::CssGeometry g;
+  // The mount's true form is the configurable one (eta about x, pivot along z), off the
+  // configured values, so the written fields can hold it.
+  CssMountTruth truth;
+  truth.mount = calib::nominal_mount(g);
+  truth.mount.translation().z() += 6.0;
+  truth.mount.linear() =
+      Eigen::AngleAxisd(g.eta_rad + 2.0 * kDeg, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  truth.omega_zero = -1.5 * kDeg;
+  std::ofstream(dir / "spheres.txt")
+      << calib::format_css_scans(css_sphere_scans(g, truth, 0.0, 4, 7));
+  std::ofstream(dir / "rangefitd.toml") << "[fusion.css]\nomega_zero_rad = 0\n";
+  const std::string config = (dir / "rangefitd.toml").string();
+  ASSERT_EQ(run("calibrate css --scans " + (dir / "spheres.txt").string() + " --config " + config +
+                    " --sphere-radius 25",
+                dir / "log.txt"),
+            0)
+      << slurp(dir / "log.txt");
+  EXPECT_EQ(slurp(config), "[fusion.css]\nomega_zero_rad = 0\n");
+  const std::string report = slurp(dir / "calibration_css.toml.report.txt");
+  EXPECT_NE(report.find("bore measured along the sensor axis"), std::string::npos) << report;
+  EXPECT_EQ(report.find("WARNING"), std::string::npos) << report;
+  const auto parsed = fusion::load_fusion_config(dir / "calibration_css.toml");
+  ASSERT_TRUE(parsed.config) << parsed.error;
+  const auto& css = parsed.config->css;
+  EXPECT_NEAR(css.omega_zero_rad, truth.omega_zero, 0.02 * kDeg);
+  EXPECT_NEAR(css.geometry.eta_rad, g.eta_rad + 2.0 * kDeg, 0.02 * kDeg);
+  EXPECT_NEAR(css.geometry.pivot_radius_mm, g.pivot_radius_mm + 6.0, 0.05);
+  fs::remove_all(dir);
+}
+
+TEST(CalibrateCommand, CssWarnsWhenTheMountIsOffTheConfigurableForm) {
+  const fs::path dir = temp_dir("css_off");
+  const hal::CssGeometry g;
+  const CssMountTruth truth = perturbed_mount(g, 2);  // turned about all three axes
+  std::ofstream(dir / "spheres.txt")
+      << calib::format_css_scans(css_sphere_scans(g, truth, 0.0, 5, 5));
+  ASSERT_EQ(run("calibrate css --scans " + (dir / "spheres.txt").string() +
+                    " --sphere-radius 25 --out " + (dir / "c.toml").string(),
+                dir / "log.txt"),
+            0)
+      << slurp(dir / "log.txt");
+  EXPECT_NE(slurp(dir / "c.toml.report.txt").find("WARNING"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST(CalibrateCommand, PanTiltWritesTheHeadFieldsFromOneFilePerTilt) {
+  const fs::path dir = temp_dir("pantilt");
+  const hal::PanTiltGeometry nominal = configured_head();
+  const hal::PanTiltGeometry truth = perturbed_head(nominal, 4);
+  const PanTiltSweeps sweeps = pan_tilt_sweeps(truth, 0.06, 9, {-6.0, 0.0, 6.0}, 0.25);
+  std::string files;
+  for (std::size_t k = 0; k < sweeps.angles.size(); ++k) {
+    calib::RawSweep raw;
+    raw.kind = calib::SweepKind::kPanTilt;
+    raw.angles = sweeps.angles[k];
+    raw.profiles = sweeps.profiles[k];
+    const fs::path f = dir / ("tilt" + std::to_string(k) + ".txt");
+    std::ofstream(f) << calib::format_raw_sweep(raw);
+    files.append(" ").append(f.string());
+  }
+  std::ofstream(dir / "rangefitd.toml") << "[fusion.pan_tilt]\nt_s_mm = [0, -50, 60]\n";
+  ASSERT_EQ(
+      run("calibrate pantilt --scans" + files + " --config " + (dir / "rangefitd.toml").string() +
+              " --cube-pose " + pose_arg(cube_before_head()),
+          dir / "log.txt"),
+      0)
+      << slurp(dir / "log.txt");
+  EXPECT_TRUE(fs::exists(dir / "calibration_pantilt.toml.report.txt"));
+  const auto parsed = fusion::load_fusion_config(dir / "calibration_pantilt.toml");
+  ASSERT_TRUE(parsed.config) << parsed.error;
+  const hal::PanTiltGeometry& g = parsed.config->pan_tilt.geometry;
+  EXPECT_LT((g.t_s_mm - truth.t_s_mm).norm(), 0.1);
+  EXPECT_LT((g.t_w_mm - truth.t_w_mm).norm(), 0.1);
+  EXPECT_NEAR(g.pan_zero_rad, truth.pan_zero_rad, 0.01 * kDeg);
+  EXPECT_NEAR(g.tilt_zero_rad, truth.tilt_zero_rad, 0.01 * kDeg);
+  // One tilt is not enough, and says so.
+  EXPECT_EQ(run("calibrate pantilt --scans " + (dir / "tilt0.txt").string() + " --cube-pose " +
+                    pose_arg(cube_before_head()) + " --out " + (dir / "o.toml").string(),
+                dir / "log1.txt"),
+            2);
+  EXPECT_NE(slurp(dir / "log1.txt").find("two or more tilt"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "o.toml"));
+  // A stripe sweep is not a pan-tilt sweep.
+  std::ofstream(dir / "stripe.txt") << "rangefit-raw-sweep 1 stripe 4\np 1\n";
+  EXPECT_EQ(run("calibrate pantilt --scans " + (dir / "stripe.txt").string() + files +
+                    " --cube-pose 0,0,750,0,0,0 --out " + (dir / "o.toml").string(),
+                dir / "log2.txt"),
+            1);
+  fs::remove_all(dir);
+}
+
+TEST(CalibrateCommand, BadSphereScanFileIsBadInputNamingTheLine) {
+  const fs::path dir = temp_dir("bad_css");
+  std::ofstream(dir / "s.txt") << "rangefit-css-sphere-scans 1\n0.1 0.2 90\n";
+  EXPECT_EQ(run("calibrate css --scans " + (dir / "s.txt").string() + " --sphere-radius 25 --out " +
+                    (dir / "o.toml").string(),
+                dir / "log.txt"),
+            1);
+  EXPECT_NE(slurp(dir / "log.txt").find("s.txt:2:"), std::string::npos) << slurp(dir / "log.txt");
+  EXPECT_FALSE(fs::exists(dir / "o.toml"));
   fs::remove_all(dir);
 }
 

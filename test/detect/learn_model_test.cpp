@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <span>
@@ -62,13 +63,15 @@ struct ThesisCase {
   double size_two, shape_two;  // what two views reach (the goal: 1 %, 0.05)
 };
 
-// The goals are met except for the cone, whose tip (a taper of -1) is where the radial distance
-// is least exact: 2.3 % from one view and 1.4 % from two (measured; the limits below).
+// The goals are met except for the cone from two views: its tip (a taper of -1) is where the
+// radial distance is least exact, 1.9 % from one view and 1.3 % from two (measured; the limit
+// below). Fitted from the true model, the same points give 0.8 %: the fits from the starts end in
+// a flatter valley of a1, a3 and the taper.
 const ThesisCase kThesis[] = {
     {"cylinder", sim::cylinder_model(), 0.02, 0.1, 0.01, 0.05},
     {"box", sim::box_model(), 0.02, 0.1, 0.01, 0.05},
     {"sphere", sim::sphere_model(), 0.02, 0.1, 0.01, 0.05},
-    {"cone", sim::cone_model(), 0.025, 0.1, 0.015, 0.05},
+    {"cone", sim::cone_model(), 0.02, 0.1, 0.015, 0.05},
 };
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -217,6 +220,45 @@ TEST(LearnModel, EmptyTableAndBadOptionsAreReasonsNotCrashes) {
   no_plane.segment.remove_plane = false;
   no_plane.segment.min_points = 5;
   EXPECT_EQ(learn_model(few, no_plane).reason, LearnReason::kTooFewPoints);
+}
+
+TEST(LearnModel, DegenerateCloudsAreClearReasonsNotFits) {
+  LearnOptions no_plane;
+  no_plane.segment.remove_plane = false;
+  // All points the same: with the plane removal and without.
+  const std::vector<Eigen::Vector3d> same(500, Eigen::Vector3d(100.0, 50.0, 20.0));
+  EXPECT_EQ(learn_model(same).reason, LearnReason::kAllAtOnePoint);
+  EXPECT_EQ(learn_model(same, no_plane).reason, LearnReason::kAllAtOnePoint);
+  // On a line, exactly and with a little noise across it.
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> noise(0.0, 1e-5);
+  std::vector<Eigen::Vector3d> line;
+  for (int i = 0; i < 400; ++i) {
+    line.emplace_back(100.0 + 0.25 * i, 50.0 + 0.1 * i + noise(rng), 20.0 - 0.05 * i);
+  }
+  EXPECT_EQ(learn_model(line).reason, LearnReason::kCollinear);
+  EXPECT_EQ(learn_model(line, no_plane).reason, LearnReason::kCollinear);
+  // A wire above the table: the table goes, the line is left.
+  std::vector<Eigen::Vector3d> wire = test::teach_scan({}, 1);
+  for (int i = 0; i < 400; ++i) {
+    wire.emplace_back(test::kObjectX - 50.0 + 0.25 * i, test::kObjectY, 30.0);
+  }
+  EXPECT_EQ(learn_model(wire).reason, LearnReason::kCollinear);
+  // Fewer points than the fit has unknowns, however well spread.
+  std::vector<Eigen::Vector3d> few;
+  for (int i = 0; i < 19; ++i) few.emplace_back(10.0 * (i % 3), 10.0 * (i % 5), 3.0 * i);
+  EXPECT_EQ(learn_model(few, no_plane).reason, LearnReason::kTooFewPoints);
+  // One NaN in an otherwise good teach-in scan.
+  std::vector<Eigen::Vector3d> scan =
+      test::teach_scan(test::resting(sim::cylinder_model(), 3), 1, kNoise, 3);
+  scan[scan.size() / 2].y() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(learn_model(scan).reason, LearnReason::kNonFinitePoints);
+  scan[scan.size() / 2].y() = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(learn_model(scan).reason, LearnReason::kNonFinitePoints);
+  for (const LearnReason r :
+       {LearnReason::kAllAtOnePoint, LearnReason::kCollinear, LearnReason::kNonFinitePoints}) {
+    EXPECT_STRNE(to_string(r), "unknown");
+  }
 }
 
 }  // namespace
