@@ -6,13 +6,13 @@
 #include <Eigen/Geometry>
 #include <iostream>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "calib/stripe_calibration.hpp"
 #include "daemon/cli/calibrate_output.hpp"
 #include "daemon/cli/commands.hpp"
+#include "daemon/service/calibrate_request.hpp"
 
 namespace rangefit::cli {
 namespace {
@@ -37,32 +37,10 @@ int run_stripe(const CommonArgs& a, const std::vector<double>& cube,
     std::cerr << "rangefit calibrate stripe: " << r.reason << "\n";
     return kExitNotFound;
   }
-  const hal::StripeCellGeometry& g = r.geometry;
-  std::ostringstream toml, rep;
-  toml << "# rangefit calibrate stripe, from " << a.scans[0] << "; see the .report.txt beside it\n"
-       << "[fusion.stripe_cell]\n"
-       << "ranger_position_cell_mm = " << vec(g.ranger_position_cell_mm) << "\n"
-       << "ranger_rpy_cell_rad = " << vec(g.ranger_rpy_cell_rad) << "\n"
-       << "axis_direction_cell = " << vec(g.axis_direction_cell) << "\n";
-  rep.precision(4);
-  rep << "stripe cell calibration (thesis 3.2), sweep " << a.scans[0] << "\n";
-  for (std::size_t i = 0; i < r.rounds.size(); ++i) {
-    rep << "  linear round " << i + 1 << ": corner rms " << r.rounds[i].corner_rms_mm
-        << " mm, plane points";
-    for (const auto n : r.rounds[i].plane_points) rep << " " << n;
-    rep << "\n";
-  }
-  rep << "  refinement: " << r.points << " plane points, rms " << r.initial_rms_mm << " -> "
-      << r.rms_mm << " mm in " << r.lm_iterations << " iterations\n"
-      << "  ranger position " << vec(g.ranger_position_cell_mm) << " mm (was "
-      << vec(start.ranger_position_cell_mm) << "), 1 sigma " << vec(r.position_sigma_mm) << " mm\n"
-      << "  ranger rpy " << vec(g.ranger_rpy_cell_rad) << " rad (was "
-      << vec(start.ranger_rpy_cell_rad) << "), 1 sigma about its axes "
-      << vec(r.rotation_sigma_rad / kDeg) << " deg\n"
-      << "  axis direction " << vec(g.axis_direction_cell) << " (was "
-      << vec(start.axis_direction_cell) << "), 1 sigma " << r.axis_sigma_rad.x() / kDeg << ", "
-      << r.axis_sigma_rad.y() / kDeg << " deg\n";
-  write_result(out_path(a, "calibration_stripe.toml"), toml.str(), rep.str());
+  // The same fragment and report as the service's calibrate request writes.
+  const std::string source = "sweep " + a.scans[0];
+  write_result(out_path(a, "calibration_stripe.toml"), daemon::stripe_calibration_toml(r, source),
+               daemon::stripe_calibration_report(r, start, source));
   return kExitOk;
 }
 
