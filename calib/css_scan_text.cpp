@@ -5,6 +5,7 @@
 
 #include "calib/stripe_calibration.hpp"
 #include "calib/text_fields.hpp"
+#include "hal/rpy.hpp"
 
 namespace rangefit::calib {
 
@@ -12,13 +13,7 @@ using text_fields::number;
 using text_fields::words;
 
 Eigen::Isometry3d pose_from_xyz_rpy(const double v[6]) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = (Eigen::AngleAxisd(v[5], Eigen::Vector3d::UnitZ()) *
-                Eigen::AngleAxisd(v[4], Eigen::Vector3d::UnitY()) *
-                Eigen::AngleAxisd(v[3], Eigen::Vector3d::UnitX()))
-                   .toRotationMatrix();
-  T.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
-  return T;
+  return hal::pose_xyz_rpy(v[0], v[1], v[2], v[3], v[4], v[5]);
 }
 
 void xyz_rpy_of(const Eigen::Isometry3d& T, double v[6]) {

@@ -10,6 +10,7 @@
 #include <optional>
 #include <sstream>
 
+#include "hal/rpy.hpp"
 #include "io/stl.hpp"
 #include "io/toml_fields.hpp"
 #include "io/toml_file.hpp"
@@ -104,10 +105,7 @@ Eigen::Isometry3d read_pose(const Ctx& c) {
         Eigen::Quaterniond::FromTwoVectors(Vector3d::UnitZ(), z.normalized()).toRotationMatrix();
   } else {
     const Vector3d rpy = kDeg * c.vec<3>("rpy_deg", Vector3d::Zero());
-    T.linear() = (Eigen::AngleAxisd(rpy.z(), Vector3d::UnitZ()) *
-                  Eigen::AngleAxisd(rpy.y(), Vector3d::UnitY()) *
-                  Eigen::AngleAxisd(rpy.x(), Vector3d::UnitX()))
-                     .toRotationMatrix();
+    T.linear() = hal::rpy_matrix(rpy);
   }
   return T;
 }

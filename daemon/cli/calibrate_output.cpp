@@ -9,6 +9,7 @@
 
 #include "daemon/cli/commands.hpp"
 #include "daemon/cli/option_checks.hpp"
+#include "hal/rpy.hpp"
 
 namespace rangefit::cli::calibrate {
 
@@ -62,13 +63,7 @@ calib::RawSweep load_sweep(const std::string& path, calib::SweepKind kind) {
 }
 
 Eigen::Isometry3d pose_of(const std::vector<double>& v) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = (Eigen::AngleAxisd(v[5], Eigen::Vector3d::UnitZ()) *
-                Eigen::AngleAxisd(v[4], Eigen::Vector3d::UnitY()) *
-                Eigen::AngleAxisd(v[3], Eigen::Vector3d::UnitX()))
-                   .toRotationMatrix();
-  T.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
-  return T;
+  return hal::pose_xyz_rpy(v[0], v[1], v[2], v[3], v[4], v[5]);
 }
 
 void add_common(CLI::App* cmd, CommonArgs& a, const std::string& scans_help) {

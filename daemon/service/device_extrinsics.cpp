@@ -1,15 +1,11 @@
 #include "daemon/service/device_extrinsics.hpp"
+#include "hal/rpy.hpp"
 
 namespace rangefit::daemon {
 
 Eigen::Isometry3d device_extrinsics(const DeviceConfig& d) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.translation() = Eigen::Vector3d(d.xyz_mm[0], d.xyz_mm[1], d.xyz_mm[2]);
-  T.linear() = (Eigen::AngleAxisd(d.rpy_rad[2], Eigen::Vector3d::UnitZ()) *
-                Eigen::AngleAxisd(d.rpy_rad[1], Eigen::Vector3d::UnitY()) *
-                Eigen::AngleAxisd(d.rpy_rad[0], Eigen::Vector3d::UnitX()))
-                   .toRotationMatrix();
-  return T;
+  return hal::pose_xyz_rpy(d.xyz_mm[0], d.xyz_mm[1], d.xyz_mm[2], d.rpy_rad[0], d.rpy_rad[1],
+                           d.rpy_rad[2]);
 }
 
 std::vector<NamedTransform> sensor_mounts(const DaemonConfig& config) {

@@ -1,4 +1,5 @@
 #include "daemon/service/json_codec.hpp"
+#include "hal/rpy.hpp"
 
 namespace rangefit::daemon {
 namespace {
@@ -24,10 +25,7 @@ nlohmann::json pose_array(const Eigen::Isometry3d& T) {
 Eigen::Isometry3d pose_of(const nlohmann::json& j) {
   if (j.size() != 6) throw std::invalid_argument("target.pose must be [x, y, z, roll, pitch, yaw]");
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = (Eigen::AngleAxisd(j.at(5).get<double>(), Eigen::Vector3d::UnitZ()) *
-                Eigen::AngleAxisd(j.at(4).get<double>(), Eigen::Vector3d::UnitY()) *
-                Eigen::AngleAxisd(j.at(3).get<double>(), Eigen::Vector3d::UnitX()))
-                   .toRotationMatrix();
+  T.linear() = hal::rpy_matrix(j.at(3).get<double>(), j.at(4).get<double>(), j.at(5).get<double>());
   T.translation() = vec(j);
   return T;
 }

@@ -15,6 +15,7 @@
 #include "daemon/service/json_codec.hpp"
 #include "daemon/service/result_outcome.hpp"
 #include "daemon/service/ros_env.hpp"
+#include "hal/rpy.hpp"
 
 namespace rangefit::cli {
 namespace {
@@ -79,11 +80,7 @@ int run(RequestArgs& a, daemon::DetectKind kind) {
     req.target.edge_mm = a.cube[0];
     req.target.bar_mm = a.cube[1];
     const std::vector<double>& v = a.cube_pose;
-    req.target.T_table_target.linear() = (Eigen::AngleAxisd(v[5], Eigen::Vector3d::UnitZ()) *
-                                          Eigen::AngleAxisd(v[4], Eigen::Vector3d::UnitY()) *
-                                          Eigen::AngleAxisd(v[3], Eigen::Vector3d::UnitX()))
-                                             .toRotationMatrix();
-    req.target.T_table_target.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
+    req.target.T_table_target = hal::pose_xyz_rpy(v[0], v[1], v[2], v[3], v[4], v[5]);
   }
   try {
     const std::uint32_t domain = a.domain ? *a.domain : daemon::ros_domain_id().value_or(0);
