@@ -2,8 +2,10 @@
 // rangefitd's service in-process for the DDS tests: a configuration whose one device "css"
 // replays a PLY file (driver = "replay") as the default bore sensor, on the tests' loopback DDS
 // domain, spooling below the test's own folder; and the service's step loop on a thread.
+#include <unistd.h>
 #include <atomic>
 #include <chrono>
+
 #include <filesystem>
 #include <thread>
 
@@ -14,8 +16,11 @@
 namespace rangefit::test {
 
 // An empty folder for one test (what an earlier run left there is removed).
+// Under the temp directory, one per process: ctest runs the cases of one test program in
+// parallel processes, which must not clear each other's spool.
 inline std::filesystem::path fresh_test_dir(const std::filesystem::path& relative) {
-  const auto dir = std::filesystem::temp_directory_path() / relative;
+  const auto dir = std::filesystem::temp_directory_path() /
+                   (relative.string() + "-" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
