@@ -28,6 +28,8 @@ std::string participant_config(const DdsConfig& config) {
 // discovery (or a sanitizer build) can take longer.
 constexpr auto kReplyReaderWait = std::chrono::milliseconds(500);
 
+constexpr const char* kNodeName = "rangefitd";
+
 }  // namespace
 
 DdsService::DdsService(const DdsConfig& config)
@@ -46,6 +48,13 @@ DdsService::DdsService(const DdsConfig& config)
       markers_(participant_, topics::markers(config.ros_namespace)),
       service_(participant_, config.ros_namespace),
       reply_gate_(requests_.get(), detections_.get(), kReplyReaderWait),
+      discovery_(participant_, RosNode{kNodeName, ros_node_namespace(config.ros_namespace),
+                                       {requests_.get(), service_.reader()},
+                                       {cloud_.get(), detections_.get(), pose_.get(),
+                                        state_.get(), diagnostics_.get(), poses_.get(),
+                                        tf_.get(), tf_static_.get(), models_.get(),
+                                        detections3d_.get(), markers_.get(),
+                                        service_.writer()}}),
       frame_prefix_(config.ros_namespace.empty() ? "" : config.ros_namespace + "/") {
   requests_.also_wake_on(service_.reader());
 }

@@ -13,6 +13,7 @@
 #include "daemon/dds/dds.hpp"
 #include "daemon/dds/messages.hpp"
 #include "daemon/dds/reply_gate.hpp"
+#include "daemon/dds/ros_discovery.hpp"
 #include "daemon/dds/ros_service.hpp"
 #include "daemon/dds/topics.hpp"
 #include "daemon/service/config.hpp"
@@ -63,6 +64,7 @@ class DdsService final : public ResultSink {
   topics::Writer<topics::Markers> markers_;
   RosDetectService service_;
   ReplyGate reply_gate_;      // an answer waits (bounded) for its requester's result reader
+  RosDiscovery discovery_;    // the node on ros_discovery_info: after every other entity
   std::string frame_prefix_;  // "<ros namespace>/" before every frame id; empty without one
   FramesConfig frames_;       // guarded by mutex_; ids with the prefix
   std::map<std::string, ObjectModel> shapes_;  // the models' parts by model name; mutex_

@@ -36,6 +36,7 @@ class RosDetectService {
   // Replies to the service requests that asked for result.request_id (none: nothing to do).
   void answer(const DetectionResult& result, const std::string& frame);
   dds_entity_t reader() const { return requests_.get(); }
+  dds_entity_t writer() const { return replies_.get(); }
   std::uint64_t write_failures() const { return write_failures_; }
 
  private:

@@ -41,6 +41,8 @@ std::string idl_type(std::string t, const std::string& pkg = "",
   std::string out;
   if (auto it = kPrim.find(t); it != kPrim.end()) {
     out = it->second;
+  } else if (t.starts_with("string<=")) {  // a bounded string: string<N> in IDL
+    out = "string<" + t.substr(8) + ">";
   } else if (const auto slash = t.find('/'); slash != std::string::npos) {
     out = t.substr(0, slash) + "::msg::dds_::" + t.substr(slash + 1) + "_";
   } else {
@@ -55,7 +57,7 @@ Fields msg_fields(const std::string& text, Fields* constants, const std::string&
   Fields out;
   std::istringstream in(text);
   std::string line;
-  const std::regex field(R"(^\s*([A-Za-z0-9_/\[\]]+)\s+([a-z_0-9]+)(\s+[^#\s]+)?\s*(#.*)?$)");
+  const std::regex field(R"(^\s*([A-Za-z0-9_/\[\]<=]+)\s+([a-z_0-9]+)(\s+[^#\s]+)?\s*(#.*)?$)");
   const std::regex constant(R"(^\s*([a-z0-9]+)\s+([A-Z_0-9]+)\s*=\s*([0-9]+)\s*(#.*)?$)");
   std::smatch m;
   while (std::getline(in, line)) {
@@ -127,7 +129,7 @@ TEST(MsgIdlAgreement, AMissingStructIsNoMatch) {
 // field and constant lines of the official .msg files (comments and blank lines left out), from
 // ros2/common_interfaces (branch humble; jazzy has the same fields, and Marker one more constant,
 // ARROW_STRIP = 12), ros-perception/vision_msgs (tags 4.0.0 to 4.1.1, all the same) and
-// ros2/rcl_interfaces (builtin_interfaces).
+// ros2/rcl_interfaces (builtin_interfaces) and ros2/rmw_dds_common (the graph's discovery info).
 struct Official {
   const char* pkg;
   const char* name;
@@ -184,6 +186,13 @@ const Official kOfficial[] = {
      "sensor_msgs/CompressedImage texture\nUVCoordinate[] uv_coordinates\nstring text\n"
      "string mesh_resource\nMeshFile mesh_file\nbool mesh_use_embedded_materials\n"},
     {"visualization_msgs", "MarkerArray", "visualization_msgs.idl", "Marker[] markers\n"},
+    // ros2/rmw_dds_common, branch jazzy (the Gid of Iron and later; Humble's is char[24]).
+    {"rmw_dds_common", "Gid", "rmw_dds_common.idl", "char[16] data\n"},
+    {"rmw_dds_common", "NodeEntitiesInfo", "rmw_dds_common.idl",
+     "string<=256 node_namespace\nstring<=256 node_name\nGid[] reader_gid_seq\n"
+     "Gid[] writer_gid_seq\n"},
+    {"rmw_dds_common", "ParticipantEntitiesInfo", "rmw_dds_common.idl",
+     "Gid gid\nNodeEntitiesInfo[] node_entities_info_seq\n"},
 };
 
 void PrintTo(const Official& o, std::ostream* os) { *os << o.pkg << "/" << o.name; }

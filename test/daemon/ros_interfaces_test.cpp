@@ -1,9 +1,12 @@
 // What a ROS 2 node on the cell's network receives from rangefitd: the ROS type names on the
 // rt/ topics, XCDR1 bytes, SI metres and the configured frames; the sensors' mounts latched on
-// /tf_static, every part of a detection on /tf and rt/rangefit/poses; and the service
-// /rangefit/detect answered with the caller's identity, as rmw_cyclonedds matches replies.
+// /tf_static, every part of a detection on /tf and rt/rangefit/poses; the service
+// /rangefit/detect answered with the caller's identity, as rmw_cyclonedds matches replies; and
+// the node on ros_discovery_info, as the ROS 2 graph lists it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -15,6 +18,7 @@
 #include <vector>
 
 #include "daemon/dds/client.hpp"
+#include "daemon/dds/ros_discovery.hpp"
 #include "daemon/dds/ros_service.hpp"
 #include "daemon/rangefitd/service.hpp"
 #include "test/daemon/fakes.hpp"
@@ -166,6 +170,91 @@ TEST_F(RosInterfacesTest, ServiceCallIsAnsweredOnTheReplyTopicWithTheCallersIden
   EXPECT_EQ(r.str(), "ros-0123456789abcdef-42");  // the id the daemon gave the call
   EXPECT_EQ(r.str(), "bore");
   EXPECT_EQ(r.get<std::uint8_t>(), 1) << "found";
+}
+
+// The node a ROS 2 graph lists (ros2 node list: /rangefitd): rmw_cyclonedds's
+// ParticipantEntitiesInfo on ros_discovery_info, whose Gids are the DDS GUIDs that built-in
+// discovery announces for the daemon's participant, its writers and its readers.
+using Guid = std::array<unsigned char, 16>;
+
+Guid guid_bytes(const dds_guid_t& g) {
+  Guid out;
+  std::memcpy(out.data(), g.v, out.size());
+  return out;
+}
+
+struct Endpoint {
+  Guid key, participant;
+};
+
+// The endpoint on `topic` that built-in discovery (DCPSPublication or DCPSSubscription) reports.
+std::optional<Endpoint> discovered(dds_entity_t participant, dds_entity_t builtin,
+                                   const std::string& topic) {
+  const dds_entity_t r = dds_create_reader(participant, builtin, nullptr, nullptr);
+  const auto deadline = std::chrono::steady_clock::now() + seconds(20);
+  std::optional<Endpoint> found;
+  while (!found && std::chrono::steady_clock::now() < deadline) {
+    void* samples[64] = {};
+    dds_sample_info_t infos[64];
+    const dds_return_t n = dds_read(r, samples, infos, 64, 64);
+    for (dds_return_t i = 0; i < n; ++i) {
+      const auto* e = static_cast<const dds_builtintopic_endpoint_t*>(samples[i]);
+      if (infos[i].valid_data && e->topic_name != nullptr && topic == e->topic_name) {
+        found = Endpoint{guid_bytes(e->key), guid_bytes(e->participant_key)};
+      }
+    }
+    if (n > 0) dds_return_loan(r, samples, n);
+    if (!found) std::this_thread::sleep_for(milliseconds(20));
+  }
+  dds_delete(r);
+  return found;
+}
+
+std::vector<Guid> gid_seq(Cdr& cdr) {
+  std::vector<Guid> out(cdr.get<std::uint32_t>());
+  for (Guid& g : out) {
+    for (unsigned char& c : g) c = cdr.get<std::uint8_t>();
+  }
+  return out;
+}
+
+TEST_F(RosInterfacesTest, TheDaemonIsARosNodeWhoseEndpointsAreItsDiscoveredGuids) {
+  auto info = reader<rmw_dds_common_msg_dds__ParticipantEntitiesInfo_>(
+      topics::kRosDiscovery, &rmw_dds_common_msg_dds__ParticipantEntitiesInfo__desc,
+      topics::ros_discovery_qos());
+  EXPECT_EQ(type_name(info->get()), "rmw_dds_common::msg::dds_::ParticipantEntitiesInfo_");
+  const auto bytes = take_bytes(info->get(), seconds(20));
+  ASSERT_TRUE(bytes);
+  Cdr cdr{*bytes};
+  Guid participant;
+  for (unsigned char& c : participant) c = cdr.get<std::uint8_t>();
+  ASSERT_EQ(cdr.get<std::uint32_t>(), 1u);  // one node
+  EXPECT_EQ(cdr.str(), "/");
+  EXPECT_EQ(cdr.str(), "rangefitd");
+  const std::vector<Guid> readers = gid_seq(cdr);
+  const std::vector<Guid> writers = gid_seq(cdr);
+  EXPECT_TRUE(cdr.done());
+  const auto has = [](const std::vector<Guid>& v, const Guid& g) {
+    return std::find(v.begin(), v.end(), g) != v.end();
+  };
+  const auto result = discovered(participant_.get(), DDS_BUILTIN_TOPIC_DCPSPUBLICATION,
+                                 topics::kDetections);
+  ASSERT_TRUE(result);
+  EXPECT_EQ(result->participant, participant);
+  EXPECT_TRUE(has(writers, result->key));
+  const auto reply = discovered(participant_.get(), DDS_BUILTIN_TOPIC_DCPSPUBLICATION,
+                                topics::kServiceReply);
+  ASSERT_TRUE(reply);
+  EXPECT_TRUE(has(writers, reply->key));
+  for (const char* topic : {topics::kRequest, topics::kServiceRequest}) {
+    const auto request =
+        discovered(participant_.get(), DDS_BUILTIN_TOPIC_DCPSSUBSCRIPTION, topic);
+    ASSERT_TRUE(request) << topic;
+    EXPECT_EQ(request->participant, participant) << topic;
+    EXPECT_TRUE(has(readers, request->key)) << topic;
+  }
+  EXPECT_EQ(readers.size(), 2u);    // the request topic and the service's request
+  EXPECT_EQ(writers.size(), 13u);   // every topic of the table, the reply and this one
 }
 
 }  // namespace

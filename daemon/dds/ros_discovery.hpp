@@ -1,0 +1,51 @@
+#pragma once
+// rangefitd as a node of the ROS 2 graph: what rmw_cyclonedds publishes for each of its
+// participants on ros_discovery_info (rmw_dds_common/msg/ParticipantEntitiesInfo; no rt/ prefix;
+// reliable, transient-local, depth 1), so that `ros2 node list` shows /rangefitd (or
+// /<namespace>/rangefitd) and `ros2 node info` gives it its topics and its service. A Gid is the
+// DDS GUID of the participant, reader or writer (16 bytes, the Gid of Iron and later).
+
+#include <dds/dds.h>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "daemon/dds/dds.hpp"
+#include "rmw_dds_common.h"
+
+namespace rangefit::daemon {
+
+namespace topics {
+inline constexpr const char* kRosDiscovery = "ros_discovery_info";
+dds::QosSpec ros_discovery_qos();  // reliable, transient-local, depth 1
+}  // namespace topics
+
+using Gid = std::array<std::uint8_t, 16>;
+
+// The GUID of a DDS entity (participant, reader, writer); all zeros when it has none.
+Gid gid_of(dds_entity_t entity);
+
+struct RosNode {
+  std::string name;       // "rangefitd"
+  std::string name_space; // "/" or "/cell1"
+  std::vector<dds_entity_t> readers, writers;
+};
+
+// The ROS node name space of a rangefit ROS namespace ("" -> "/", "cell1" -> "/cell1").
+std::string ros_node_namespace(const std::string& ros_namespace);
+
+// Publishes the participant's one node once (transient-local: late graph readers get it too).
+// Throws dds::DdsError when the writer cannot be created (start-up only).
+class RosDiscovery {
+ public:
+  RosDiscovery(dds::Participant& participant, const RosNode& node);
+  bool published() const { return published_; }
+
+ private:
+  dds::Writer<rmw_dds_common_msg_dds__ParticipantEntitiesInfo_> writer_;
+  bool published_ = false;
+};
+
+}  // namespace rangefit::daemon
