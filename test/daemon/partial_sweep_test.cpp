@@ -6,11 +6,11 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 
 #include "daemon/rangefitd/service.hpp"
 #include "test/daemon/replay_service.hpp"
+#include "test/daemon/stripe_cell_config.hpp"
 
 namespace rangefit::daemon {
 namespace {
@@ -25,16 +25,8 @@ class PartialSweep : public ::testing::TestWithParam<Sweep> {};
 
 TEST_P(PartialSweep, TheConeIsFoundWhereItIsOrNotAtAll) {
   const fs::path dir = test::fresh_test_dir("rangefit_partial_sweep_test");
-  const fs::path data = fs::path(RANGEFIT_SOURCE_DIR) / "data";
-  fs::copy_file(data / "models/cone.toml", dir / "cone.toml");
-  std::ofstream(dir / "rangefitd.toml")
-      << "[service]\nobject_sensor = \"stripe\"\n[dds]\ndomain_id = " << test::dds_test_domain()
-      << "\n[spool]\ndirectory = \"" << (dir / "spool").string() << "\"\npictures = false\n"
-      << "[sim]\ntime_scale = 0\nseed = 2\n"
-      << "[[devices]]\nname = \"stripe\"\nkind = \"stripe\"\nscene = \""
-      << (data / "scenes/table_top_fig5_18.toml").string() << "\"\n"
-      << "[[objects]]\nmodel = \"cone.toml\"\n";
-  const ConfigResult config = load_config(dir / "rangefitd.toml");
+  const ConfigResult config = load_config(
+      test::write_stripe_cell_config(dir, "table_top_fig5_18.toml", "cone.toml", false));
   ASSERT_TRUE(config.config) << config.error;
   hal::MonotonicClock clock;
   Service service(*config.config, clock);

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <memory>
 #include <string>
@@ -12,6 +11,7 @@
 #include "daemon/dds/client.hpp"
 #include "daemon/rangefitd/service.hpp"
 #include "test/daemon/replay_service.hpp"
+#include "test/daemon/stripe_cell_config.hpp"
 
 namespace rangefit::daemon {
 namespace {
@@ -21,16 +21,8 @@ using std::chrono::seconds;
 
 TEST(SimMalletService, BothPartsOfTheMalletAreFoundAndEachIsPublishedAsPoseAndFrame) {
   const fs::path dir = test::fresh_test_dir("rangefit_sim_mallet_service_test");
-  const fs::path data = fs::path(RANGEFIT_SOURCE_DIR) / "data";
-  fs::copy_file(data / "models/mallet.toml", dir / "mallet.toml");
-  std::ofstream(dir / "rangefitd.toml")
-      << "[service]\nobject_sensor = \"stripe\"\n[dds]\ndomain_id = " << test::dds_test_domain()
-      << "\n[spool]\ndirectory = \"" << (dir / "spool").string() << "\"\n"
-      << "[sim]\ntime_scale = 0\nseed = 2\n"
-      << "[[devices]]\nname = \"stripe\"\nkind = \"stripe\"\nscene = \""
-      << (data / "scenes/cluttered_mallet.toml").string() << "\"\n"
-      << "[[objects]]\nmodel = \"mallet.toml\"\n[frames]\nworld = \"table\"\n";
-  const ConfigResult config = load_config(dir / "rangefitd.toml");
+  const ConfigResult config = load_config(test::write_stripe_cell_config(
+      dir, "cluttered_mallet.toml", "mallet.toml", true, "[frames]\nworld = \"table\"\n"));
   ASSERT_TRUE(config.config) << config.error;
   hal::MonotonicClock clock;
   Service service(*config.config, clock);
