@@ -31,15 +31,29 @@ bool seed_surface(const RefineInput& in, const Eigen::Vector3d& point, Eigen::Ve
   return true;
 }
 
+// Height above which wall points lie: a blind bore's floor (the median height of the points the
+// segmentation found facing out of the bore inside it) plus the band, as the cylinder's
+// refinement does; near the corner the floor lies within the band of the wall and, seen from
+// one side, pulls an ellipse's centre and radii by up to 0.2 mm.
+double floor_height(const RefineInput& in, const BoreOptions& o) {
+  if (in.bottom.size() < 10) return -1e300;
+  std::vector<double> h;
+  h.reserve(in.bottom.size());
+  for (const auto& p : in.bottom) h.push_back((p - in.plane.point).dot(in.up));
+  std::nth_element(h.begin(), h.begin() + static_cast<std::ptrdiff_t>(h.size() / 2), h.end());
+  return h[h.size() / 2] + o.refine_band;
+}
+
 // Points of the region deeper than the margin below the plane and within `band` of the wall;
 // with q < stride, every q-th of the scan points skipped after each of them too (the rays next
 // to a wall point mostly hit the wall as well).
 std::vector<Eigen::Vector3d> near_wall(const RefineInput& in, const BoreSurface& s, double band,
                                        std::size_t q, const BoreOptions& o) {
   const BoreRegion& r = *in.region;
+  const double floor = floor_height(in, o);
   const auto keep = [&](const Eigen::Vector3d& p) {
-    return (p - in.plane.point).dot(in.up) < -o.refine_plane_margin &&
-           std::abs(surface_residual(s, p)) <= band;
+    const double h = (p - in.plane.point).dot(in.up);
+    return h < -o.refine_plane_margin && h > floor && std::abs(surface_residual(s, p)) <= band;
   };
   std::vector<Eigen::Vector3d> out;
   for (const std::uint32_t i : r.roi) {
@@ -105,9 +119,11 @@ bool valid_shape(const BorePrior& p, const BoreOptions& o) {
   return p.cylinder_radius == 0.0 && across.norm() > 1e-3 * p.major_axis.norm();
 }
 
-ShapeWallFit fit_shaped_wall(const RefineInput& in, const Wall& wall, const BoreFrame& f,
+ShapeWallFit fit_shaped_wall(const RefineInput& base, const Wall& wall, const BoreFrame& f,
                              const BorePrior& prior, const BoreOptions& o) {
   ShapeWallFit w;
+  RefineInput in = base;
+  in.bottom = wall.bottom;
   Eigen::Vector3d point = prior.entrance, axis = f.a_cad;
   if (wall.points.size() >= static_cast<std::size_t>(std::max(o.min_wall_points, 3))) {
     w.rsf = fit_cylinder_rsf(wall.points, wall.normals, f.a_cad, prior.entrance,
@@ -141,10 +157,15 @@ ShapeWallFit fit_shaped_wall(const RefineInput& in, const Wall& wall, const Bore
     w.fit = fit_bore_surface(pts, w.fit.surface, in.plane.normal, so);
     band = o.refine_band;
   }
-  so.trim = trim_limit(pts, w.fit.surface);
-  so.max_iterations = 10;
+  // The polish: a cone on the points within the limit (Huber); an ellipse, whose centre and
+  // radii a one-sided arc determines poorly, on twice that with the trim re-selected every step
+  // (measured on the tuning seeds: 28 of 40 ellipses within 0.02 mm against 8 untrimmed; the
+  // cones 40 of 40 untrimmed against 38 trimmed).
+  const double limit = trim_limit(pts, w.fit.surface);
+  so.max_iterations = 50;
+  if (!start.cone) so.trim = limit;
   const std::size_t q = fill_step(read, stride, o);
-  pts = near_wall(in, w.fit.surface, 2.0 * so.trim, q, o);
+  pts = near_wall(in, w.fit.surface, start.cone ? limit : 2.0 * limit, q, o);
   if (pts.size() < static_cast<std::size_t>(std::max(o.min_wall_points, 10))) return w;
   w.fit = fit_bore_surface(pts, w.fit.surface, in.plane.normal, so);
   if (w.fit.inliers < 10 || !near_start(w.fit.surface, start, o) ||

@@ -31,7 +31,7 @@ struct BoreSurface {
 double surface_residual(const BoreSurface& s, const Eigen::Vector3d& p);
 
 struct SurfaceFitOptions {
-  int max_iterations = 30;
+  int max_iterations = 100;
   double huber_delta = 0.15;     // mm; residuals beyond count linearly
   double trim = 0.0;             // > 0: residuals beyond this (mm) get no weight in a step
   double step_tolerance = 1e-7;  // relative, eq. 2.64
