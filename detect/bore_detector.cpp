@@ -22,6 +22,12 @@ std::string_view to_string(BoreReason r) {
       return "cylinder fit failed";
     case BoreReason::kAxisParallelToPlane:
       return "fitted axis does not cross the entrance plane";
+    case BoreReason::kBadShape:
+      return "bad bore model (cone and ellipse at once, half-angle outside [0, 80 deg), "
+             "cylinder radius not below the entrance radius, or radius2 without a major axis "
+             "across the bore axis)";
+    case BoreReason::kShapeFitFailed:
+      return "cone or ellipse fit failed (too few points near the model, or the fit left it)";
   }
   return "unknown";
 }
@@ -60,6 +66,48 @@ BoreWallResult wall_result(const bore::WallFit& w, std::size_t wall_points) {
   return r;
 }
 
+// A cone or elliptic bore: the model fit replaces the cylinder's RSF and refinement.
+BoreResult shaped(BoreResult res, const RefineInput& base, const bore::Wall& wall,
+                  const bore::BoreFrame& f, const BorePrior& prior, const BoreOptions& o,
+                  bore::StageClock& clock) {
+  const bore::ShapeWallFit w = bore::fit_shaped_wall(base, wall, f, prior, o);
+  res.time_ms.refine = clock.lap();
+  res.counts.axis_pairs = w.rsf.axis_pairs;
+  res.counts.triangles = w.rsf.triangles;
+  res.counts.refine_inliers = w.fit.inliers;
+  res.rsf_radius = w.rsf.cylinder.radius;
+  res.rsf_axis = w.rsf.cylinder.axis;
+  if (w.reason != BoreReason::kFound) return fail(res, w.reason, clock);
+  const BoreSurface& s = w.fit.surface;
+  const SurfaceFitResult& fit = w.fit;
+  BoreShape shape;
+  shape.cone = s.cone;
+  shape.half_angle = s.half_angle;
+  shape.cylinder_radius = s.cylinder_radius;
+  shape.radius2 = s.radius2;
+  shape.major_axis = s.major;
+  shape.sigma_radius = fit.sigma_radius;
+  shape.sigma_half_angle = fit.sigma_half_angle;
+  shape.sigma_cylinder_radius = fit.sigma_cylinder_radius;
+  shape.sigma_radius2 = fit.sigma_radius2;
+  shape.sigma_major_axis = fit.sigma_major;
+  shape.sigma_entrance = fit.sigma_entrance;
+  shape.sigma_axis = fit.sigma_axis;
+  shape.rms = fit.rms;
+  shape.iterations = fit.iterations;
+  shape.seeded_by_rsf = w.seeded_by_rsf;
+  res.shape = shape;
+  res.entrance = s.entrance;
+  res.axis = s.axis;
+  res.radius = s.radius;
+  res.plane_normal = base.up;
+  res.refined = true;
+  res.found = true;
+  res.reason = BoreReason::kFound;
+  res.time_ms.total = clock.total();
+  return res;
+}
+
 }  // namespace
 
 BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const BoreOptions& o) {
@@ -67,6 +115,7 @@ BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const Bo
   BoreResult res;
   res.counts.input = cloud.size();
   if (!bore::valid_input(prior, o)) return fail(res, BoreReason::kBadPrior, clock);
+  if (!bore::valid_shape(prior, o)) return fail(res, BoreReason::kBadShape, clock);
   const bore::BoreFrame f = bore::bore_frame(prior, o);
 
   // 4.1.1 region of interest and normals.
@@ -97,6 +146,7 @@ BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const Bo
   base.plane = plane;
   base.up = plane.normal.dot(f.view) < 0.0 ? Eigen::Vector3d(-plane.normal) : plane.normal;
   base.normal_radius = normals.radius;
+  if (bore::has_shape(prior)) return shaped(res, base, seg.walls.front(), f, prior, o, clock);
   const auto fit = [&](std::size_t k) {
     return bore::fit_wall(base, seg.walls[k], f.targets[k], f, prior, o, clock, res.time_ms);
   };

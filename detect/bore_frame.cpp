@@ -9,8 +9,15 @@ namespace {
 
 bool finite(const Eigen::Vector3d& v) { return v.allFinite(); }
 
+// The radius whose wall eq. 4.6 can find: a countersink's cylinder, an ellipse's larger
+// semi-axis (the band then holds both), else the CAD radius.
+double segmented_radius(const BorePrior& prior) {
+  if (prior.half_angle > 0.0 && prior.cylinder_radius > 0.0) return prior.cylinder_radius;
+  return std::max(prior.radius, prior.radius2);
+}
+
 std::vector<WallTarget> wall_targets(const BorePrior& prior, const BoreOptions& o) {
-  const double r_in = prior.radius;
+  const double r_in = segmented_radius(prior);
   const double r_out = prior.outer_radius > r_in ? prior.outer_radius : 0.0;
   const double mid = 0.5 * (r_in + r_out);
   std::vector<WallTarget> t;
@@ -65,6 +72,7 @@ BoreFrame bore_frame(const BorePrior& prior, const BoreOptions& o) {
     f.r_min = std::min(f.r_min, w.radius);
     f.r_max = std::max(f.r_max, w.radius);
   }
+  f.r_max = std::max(f.r_max, prior.radius);  // a countersink's entrance radius sets the region
   // Beyond the thesis: a patch as large as a small bore's radius is too curved for eq. 4.4.
   f.normal_radius = std::min(o.normal_radius, o.normal_radius_max_share * f.r_min);
   // A pipe's end face is only as wide as its wall: a larger patch straddles an edge everywhere

@@ -20,6 +20,18 @@ struct BorePrior {
   double outer_radius = 0.0;
   // Normal of the surface around the bore; nullopt: the axis (a perpendicular bore).
   std::optional<Eigen::Vector3d> plane_normal;
+  // Beyond the thesis (its ch. 7 future work): the model, when the bore is not a circular
+  // cylinder (detect/bore_surface.hpp). At most one of:
+  // a cone narrowing with depth, radius at the entrance, this half-angle, rad (a 90 deg
+  // countersink: pi/4; a tapered hole: a few degrees); 0: no cone.
+  double half_angle = 0.0;
+  // With a cone: > 0, the cylindrical bore of this radius the cone ends in (a countersunk
+  // hole), mm; 0: a pure cone.
+  double cylinder_radius = 0.0;
+  // > 0: an elliptic bore, radius the semi-axis along major_axis and this the other one, mm.
+  double radius2 = 0.0;
+  Eigen::Vector3d major_axis =
+      Eigen::Vector3d::Zero();  // across the axis (its part along it drops)
 };
 
 // Which cylinder of a pipe to fit: the bore (concave, inner), the outer (convex) wall, or both.
@@ -79,6 +91,16 @@ struct BoreOptions {
   double refine_plane_margin = 0.2;  // mm (3.3 sigma of 0.06 mm noise on a sharp rim)
   double refine_above_wall = 0.5;    // share of R above the wall (98th pct height) still taken
   CylinderLsfOptions lsf;
+  // A cone or elliptic bore (BorePrior::half_angle, radius2): the fit starts on the points
+  // within shape_band of the CAD or RSF-seeded surface (a prior 0.3 mm and 2 deg off moves a
+  // wall 10 mm deep by about 0.65 mm), then again on the full-resolution points within 3 robust
+  // sigmas of that fit. A fit whose half-angle moves by more than shape_max_angle_change, radius
+  // by more than 20 % or axis by more than 5 deg from its start is refused (kShapeFitFailed), as
+  // is one whose inliers' rms residual exceeds shape_max_rms (the wrong model: a cone on a
+  // plain bore fits its rim at ~0.4 mm rms, the right one 0.06 mm noise at about that).
+  double shape_band = 0.8;                 // mm
+  double shape_max_angle_change = 0.0873;  // rad (5 deg)
+  double shape_max_rms = 0.2;              // mm
   std::uint64_t seed = 1;
 };
 

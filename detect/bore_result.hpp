@@ -16,6 +16,8 @@ enum class BoreReason {
   kTooFewWallPoints,     // too few wall points after segmentation or the notch filter
   kFitFailed,            // the cylinder fit found no axis or radius
   kAxisParallelToPlane,  // the fitted axis does not cross the fitted plane
+  kBadShape,             // cone and ellipse at once, half-angle outside [0, 80 deg), bad radius2
+  kShapeFitFailed,       // the cone/ellipse fit found too few points near the model or ran off
 };
 std::string_view to_string(BoreReason r);
 
@@ -50,6 +52,23 @@ struct BoreWallResult {
   std::size_t wall = 0, refine_inliers = 0;
 };
 
+// A cone or elliptic bore's shape as fitted (BorePrior::half_angle or radius2 set), with one-sigma
+// standard errors from the fit's normal matrix (sigma^2 (J^T W J)^-1, sigma^2 from the inliers'
+// residuals): they say how well the points determine a value, not how far it is from the truth.
+struct BoreShape {
+  bool cone = false;             // else an ellipse
+  double half_angle = 0.0;       // cone, rad
+  double cylinder_radius = 0.0;  // cone ending in a cylinder, mm (0: a pure cone)
+  double radius2 = 0.0;          // ellipse: the semi-axis across major_axis, mm
+  Eigen::Vector3d major_axis = Eigen::Vector3d::UnitX();  // ellipse: unit, direction of radius
+  double sigma_radius = 0.0, sigma_half_angle = 0.0, sigma_cylinder_radius = 0.0;
+  double sigma_radius2 = 0.0, sigma_major_axis = 0.0;  // mm, rad
+  double sigma_entrance = 0.0, sigma_axis = 0.0;       // mm (in the plane), rad
+  double rms = 0.0;                                    // inliers' rms residual, mm
+  int iterations = 0;
+  bool seeded_by_rsf = false;  // the start was the RSF cylinder of the wall (else the CAD axis)
+};
+
 struct BoreResult {
   bool found = false;
   BoreReason reason = BoreReason::kFitFailed;
@@ -65,6 +84,9 @@ struct BoreResult {
   BoreTimes time_ms;
   // walls = kBoth: the outer wall (the fields above are the inner one); otherwise empty.
   std::optional<BoreWallResult> outer;
+  // A cone or elliptic bore: its shape (radius above is the cone's radius at the entrance, or the
+  // ellipse's semi-axis along shape->major_axis); otherwise empty.
+  std::optional<BoreShape> shape;
 };
 
 }  // namespace rangefit

@@ -13,6 +13,7 @@
 #include "detect/bore_refine.hpp"
 #include "detect/bore_region.hpp"
 #include "detect/bore_result.hpp"
+#include "detect/bore_surface.hpp"
 #include "detect/cylinder_rsf.hpp"
 #include "detect/normals.hpp"
 #include "detect/pca.hpp"
@@ -97,5 +98,22 @@ struct WallFit {
 WallFit fit_wall(const RefineInput& base, const Wall& wall, const WallTarget& target,
                  const BoreFrame& f, const BorePrior& prior, const BoreOptions& o,
                  StageClock& clock, BoreTimes& times);
+
+// Beyond the thesis: a cone or elliptic bore (BorePrior::half_angle or radius2).
+bool has_shape(const BorePrior& prior);
+// False for a bad model (kBadShape): see to_string(BoreReason::kBadShape).
+bool valid_shape(const BorePrior& prior, const BoreOptions& o);
+// The wall's model, seeded by the RSF cylinder of the segmented wall where it has one that
+// agrees with the CAD axis (a countersink's cylinder, a taper of less than eq. 4.6's 5 deg, an
+// ellipse), else by the CAD axis, then fitted on the region's points near it and polished on
+// the full-resolution points within 3 robust sigmas (detect/bore_surface.hpp).
+struct ShapeWallFit {
+  BoreReason reason = BoreReason::kShapeFitFailed;
+  SurfaceFitResult fit;
+  RsfResult rsf;
+  bool seeded_by_rsf = false;
+};
+ShapeWallFit fit_shaped_wall(const RefineInput& base, const Wall& wall, const BoreFrame& f,
+                             const BorePrior& prior, const BoreOptions& o);
 
 }  // namespace rangefit::bore

@@ -105,7 +105,7 @@ Eigen::Isometry3d read_pose(const Ctx& c) {
         Eigen::Quaterniond::FromTwoVectors(Vector3d::UnitZ(), z.normalized()).toRotationMatrix();
   } else {
     const Vector3d rpy = kDeg * c.vec<3>("rpy_deg", Vector3d::Zero());
-    T.linear() = hal::rpy_matrix(rpy);
+    T.linear() = hal::rpy_matrix(rpy.x(), rpy.y(), rpy.z());
   }
   return T;
 }

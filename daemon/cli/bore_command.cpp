@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -15,6 +16,7 @@
 #include "daemon/cli/json_util.hpp"
 #include "daemon/cli/option_checks.hpp"
 #include "daemon/cli/png_output.hpp"
+#include "daemon/service/bore_shape_json.hpp"
 #include "daemon/service/detection_adapter.hpp"
 #include "detect/bore_detector.hpp"
 #include "io/cloud_io.hpp"
@@ -24,9 +26,10 @@ namespace {
 
 struct BoreArgs {
   std::string cloud;
-  std::string entrance, axis, plane_normal, view_dir, sensor_position;
+  std::string entrance, axis, plane_normal, view_dir, sensor_position, major_axis;
   double radius = 0.0;
   double outer_radius = 0.0;
+  double half_angle = 0.0, cylinder_radius = 0.0, radius2 = 0.0;  // rad, mm, mm
   std::string walls = "inner";
   double normal_keep = 1.0;
   std::uint64_t seed = 1;
@@ -59,9 +62,11 @@ nlohmann::json to_json(const BoreResult& r) {
   nlohmann::json j;
   j["found"] = r.found;
   if (r.found) {
+    j["model"] = "cylinder";
     j["entrance"] = json_vec(r.entrance);
     j["axis"] = json_vec(r.axis);
     j["radius"] = r.radius;
+    if (r.shape) j.update(daemon::bore_shape_json(*r.shape));
     j["plane_normal"] = json_vec(r.plane_normal);
     j["rsf_radius"] = r.rsf_radius;
     j["second_fit"] = r.second_fit;
@@ -100,6 +105,28 @@ nlohmann::json to_json(const BoreResult& r) {
   return j;
 }
 
+std::string vec_text(const Eigen::Vector3d& x) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(4) << x.x() << ", " << x.y() << ", " << x.z();
+  return s.str();
+}
+
+void print_shape(const BoreResult& r) {
+  if (!r.shape) return;
+  const BoreShape& s = *r.shape;
+  constexpr double kDeg = 180.0 / std::numbers::pi;
+  if (s.cone) {
+    std::cout << "  cone      half-angle " << s.half_angle << " rad (" << s.half_angle * kDeg
+              << " deg, +- " << s.sigma_half_angle * kDeg << ")\n";
+    if (s.cylinder_radius > 0.0) {
+      std::cout << "  cylinder  radius " << s.cylinder_radius << " mm below the cone\n";
+    }
+  } else {
+    std::cout << "  ellipse   radius2 " << s.radius2 << " mm, major axis " << vec_text(s.major_axis)
+              << "\n";
+  }
+}
+
 void print_text(const BoreResult& r) {
   std::cout << std::fixed << std::setprecision(4);
   if (!r.found) {
@@ -107,16 +134,16 @@ void print_text(const BoreResult& r) {
               << " points in the region, " << r.counts.wall << " wall points)\n";
     return;
   }
-  const auto v = [](const Eigen::Vector3d& x) {
-    std::ostringstream s;
-    s << std::fixed << std::setprecision(4) << x.x() << ", " << x.y() << ", " << x.z();
-    return s.str();
-  };
+  const auto v = vec_text;
   std::cout << "bore found\n"
             << "  entrance  " << v(r.entrance) << " mm\n"
             << "  axis      " << v(r.axis) << " (unit, out of the bore)\n"
-            << "  radius    " << r.radius << " mm\n"
-            << "  points    " << r.counts.roi << " in region, " << r.counts.plane << " plane, "
+            << "  radius    " << r.radius << " mm"
+            << (!r.shape        ? "\n"
+                : r.shape->cone ? " (the cone's, at the entrance)\n"
+                                : " (along the major axis)\n");
+  print_shape(r);
+  std::cout << "  points    " << r.counts.roi << " in region, " << r.counts.plane << " plane, "
             << r.counts.wall << " wall" << (r.second_fit ? " (notch re-fit ran)" : "") << "\n"
             << std::setprecision(2) << "  time      " << r.time_ms.total << " ms\n";
   if (r.outer) {
@@ -156,11 +183,15 @@ int run(const BoreArgs& a) {
   query.outer_radius = a.outer_radius;
   if (a.walls == "outer") query.walls = BoreWalls::kOuter;
   if (a.walls == "both") query.walls = BoreWalls::kBoth;
+  query.half_angle = a.half_angle;
+  query.cylinder_radius = a.cylinder_radius;
+  query.radius2 = a.radius2;
   daemon::ScanSensor sensor;  // what the user knows of the sensor
   const std::pair<const std::string*, const char*> optional_vectors[] = {
       {&a.plane_normal, "--cad-plane-normal"},
       {&a.view_dir, "--view-dir"},
-      {&a.sensor_position, "--sensor-position"}};
+      {&a.sensor_position, "--sensor-position"},
+      {&a.major_axis, "--cad-major-axis"}};
   for (const auto& [text, name] : optional_vectors) {
     if (text->empty()) continue;
     const auto v = parse_vec(*text);
@@ -171,6 +202,11 @@ int run(const BoreArgs& a) {
     if (text == &a.plane_normal) query.plane_normal = *v;
     if (text == &a.view_dir) sensor.view_dir = *v;
     if (text == &a.sensor_position) sensor.sensor_position = *v;
+    if (text == &a.major_axis) query.major_axis = *v;
+  }
+  if (a.radius2 > 0.0 && !query.major_axis) {
+    std::cerr << "rangefit bore: --cad-radius2 needs --cad-major-axis\n";
+    return kExitBadInput;
   }
   PointCloud cloud;
   try {
@@ -188,7 +224,8 @@ int run(const BoreArgs& a) {
   }
   if (!write_png_if_asked(a.png, cloud, r, d.options)) return kExitBadInput;
   if (r.found) return kExitOk;
-  return r.reason == BoreReason::kBadPrior ? kExitBadInput : kExitNotFound;
+  const bool bad = r.reason == BoreReason::kBadPrior || r.reason == BoreReason::kBadShape;
+  return bad ? kExitBadInput : kExitNotFound;
 }
 
 }  // namespace
@@ -213,6 +250,21 @@ void add_bore_command(CLI::App& app, int* exit_code) {
   cmd->add_option("--cad-outer-radius", args->outer_radius,
                   "A thick-walled pipe's outer wall radius, mm (the bore is its inner wall)")
       ->check(finite_range(1e-3, 1e5));
+  cmd->add_option("--cad-half-angle", args->half_angle,
+                  "A conical bore: the cone's half-angle, rad (a 90 deg countersink: 0.7854), "
+                  "narrowing with depth from --cad-radius at the entrance")
+      ->check(finite_range(0.0, 1.39));
+  cmd->add_option("--cad-cylinder-radius", args->cylinder_radius,
+                  "With --cad-half-angle: the radius of the cylindrical bore the cone ends in "
+                  "(a countersunk hole), mm")
+      ->check(finite_range(1e-3, 1e5));
+  cmd->add_option("--cad-radius2", args->radius2,
+                  "An elliptic bore: the semi-axis across --cad-major-axis, mm (--cad-radius is "
+                  "the one along it)")
+      ->check(finite_range(1e-3, 1e5));
+  cmd->add_option("--cad-major-axis", args->major_axis,
+                  "An elliptic bore: direction X,Y,Z of the --cad-radius semi-axis (across the "
+                  "bore axis)");
   cmd->add_option("--walls", args->walls,
                   "Which wall of a pipe to fit: inner (the bore, default), outer "
                   "(--cad-outer-radius, else --cad-radius) or both (the outer one as \"outer\")")
@@ -228,7 +280,9 @@ void add_bore_command(CLI::App& app, int* exit_code) {
       ->check(finite_range(0.001, 1.0));
   cmd->add_option("--seed", args->seed, "Seed of the random sampling (same seed, same result)");
   cmd->add_flag("--json", args->json,
-                "Print one JSON object: found, entrance, axis, radius, reason, points, time_ms");
+                "Print one JSON object: found, model, entrance, axis, radius (a cone: "
+                "half_angle, cylinder_radius; an ellipse: radius2, major_axis; their sigma), "
+                "reason, points, time_ms");
   cmd->add_option("--png", args->png,
                   "Also draw the scan and the fitted bore to this PNG (as `rangefit render`)");
   cmd->callback([args, exit_code] { *exit_code = run(*args); });

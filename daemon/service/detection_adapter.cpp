@@ -8,6 +8,10 @@ BoreDetection bore_detection(const BoreQuery& q, const ScanSensor& sensor) {
   d.prior.axis = q.axis;
   d.prior.radius = q.radius;
   d.prior.outer_radius = q.outer_radius;
+  d.prior.half_angle = q.half_angle;
+  d.prior.cylinder_radius = q.cylinder_radius;
+  d.prior.radius2 = q.radius2;
+  if (q.major_axis) d.prior.major_axis = *q.major_axis;
   d.options.walls = q.walls;
   d.prior.plane_normal = q.plane_normal;
   d.options.seed = q.seed;
@@ -62,6 +66,10 @@ BoreQuery bore_query(const ScanRequest& r, std::uint64_t default_seed) {
   q.radius = r.bore.radius_mm;
   q.plane_normal = r.bore.plane_normal;
   q.outer_radius = r.bore.outer_radius_mm;
+  q.half_angle = r.bore.half_angle_rad;
+  q.cylinder_radius = r.bore.cylinder_radius_mm;
+  q.radius2 = r.bore.radius2_mm;
+  q.major_axis = r.bore.major_axis;
   if (r.bore.walls == "outer") q.walls = BoreWalls::kOuter;
   if (r.bore.walls == "both") q.walls = BoreWalls::kBoth;
   if (r.bore.normal_keep > 0.0) q.normal_keep = r.bore.normal_keep;

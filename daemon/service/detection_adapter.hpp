@@ -21,6 +21,13 @@ struct BoreQuery {
   double outer_radius = 0.0;  // mm, for walls kOuter and kBoth
   BoreWalls walls = BoreWalls::kInner;
   std::optional<Eigen::Vector3d> plane_normal;  // none: the axis
+  // A cone or elliptic bore (detect/bore_options.hpp BorePrior): the cone's half-angle, rad, and
+  // the cylinder it ends in, mm; the ellipse's second semi-axis, mm, and the direction of the
+  // first (radius). 0 / none: a circular cylinder.
+  double half_angle = 0.0;
+  double cylinder_radius = 0.0;
+  double radius2 = 0.0;
+  std::optional<Eigen::Vector3d> major_axis;
   double normal_keep = 1.0;
   std::uint64_t seed = 1;
 };

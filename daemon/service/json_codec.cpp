@@ -50,6 +50,10 @@ nlohmann::json to_json(const ScanRequest& r) {
   if (r.bore.outer_radius_mm > 0.0) j["bore"]["outer_radius_mm"] = r.bore.outer_radius_mm;
   if (!r.bore.walls.empty()) j["bore"]["walls"] = r.bore.walls;
   if (r.bore.normal_keep > 0.0) j["bore"]["normal_keep"] = r.bore.normal_keep;
+  if (r.bore.half_angle_rad != 0.0) j["bore"]["half_angle_rad"] = r.bore.half_angle_rad;
+  if (r.bore.cylinder_radius_mm != 0.0) j["bore"]["cylinder_radius_mm"] = r.bore.cylinder_radius_mm;
+  if (r.bore.radius2_mm != 0.0) j["bore"]["radius2_mm"] = r.bore.radius2_mm;
+  if (r.bore.major_axis) j["bore"]["major_axis"] = to_array(*r.bore.major_axis);
   if (r.view_dir) j["view_dir"] = to_array(*r.view_dir);
   if (r.sensor_position) j["sensor_position_mm"] = to_array(*r.sensor_position);
   if (r.parts != 0) j["parts"] = r.parts;
@@ -111,6 +115,11 @@ bool from_json(const nlohmann::json& j, ScanRequest& out, std::string* error) {
     out.bore.outer_radius_mm = bore.value("outer_radius_mm", 0.0);
     out.bore.walls = bore.value("walls", std::string());
     out.bore.normal_keep = bore.value("normal_keep", 0.0);
+    out.bore.half_angle_rad = bore.value("half_angle_rad", 0.0);
+    out.bore.cylinder_radius_mm = bore.value("cylinder_radius_mm", 0.0);
+    out.bore.radius2_mm = bore.value("radius2_mm", 0.0);
+    out.bore.major_axis.reset();
+    if (bore.contains("major_axis")) out.bore.major_axis = vec(bore.at("major_axis"));
     out.view_dir.reset();
     out.sensor_position.reset();
     if (j.contains("view_dir")) out.view_dir = vec(j.at("view_dir"));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "daemon/service/bore_shape_json.hpp"
 #include "daemon/service/calibrate_request.hpp"
 #include "daemon/service/detection_adapter.hpp"
 #include "daemon/service/learn_request.hpp"
@@ -65,6 +66,7 @@ DetectionResult ModelDetector::detect_bore_request(const PointCloud& cloud,
                  {"plane_normal", {r.plane_normal.x(), r.plane_normal.y(), r.plane_normal.z()}},
                  {"refined", r.refined},
                  {"second_fit", r.second_fit}};
+  if (r.shape) out.details["shape"] = bore_shape_json(*r.shape);
   if (r.outer) {
     // Both walls: the outer one as a second part when found, and its radius in the details.
     nlohmann::json o = {{"found", r.outer->found}, {"wall_points", r.outer->wall}};

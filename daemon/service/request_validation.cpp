@@ -41,6 +41,22 @@ std::string check_sensor_knowledge(ScanRequest& request) {
   return "";
 }
 
+// A cone or elliptic bore's model; the detector refuses the rest (kBadShape) with its reason.
+std::string check_bore_shape(const BorePrior& bore) {
+  if (!std::isfinite(bore.half_angle_rad) || bore.half_angle_rad < 0.0 ||
+      bore.half_angle_rad >= 1.396)
+    return "bore half_angle_rad must be in 0 .. 1.396 rad (80 deg; 0: no cone)";
+  if (!std::isfinite(bore.cylinder_radius_mm) || bore.cylinder_radius_mm < 0.0 ||
+      bore.cylinder_radius_mm > 1e5)
+    return "bore cylinder_radius_mm must be in 0 .. 1e5 mm (0: none)";
+  if (!std::isfinite(bore.radius2_mm) || bore.radius2_mm < 0.0 || bore.radius2_mm > 1e5)
+    return "bore radius2_mm must be in 0 .. 1e5 mm (0: circular)";
+  if (bore.radius2_mm > 0.0 &&
+      !(bore.major_axis && bore.major_axis->allFinite() && bore.major_axis->norm() > 1e-9))
+    return "bore radius2_mm needs a finite, non-zero major_axis";
+  return "";
+}
+
 std::string check_bore(BorePrior& bore) {
   if (!(bore.radius_mm > 0.0)) return "bore_radius must be > 0";
   if (!(bore.axis.norm() > 1e-9)) return "bore_axis must not be zero";
@@ -56,7 +72,7 @@ std::string check_bore(BorePrior& bore) {
     return "bore walls \"both\" needs outer_radius larger than radius";
   if (!std::isfinite(bore.normal_keep) || bore.normal_keep < 0.0 || bore.normal_keep > 1.0)
     return "bore normal_keep must be in (0, 1] (0: all)";
-  return "";
+  return check_bore_shape(bore);
 }
 
 std::string check_target(const CalibrationTarget& t) {

@@ -11,7 +11,8 @@ bool is_not_found_reason(std::string_view reason) {
   // Bad priors, models and options are the caller's error, never "not found".
   for (const BoreReason r :
        {BoreReason::kEmptyRoi, BoreReason::kDegenerateNormals, BoreReason::kNoPlane,
-        BoreReason::kTooFewWallPoints, BoreReason::kFitFailed, BoreReason::kAxisParallelToPlane}) {
+        BoreReason::kTooFewWallPoints, BoreReason::kFitFailed, BoreReason::kAxisParallelToPlane,
+        BoreReason::kShapeFitFailed}) {
     if (reason == to_string(r)) return true;
   }
   for (const DetectReason r : {DetectReason::kEmptyCloud, DetectReason::kNoHypothesis,

@@ -34,6 +34,13 @@ struct BorePrior {                                        // from CAD
   double outer_radius_mm = 0.0;
   std::string walls;
   double normal_keep = 0.0;  // share (0..1] of region points that get a normal; 0: all
+  // A cone or elliptic bore (as `rangefit bore --cad-half-angle --cad-cylinder-radius
+  // --cad-radius2 --cad-major-axis`); 0 / none: a circular cylinder. JSON requests only: the
+  // DDS request message does not carry them yet.
+  double half_angle_rad = 0.0;                // cone half-angle
+  double cylinder_radius_mm = 0.0;            // the cylinder a countersink's cone ends in
+  double radius2_mm = 0.0;                    // the ellipse's semi-axis across major_axis
+  std::optional<Eigen::Vector3d> major_axis;  // the direction of radius_mm, world
 };
 
 // A calibration body for kind = calibrate (as `rangefit calibrate stripe --cube --cube-pose`).

@@ -20,6 +20,10 @@
 // normals as the in-run baseline of the binned normals; the thesis's steepest-descent LSF both
 // at its 200 iterations and at the iterations it needs to match the RSF's accuracy
 // (BM_LsfSteepestToRsfAccuracy), the in-run baselines of BM_Rsf.
+// BM_Shape, --shape_table=N and --shape_accuracy=N [--held_out]: cone and elliptic bores beside
+// their cylinder twins (test/bench/bore_shape_bench.hpp):
+//   taskset -c 0 build/test/bench/bore_benchmark --benchmark_filter=NONE --shape_table=20
+//   build/test/bench/bore_benchmark --benchmark_filter=NONE --shape_accuracy=20 --held_out
 //   taskset -c 0 build/test/bench/bore_benchmark --benchmark_repetitions=20
 //       (add --benchmark_report_aggregates_only=true for the medians alone)
 #include <benchmark/benchmark.h>
@@ -37,6 +41,7 @@
 #include "detect/kdtree.hpp"
 #include "detect/normals.hpp"
 #include "test/bench/bore_bench_scan.hpp"
+#include "test/bench/bore_shape_bench.hpp"
 #include "test/bench/bore_thesis_tables.hpp"
 #include "test/support/synthetic_bore.hpp"
 
@@ -281,6 +286,7 @@ BENCHMARK(BM_Css)
       return *std::max_element(v.begin(), v.end());
     });
 
+BENCHMARK(bench::BM_Shape)->ArgsProduct({{0, 1, 2, 3}, {0, 1}})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Pipeline)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PipelineKeep20)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PipelineWallOnlyRefine)->Unit(benchmark::kMillisecond);
@@ -413,18 +419,28 @@ void css_accuracy(int seeds) {
 }  // namespace rangefit
 
 int main(int argc, char** argv) {
-  int table_runs = 0, accuracy_seeds = 0, thesis_trials = 0;
+  int table_runs = 0, accuracy_seeds = 0, thesis_trials = 0, shape_runs = 0, shape_seeds = 0;
+  bool held_out = false;
   for (int i = 1; i < argc; ++i) {
     int* value = nullptr;
     std::size_t len = 0;
+    if (std::strcmp(argv[i], "--held_out") == 0) held_out = true;
+    if (std::strncmp(argv[i], "--shape_table", 13) == 0) value = &shape_runs, len = 13;
+    if (std::strncmp(argv[i], "--shape_accuracy", 16) == 0) value = &shape_seeds, len = 16;
+    if (held_out && std::strcmp(argv[i], "--held_out") == 0) {
+      for (int j = i; j + 1 < argc; ++j) argv[j] = argv[j + 1];
+      --argc;
+      --i;
+      continue;
+    }
     if (std::strncmp(argv[i], "--css_table", 11) == 0) value = &table_runs, len = 11;
     if (std::strncmp(argv[i], "--css_accuracy", 14) == 0) value = &accuracy_seeds, len = 14;
     if (std::strncmp(argv[i], "--thesis_tables", 15) == 0) value = &thesis_trials, len = 15;
     if (!value) continue;
     *value = argv[i][len] == '=' ? std::atoi(argv[i] + len + 1)
-                                 : (len == 11   ? 40
-                                    : len == 14 ? 10
-                                                : 100);
+                                 : (len == 11 || len == 13   ? 40
+                                    : len == 14 || len == 16 ? 10
+                                                             : 100);
     for (int j = i; j + 1 < argc; ++j) argv[j] = argv[j + 1];
     --argc;
     --i;
@@ -435,6 +451,8 @@ int main(int argc, char** argv) {
   if (table_runs > 0) rangefit::css_table(table_runs);
   if (accuracy_seeds > 0) rangefit::css_accuracy(accuracy_seeds);
   if (thesis_trials > 0) rangefit::thesis_tables(thesis_trials);
+  if (shape_runs > 0) rangefit::bench::shape_table(shape_runs);
+  if (shape_seeds > 0) rangefit::bench::shape_accuracy(shape_seeds, held_out, !held_out);
   benchmark::Shutdown();
   return 0;
 }

@@ -68,7 +68,7 @@ class Part {
     const double h = d.dot(axis_);
     if (-h > depth_) return false;  // the blind bore's bottom
     const Eigen::Vector3d radial = d - h * axis_;
-    double rho = r_;
+    double rho = main ? wall_radius(radial, -h) : r_;
     const double e = o_.edge_size;
     if (o_.edge == BoreEdge::kChamfer && below < e) rho += e - below;
     if (o_.edge == BoreEdge::kRounded && below < e) {
@@ -84,6 +84,18 @@ class Part {
       }
     }
     return radial.squaredNorm() < rho * rho;
+  }
+
+  // The main bore's radius at this depth and direction: a cone down into the bore, an ellipse.
+  double wall_radius(const Eigen::Vector3d& radial, double depth) const {
+    if (o_.cone_radius > r_) {
+      return std::max(r_, o_.cone_radius - depth * std::tan(o_.cone_half_angle_deg * kDeg));
+    }
+    if (o_.radius2 > 0.0) {
+      const double psi = std::atan2(radial.dot(e2_), radial.dot(e1_)) - o_.major_azimuth_deg * kDeg;
+      return r_ * o_.radius2 / std::hypot(o_.radius2 * std::cos(psi), r_ * std::sin(psi));
+    }
+    return r_;
   }
 
   const SyntheticBoreOptions& o_;
@@ -198,6 +210,14 @@ SyntheticBoreScan make_synthetic_bore(const SyntheticBoreOptions& o) {
   scan.truth.axis = o.T_world_part.linear() * part.axis();
   scan.truth.radius = r;
   scan.truth.outer_radius = part.pipe() ? o.outer_radius : 0.0;
+  if (o.cone_radius > r) {
+    scan.truth.cone_radius = o.cone_radius;
+    scan.truth.half_angle = o.cone_half_angle_deg * kDeg;
+  }
+  scan.truth.radius2 = o.radius2 > 0.0 ? o.radius2 : 0.0;
+  const double az = o.major_azimuth_deg * kDeg;
+  scan.truth.major_axis =
+      o.T_world_part.linear() * (std::cos(az) * part.e1() + std::sin(az) * part.e2());
   scan.truth.plane_normal = o.T_world_part.linear() * Eigen::Vector3d::UnitZ();
   scan.truth.view_dir = o.T_world_part.linear() * view;
   return scan;

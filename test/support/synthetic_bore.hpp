@@ -46,6 +46,15 @@ struct SyntheticBoreOptions {
   int passes = 1;  // ray grids over the square, each turned 7 deg and shifted (double coverage)
   double outer_radius = 0.0;  // > radius: a pipe of this outer radius and length depth, no plate
   double march_step = 0.02;   // ray-marching step inside openings, mm (bisection refines)
+  // > radius: a cone of cone_half_angle_deg narrowing with depth from this radius at the
+  // entrance down into the bore (a countersink); radius below anything the cone reaches: a
+  // pure conical (tapered) hole, mm.
+  double cone_radius = 0.0;
+  double cone_half_angle_deg = 45.0;
+  // > 0: an elliptic bore, radius the semi-axis along major_azimuth_deg (about the axis, from
+  // the side the view tilts toward) and radius2 across it, mm.
+  double radius2 = 0.0;
+  double major_azimuth_deg = 30.0;
   Eigen::Isometry3d T_world_part = Eigen::Isometry3d::Identity();
   std::uint64_t seed = 1;
 };
@@ -57,6 +66,10 @@ struct SyntheticBoreTruth {
   double outer_radius = 0.0;     // the pipe's outer wall, mm; 0: a bore in a plate
   Eigen::Vector3d plane_normal;  // unit top-surface normal at the bore
   Eigen::Vector3d view_dir;      // unit, from the surface toward the sensor
+  double cone_radius = 0.0;      // a cone's radius at the entrance, mm; 0: no cone
+  double half_angle = 0.0;       // the cone's half-angle, rad
+  double radius2 = 0.0;          // an ellipse's semi-axis across major_axis, mm; 0: circular
+  Eigen::Vector3d major_axis = Eigen::Vector3d::UnitX();  // unit, the direction of radius
 };
 
 struct SyntheticBoreScan {
