@@ -20,6 +20,7 @@
 namespace rangefit::bench {
 
 struct VariedCase {
+  std::uint64_t seed = 0;
   sim::VariedScene::Factors factors;
   bool found = false, tp = false;
   double ms = 0.0;
@@ -51,6 +52,7 @@ inline VariedCase run_varied_case(sim::VariedTarget target, bool pan_tilt, std::
   const auto t0 = std::chrono::steady_clock::now();
   const ObjectDetectResult r = detect_object(s.model, s.cloud.points, o);
   VariedCase c;
+  c.seed = seed;
   c.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   c.factors = s.factors;
   c.found = r.found();
@@ -138,7 +140,7 @@ inline std::vector<Factor> varied_factors() {
 // One block of the report: every target (or only `only`) over `seeds` seeds from `first`.
 inline void print_varied_block(const char* title, std::uint64_t first, int seeds, bool pan_tilt,
                                bool sensor_known, bool per_factor,
-                               std::optional<sim::VariedTarget> only) {
+                               std::optional<sim::VariedTarget> only, bool list_failures) {
   std::printf("\n%s: seeds %llu..%llu, %s, sensor %s\n", title,
               static_cast<unsigned long long>(first),
               static_cast<unsigned long long>(first + static_cast<std::uint64_t>(seeds) - 1),
@@ -163,6 +165,15 @@ inline void print_varied_block(const char* title, std::uint64_t first, int seeds
     std::printf("%s\n", sim::to_string(target));
     print_tally_row("all", all, absent);
     if (!absent) print_tally_row("occlusion <= 40 %", light, absent);
+    if (list_failures) {
+      // The seeds to look at with --varied-case: what went wrong, and how hidden the target was.
+      for (const VariedCase& c : cases) {
+        if (absent ? !c.found : c.tp) continue;
+        std::printf("    seed %llu %s occlusion %.2f (%s) noise %.2f\n",
+                    static_cast<unsigned long long>(c.seed), c.found ? "wrong" : "missed",
+                    c.factors.occlusion, c.factors.occluder.c_str(), c.factors.scan.noise_mm);
+      }
+    }
     if (!per_factor) continue;
     for (const Factor& f : varied_factors()) {
       std::vector<std::pair<std::string, Tally>> bins;
@@ -253,13 +264,14 @@ inline void print_varied_case(sim::VariedTarget target, bool pan_tilt, std::uint
 // The tuning seeds, or the held-out seeds (never looked at while tuning: run them only to
 // report).
 inline void print_varied(int seeds, bool per_factor, bool pan_tilt, bool sensor_known,
-                         bool held_out, std::optional<sim::VariedTarget> only = std::nullopt) {
+                         bool held_out, std::optional<sim::VariedTarget> only = std::nullopt,
+                         bool list_failures = false) {
   if (held_out) {
     print_varied_block("Held-out seeds", sim::kHeldOutSeedBase, seeds, pan_tilt, sensor_known,
-                       per_factor, only);
+                       per_factor, only, list_failures);
   } else {
     print_varied_block("Tuning seeds", sim::kTuningSeedBase, seeds, pan_tilt, sensor_known,
-                       per_factor, only);
+                       per_factor, only, list_failures);
   }
 }
 
