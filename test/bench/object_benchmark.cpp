@@ -8,10 +8,11 @@
 //   object_benchmark --methods [--seeds N] thesis methods A-D vs ours, like table 5.5
 //   object_benchmark --noise [--seeds N]  TP rate vs noise on the three-sphere scene (fig. 5.29)
 //   object_benchmark --varied [--seeds N] [--per-factor] [--pan-tilt] [--no-sensor] [--held-out]
-//                    [--target TARGET]    TP, wrong, missed and false positives on seeded varied
+//                    [--target TARGET] [--failures]
+//                                         TP, wrong, missed and false positives on seeded varied
 //                                         stripe scans (object_varied_report.hpp), per target
 //                                         (or one) and per factor; tuning seeds, or the held-out
-//                                         ones
+//                                         ones; --failures lists the failing seeds
 //   object_benchmark --varied-case TARGET SEED [--pan-tilt] [--no-sensor]
 //                                         one varied scene in detail: drawn parts, result,
 //                                         rejections and the scene part each place is on
@@ -407,6 +408,7 @@ int main(int argc, char** argv) {
   int seeds = 100;
   bool tp = false, methods = false, noise = false, varied = false;
   bool per_factor = false, pan_tilt = false, sensor_known = true, held_out = false;
+  bool list_failures = false;
   std::vector<char*> rest = {argv[0]};
   std::string case_target, only_target;
   std::uint64_t case_seed = 0;
@@ -425,6 +427,8 @@ int main(int argc, char** argv) {
       pan_tilt = true;
     } else if (!std::strcmp(argv[i], "--no-sensor")) {
       sensor_known = false;
+    } else if (!std::strcmp(argv[i], "--failures")) {
+      list_failures = true;
     } else if (!std::strcmp(argv[i], "--held-out")) {
       held_out = true;
     } else if (!std::strcmp(argv[i], "--varied-case") && i + 2 < argc) {
@@ -447,7 +451,8 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "unknown target %s\n", only_target.c_str());
       return 2;
     }
-    rangefit::bench::print_varied(seeds, per_factor, pan_tilt, sensor_known, held_out, only);
+    rangefit::bench::print_varied(seeds, per_factor, pan_tilt, sensor_known, held_out, only,
+                                 list_failures);
   }
   if (!case_target.empty()) {
     const auto target = rangefit::sim::varied_target_from(case_target);

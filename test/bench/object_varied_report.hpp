@@ -20,6 +20,7 @@
 namespace rangefit::bench {
 
 struct VariedCase {
+  std::uint64_t seed = 0;
   sim::VariedScene::Factors factors;
   bool found = false, tp = false;
   double ms = 0.0;
@@ -51,6 +52,7 @@ inline VariedCase run_varied_case(sim::VariedTarget target, bool pan_tilt, std::
   const auto t0 = std::chrono::steady_clock::now();
   const ObjectDetectResult r = detect_object(s.model, s.cloud.points, o);
   VariedCase c;
+  c.seed = seed;
   c.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   c.factors = s.factors;
   c.found = r.found();
@@ -138,7 +140,7 @@ inline std::vector<Factor> varied_factors() {
 // One block of the report: every target (or only `only`) over `seeds` seeds from `first`.
 inline void print_varied_block(const char* title, std::uint64_t first, int seeds, bool pan_tilt,
                                bool sensor_known, bool per_factor,
-                               std::optional<sim::VariedTarget> only) {
+                               std::optional<sim::VariedTarget> only, bool list_failures) {
   std::printf("\n%s: seeds %llu..%llu, %s, sensor %s\n", title,
               static_cast<unsigned long long>(first),
               static_cast<unsigned long long>(first + static_cast<std::uint64_t>(seeds) - 1),
@@ -163,6 +165,15 @@ inline void print_varied_block(const char* title, std::uint64_t first, int seeds
     std::printf("%s\n", sim::to_string(target));
     print_tally_row("all", all, absent);
     if (!absent) print_tally_row("occlusion <= 40 %", light, absent);
+    if (list_failures) {
+      // The seeds to look at with --varied-case: what went wrong, and how hidden the target was.
+      for (const VariedCase& c : cases) {
+        if (absent ? !c.found : c.tp) continue;
+        std::printf("    seed %llu %s occlusion %.2f (%s) noise %.2f\n",
+                    static_cast<unsigned long long>(c.seed), c.found ? "wrong" : "missed",
+                    c.factors.occlusion, c.factors.occluder.c_str(), c.factors.scan.noise_mm);
+      }
+    }
     if (!per_factor) continue;
     for (const Factor& f : varied_factors()) {
       std::vector<std::pair<std::string, Tally>> bins;
@@ -207,9 +218,10 @@ inline void print_varied_case(sim::VariedTarget target, bool pan_tilt, std::uint
   for (std::size_t i = 0; i < s.parts.size(); ++i) {
     const sim::ScenePart& p = s.parts[i];
     const Eigen::Vector3d c = p.T_world_part.translation();
-    std::printf("  part %zu %-22s a %.1f %.1f %.1f e %.2f %.2f at %.1f %.1f %.1f\n", i,
-                p.name.c_str(), p.model.a1, p.model.a2, p.model.a3, p.model.eps1, p.model.eps2,
-                c.x(), c.y(), c.z());
+    const Eigen::Vector3d z = p.T_world_part.linear().col(2);
+    std::printf("  part %zu %-22s a %.1f %.1f %.1f e %.2f %.2f at %.1f %.1f %.1f axis %.2f %.2f %.2f\n",
+                i, p.name.c_str(), p.model.a1, p.model.a2, p.model.a3, p.model.eps1, p.model.eps2,
+                c.x(), c.y(), c.z(), z.x(), z.y(), z.z());
   }
   const auto nearest = [&](const Eigen::Vector3d& c) {
     std::size_t best = 0;
@@ -235,10 +247,10 @@ inline void print_varied_case(sim::VariedTarget target, bool pan_tilt, std::uint
     for (const DetectedPart& p : inst.parts) {
       const PartScores& sc = p.scores;
       std::printf(
-          "  found %s at %.1f %.1f %.1f (%s): M %.3f I %zu S %zu cover %.2f of %d/%d "
+          "  found %s at %.1f %.1f %.1f axis %.2f %.2f %.2f (%s): M %.3f I %zu S %zu cover %.2f of %d/%d "
           "seen-through %.2f size %d %.3f residual %.2f continues %.3f lowest %.2f\n",
-          p.name.c_str(), p.center().x(), p.center().y(), p.center().z(),
-          nearest(p.center()).c_str(), sc.measure, sc.interior, sc.surface, sc.coverage,
+          p.name.c_str(), p.center().x(), p.center().y(), p.center().z(), p.z_axis().x(),
+          p.z_axis().y(), p.z_axis().z(), nearest(p.center()).c_str(), sc.measure, sc.interior, sc.surface, sc.coverage,
           sc.measurable, sc.facing, sc.seen_through, sc.size_determined ? 1 : 0, sc.size_scale,
           sc.residual_mm, sc.continuation, sc.lowest_mm);
     }
@@ -253,13 +265,14 @@ inline void print_varied_case(sim::VariedTarget target, bool pan_tilt, std::uint
 // The tuning seeds, or the held-out seeds (never looked at while tuning: run them only to
 // report).
 inline void print_varied(int seeds, bool per_factor, bool pan_tilt, bool sensor_known,
-                         bool held_out, std::optional<sim::VariedTarget> only = std::nullopt) {
+                         bool held_out, std::optional<sim::VariedTarget> only = std::nullopt,
+                         bool list_failures = false) {
   if (held_out) {
     print_varied_block("Held-out seeds", sim::kHeldOutSeedBase, seeds, pan_tilt, sensor_known,
-                       per_factor, only);
+                       per_factor, only, list_failures);
   } else {
     print_varied_block("Tuning seeds", sim::kTuningSeedBase, seeds, pan_tilt, sensor_known,
-                       per_factor, only);
+                       per_factor, only, list_failures);
   }
 }
 

@@ -1,0 +1,130 @@
+// The size the points of a posed part want (object_hypotheses.hpp size_evidence) on laser-stripe
+// scans at about 0.5 mm noise: the true part must read its own size, so that it is confirmed
+// while a box a few per cent larger is not. Varied tuning scenes (sim/varied_scene.hpp) whose
+// true box, cylinder or cone the size check used to reject, and scenes of a box and a larger one
+// with the camera on either side at two triangulation angles.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "detect/object_detector.hpp"
+#include "sim/varied_scene.hpp"
+#include "test/detect/object_scenes.hpp"
+
+namespace rangefit {
+namespace {
+
+struct Geometry {
+  double triangulation_deg;
+  int side;
+};
+#if defined(__SANITIZE_ADDRESS__)
+constexpr Geometry kGeometries[] = {{45.0, -1}};
+#else
+constexpr Geometry kGeometries[] = {{20.0, +1}, {45.0, -1}};
+#endif
+
+sim::ScenePart standing(const std::string& name, const Superquadric& sq, double x, double y) {
+  return {name, sq, sim::pose_from_axis({x, y, sq.a3}, Eigen::Vector3d::UnitZ())};
+}
+
+sim::VariedScene scan(std::vector<sim::ScenePart> parts, std::vector<int> target, const Geometry& g,
+                      std::uint64_t seed) {
+  sim::VariedScene::Factors f;
+  f.scan.triangulation_deg = g.triangulation_deg;
+  f.scan.camera_side = g.side;
+  f.scan.laser_height_mm = 600.0;
+  f.scan.step_mm = 1.0;
+  f.scan.noise_mm = 0.5;
+  f.scan.max_points = 60000;
+  const Eigen::AlignedBox3d cover(Eigen::Vector3d(-130, -130, 0), Eigen::Vector3d(130, 130, 120));
+  return sim::scan_varied_scene(std::move(parts), std::move(target),
+                                test::single("box", test::box_model()),
+                                sim::make_sweep(f.scan, cover), f, seed);
+}
+
+std::string describe(const ObjectDetectResult& r, const Geometry& g) {
+  std::string out = std::to_string(g.triangulation_deg) + " deg, side " + std::to_string(g.side) +
+                    ": " + to_string(r.reason);
+  for (const DetectedInstance& i : r.instances) {
+    out += "; found at x " + std::to_string(i.parts[0].center().x()) + " size " +
+           std::to_string(i.parts[0].scores.size_scale);
+  }
+  for (const Rejection& x : r.rejections) {
+    out += std::string("; ") + to_string(x.check) + " " + std::to_string(x.value) + " at x " +
+           std::to_string(x.centre.x());
+  }
+  return out;
+}
+
+ObjectDetectResult detect(const sim::VariedScene& s, std::uint64_t seed) {
+  ObjectDetectOptions o;
+  o.sensor = s.view;
+  o.seed = seed;
+  return detect_object(s.model, s.cloud.points, o);
+}
+
+// A box 7 % larger all over.
+const Superquadric kLarger{26.75, 26.75, 53.5, 0.1, 0.1, 0, 0};
+
+bool found_target(sim::VariedTarget target, std::uint64_t seed, std::string* why) {
+  sim::VariedSceneOptions so;
+  so.target = target;
+  const sim::VariedScene s = sim::make_varied_scene(so, seed);
+  const ObjectDetectResult r = detect(s, seed);
+  *why = describe(r, {s.factors.scan.triangulation_deg, s.factors.scan.camera_side});
+  return r.found() && test::true_positive(r.instances[0].parts[0].T_world_part,
+                                          s.parts[static_cast<std::size_t>(s.target_parts[0])],
+                                          target != sim::VariedTarget::kSphere);
+}
+
+// At ~0.5 mm noise the true box wanted 3-4 % more than its size (G - 1 weighs its narrow faces
+// and rounded edges), as much as a look-alike 7 % larger, and was rejected: beside a box 7 %
+// larger (seeds 15, 21), under an overhang (21) and behind a wall (29), at 41-49 deg.
+TEST(ObjectSize, FindsTheBoxOfVariedScenesAtHalfAMillimetreNoise) {
+  for (std::uint64_t seed : {15u, 21u, 29u}) {
+    std::string why;
+    EXPECT_TRUE(found_target(sim::VariedTarget::kBox, seed, &why)) << "seed " << seed << ": " << why;
+  }
+}
+
+// The cylinder 42 % hidden by an overhang with the camera on the other side (-y, 26 deg), and
+// cones at 18-49 deg, 17-54 % hidden.
+TEST(ObjectSize, FindsTheOccludedCylinderAndConesOfVariedScenes) {
+  std::string why;
+  EXPECT_TRUE(found_target(sim::VariedTarget::kCylinder, 10, &why)) << why;
+  for (std::uint64_t seed : {21u, 27u, 28u}) {
+    EXPECT_TRUE(found_target(sim::VariedTarget::kCone, seed, &why)) << "seed " << seed << ": " << why;
+  }
+}
+
+// Beside a box 7 % larger, the box reads its own size to 2 %.
+TEST(ObjectSize, TheBoxReadsItsOwnSizeBesideABoxSevenPercentLarger) {
+  for (const Geometry& g : kGeometries) {
+    const sim::VariedScene s = scan({standing("box", test::box_model(), -60, 40),
+                                     standing("larger box", kLarger, 60, -40)},
+                                    {0}, g, 31);
+    const ObjectDetectResult r = detect(s, 31);
+    ASSERT_TRUE(r.found()) << describe(r, g);
+    EXPECT_TRUE(test::true_positive(r.instances[0].parts[0].T_world_part, s.parts[0]))
+        << describe(r, g);
+    EXPECT_NEAR(r.instances[0].parts[0].scores.size_scale, 1.0, 0.02) << describe(r, g);
+  }
+}
+
+TEST(ObjectSize, ABoxSevenPercentLargerAloneIsNotTheBox) {
+  for (const Geometry& g : kGeometries) {
+    const sim::VariedScene s = scan({standing("larger box", kLarger, 0, 0)}, {}, g, 32);
+    const ObjectDetectResult r = detect(s, 32);
+    EXPECT_FALSE(r.found()) << describe(r, g);
+  }
+}
+
+TEST(ObjectSize, AnEmptyTableHasNoBox) {
+  const sim::VariedScene s = scan({}, {}, kGeometries[0], 33);
+  EXPECT_FALSE(detect(s, 33).found());
+}
+
+}  // namespace
+}  // namespace rangefit
