@@ -218,6 +218,11 @@ RequestOut::RequestOut(const ScanRequest& req, bool linear_sweep)
   const Eigen::Vector3d tp = req_.target.T_table_target.translation() * kMetresPerMm;
   const Eigen::Quaterniond tq(req_.target.T_table_target.rotation());
   msg_.target_pose = {{tp.x(), tp.y(), tp.z()}, {tq.x(), tq.y(), tq.z(), tq.w()}};
+  msg_.bore_half_angle = req_.bore.half_angle_rad;
+  msg_.bore_cylinder_radius = req_.bore.cylinder_radius_mm * kMetresPerMm;
+  msg_.bore_radius2 = req_.bore.radius2_mm * kMetresPerMm;
+  const Eigen::Vector3d ma = req_.bore.major_axis.value_or(Eigen::Vector3d::Zero());
+  msg_.bore_major_axis = {ma.x(), ma.y(), ma.z()};
 }
 
 ScanRequest from_msg(const rangefit_msgs_msg_dds__DetectRequest_& msg, std::string* error) {
@@ -245,6 +250,11 @@ ScanRequest from_msg(const rangefit_msgs_msg_dds__DetectRequest_& msg, std::stri
   req.bore.outer_radius_mm = msg.bore_outer_radius / kMetresPerMm;
   req.bore.walls = str(msg.bore_walls);
   req.bore.normal_keep = msg.bore_normal_keep;
+  req.bore.half_angle_rad = msg.bore_half_angle;
+  req.bore.cylinder_radius_mm = msg.bore_cylinder_radius / kMetresPerMm;
+  req.bore.radius2_mm = msg.bore_radius2 / kMetresPerMm;
+  const Eigen::Vector3d ma(msg.bore_major_axis.x, msg.bore_major_axis.y, msg.bore_major_axis.z);
+  if (ma != Eigen::Vector3d::Zero()) req.bore.major_axis = ma;  // zero: not given
   const Eigen::Vector3d v(msg.view_dir.x, msg.view_dir.y, msg.view_dir.z);
   if (v != Eigen::Vector3d::Zero()) req.view_dir = v;
   const Eigen::Vector3d sp =

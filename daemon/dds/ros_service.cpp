@@ -41,6 +41,10 @@ rangefit_msgs_msg_dds__DetectRequest_ as_topic_request(
   r.target_edge = m.target_edge;
   r.target_bar = m.target_bar;
   r.target_pose = m.target_pose;
+  r.bore_half_angle = m.bore_half_angle;
+  r.bore_cylinder_radius = m.bore_cylinder_radius;
+  r.bore_radius2 = m.bore_radius2;
+  r.bore_major_axis = m.bore_major_axis;
   return r;
 }
 

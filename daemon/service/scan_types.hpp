@@ -35,8 +35,8 @@ struct BorePrior {                                        // from CAD
   std::string walls;
   double normal_keep = 0.0;  // share (0..1] of region points that get a normal; 0: all
   // A cone or elliptic bore (as `rangefit bore --cad-half-angle --cad-cylinder-radius
-  // --cad-radius2 --cad-major-axis`); 0 / none: a circular cylinder. JSON requests only: the
-  // DDS request message does not carry them yet.
+  // --cad-radius2 --cad-major-axis`, DDS, the ROS 2 service and JSON); 0 / none: a circular
+  // cylinder.
   double half_angle_rad = 0.0;                // cone half-angle
   double cylinder_radius_mm = 0.0;            // the cylinder a countersink's cone ends in
   double radius2_mm = 0.0;                    // the ellipse's semi-axis across major_axis

@@ -1,7 +1,7 @@
 // A cone or elliptic bore's model reaches detect/ the same way from `rangefit bore` and from a
-// JSON request (the one adapter, daemon/service/detection_adapter), round-trips the JSON of
-// HTTP/TCP and the spool, means "a cylinder" in an older request, and comes back as the result's
-// shape in the CLI's JSON.
+// JSON or DDS request (the one adapter, daemon/service/detection_adapter), round-trips the JSON
+// of HTTP/TCP and the spool and the DDS request (metres), means "a cylinder" in an older request,
+// and comes back as the result's shape in the CLI's JSON.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 
+#include "daemon/dds/messages.hpp"
 #include "daemon/service/detection_adapter.hpp"
 #include "daemon/service/json_codec.hpp"
 #include "daemon/service/request_validation.hpp"
@@ -64,6 +65,31 @@ TEST(BoreShapeRequest, ConeAndEllipseFieldsRoundTripTheJsonAndReachThePrior) {
   const BoreDetection ellipse = bore_detection(bore_query(back, 1), ScanSensor{});
   EXPECT_EQ(ellipse.prior.radius2, 4.5);
   EXPECT_EQ(ellipse.prior.major_axis, Eigen::Vector3d(1, 2, 0));
+}
+
+TEST(BoreShapeRequest, ConeAndEllipseFieldsRoundTripTheDdsRequestInMetres) {
+  ScanRequest req = countersink_request();
+  req.bore.radius2_mm = 4.5;
+  req.bore.major_axis = Eigen::Vector3d(0, 1, 0);
+  const RequestOut out(req, false);
+  EXPECT_DOUBLE_EQ(out.msg().bore_cylinder_radius, 0.003);  // metres on the wire
+  EXPECT_DOUBLE_EQ(out.msg().bore_radius2, 0.0045);
+  std::string error;
+  const ScanRequest back = from_msg(out.msg(), &error);
+  EXPECT_EQ(error, "");
+  EXPECT_EQ(back.bore.half_angle_rad, req.bore.half_angle_rad);
+  EXPECT_NEAR(back.bore.cylinder_radius_mm, 3.0, 1e-12);
+  EXPECT_NEAR(back.bore.radius2_mm, 4.5, 1e-12);
+  ASSERT_TRUE(back.bore.major_axis);
+  EXPECT_EQ(*back.bore.major_axis, Eigen::Vector3d(0, 1, 0));
+  // An older client's request has the new fields zero: a circular cylinder.
+  ScanRequest old;
+  old.kind = DetectKind::kBore;
+  old.bore.radius_mm = 5.0;
+  const ScanRequest plain = from_msg(RequestOut(old, false).msg(), &error);
+  EXPECT_EQ(plain.bore.half_angle_rad, 0.0);
+  EXPECT_EQ(plain.bore.radius2_mm, 0.0);
+  EXPECT_FALSE(plain.bore.major_axis);
 }
 
 TEST(BoreShapeRequest, AnOlderRequestIsACylinder) {

@@ -16,43 +16,29 @@
 #include "sim/scene_objects.hpp"
 #include "sim/varied_scene.hpp"
 #include "test/detect/object_scenes.hpp"
+#include "test/detect/stripe_scan_fixture.hpp"
 
 namespace rangefit {
 namespace {
 
-struct Geometry {
-  double triangulation_deg;
-  int side;
-};
+using test::StripeGeometry;
 // Both camera sides and both triangulation angles in two scans (the suite stays fast; each of
 // these scenes failed under all four combinations before).
-constexpr Geometry kGeometries[] = {{20.0, +1}, {45.0, -1}};
+constexpr StripeGeometry kGeometries[] = {{20.0, +1}, {45.0, -1}};
 
 sim::ScenePart part(const std::string& name, const Superquadric& sq, const Eigen::Vector3d& c,
                     const Eigen::Vector3d& axis) {
-  return {name, sq, sim::pose_from_axis(c, axis)};
+  return test::placed(name, sq, c, axis);
 }
 
-// The parts scanned by a stripe cell of the given geometry, the sweep over them and 30 mm around.
 sim::VariedScene scan(std::vector<sim::ScenePart> parts, std::vector<int> target, ObjectModel model,
-                      const Geometry& g, std::uint64_t seed, double noise_mm = 0.1) {
-  sim::VariedScene::Factors f;
-  f.scan.triangulation_deg = g.triangulation_deg;
-  f.scan.camera_side = g.side;
-  f.scan.laser_height_mm = 600.0;
-  f.scan.step_mm = 1.0;
-  f.scan.noise_mm = noise_mm;
-  f.scan.max_points = 60000;
-  const Eigen::AlignedBox3d cover(Eigen::Vector3d(-130, -130, 0), Eigen::Vector3d(130, 260, 120));
-  return sim::scan_varied_scene(std::move(parts), std::move(target), std::move(model),
-                                sim::make_sweep(f.scan, cover), f, seed);
+                      const StripeGeometry& g, std::uint64_t seed, double noise_mm = 0.1) {
+  return test::stripe_scan(std::move(parts), std::move(target), std::move(model), g, seed,
+                           noise_mm, test::table_cover(260.0));
 }
 
 ObjectDetectResult detect(const sim::VariedScene& s, std::uint64_t seed) {
-  ObjectDetectOptions o;
-  o.sensor = s.view;
-  o.seed = seed;
-  return detect_object(s.model, s.cloud.points, o);
+  return test::detect_in(s, seed);
 }
 
 std::string describe(const ObjectDetectResult& r) {
@@ -72,7 +58,7 @@ const Superquadric kBlock{35, 25, 20, 0.1, 0.1, 0, 0};
 // A can 15 % longer than the cylinder model, lying, scanned with 0.5 mm noise: every part of it
 // fits the model, so only the scan going on past the model's cap shows it is not the cylinder.
 TEST(ObjectLookAlike, ALongerCanIsNotTakenForTheCylinder) {
-  for (const Geometry& g : kGeometries) {
+  for (const StripeGeometry& g : kGeometries) {
     const sim::VariedScene s =
         scan({part("long can", kLongCan, {0, 0, 30}, Eigen::Vector3d::UnitX()),
               part("block", kBlock, {-60, 150, 20}, Eigen::Vector3d::UnitZ())},
@@ -85,7 +71,7 @@ TEST(ObjectLookAlike, ALongerCanIsNotTakenForTheCylinder) {
 
 // The same can beside the real cylinder, also lying: the cylinder is found, not the can.
 TEST(ObjectLookAlike, FindsTheCylinderBesideALongerCan) {
-  for (const Geometry& g : kGeometries) {
+  for (const StripeGeometry& g : kGeometries) {
     const sim::VariedScene s =
         scan({part("cylinder", test::cylinder_model(), {0, 160, 30}, Eigen::Vector3d::UnitX()),
               part("long can", kLongCan, {0, 0, 30}, Eigen::Vector3d::UnitX())},
@@ -102,7 +88,7 @@ TEST(ObjectLookAlike, FindsTheCylinderBesideALongerCan) {
 // together they stay apart, so this is no mallet.
 TEST(ObjectLookAlike, ADrumAndARodApartAreNotTheMallet) {
   const ObjectModel mallet = sim::mallet_model();
-  for (const Geometry& g : kGeometries) {
+  for (const StripeGeometry& g : kGeometries) {
     const sim::VariedScene s =
         scan({part("drum", mallet.parts[0].shape, {0, 0, 30}, Eigen::Vector3d::UnitX()),
               part("rod", mallet.parts[1].shape, {0, 195, 10}, Eigen::Vector3d::UnitY())},

@@ -10,46 +10,27 @@
 #include "detect/object_detector.hpp"
 #include "sim/varied_scene.hpp"
 #include "test/detect/object_scenes.hpp"
+#include "test/detect/stripe_scan_fixture.hpp"
 
 namespace rangefit {
 namespace {
 
-struct Geometry {
-  double triangulation_deg;
-  int side;
-};
-#if defined(__SANITIZE_ADDRESS__)
-// ASan+UBSan runs ~10x slower: one geometry; the Release build runs both camera sides.
-constexpr Geometry kGeometries[] = {{45.0, -1}};
-#else
-constexpr Geometry kGeometries[] = {{20.0, +1}, {45.0, -1}};
-#endif
+using test::kStripeGeometries;
+using test::StripeGeometry;
 
 sim::ScenePart part(const std::string& name, const Superquadric& sq, const Eigen::Vector3d& c,
                     const Eigen::Vector3d& axis) {
-  return {name, sq, sim::pose_from_axis(c, axis)};
+  return test::placed(name, sq, c, axis);
 }
 
-// The parts scanned by a stripe cell of the given geometry, the sweep over them and 30 mm around.
 sim::VariedScene scan(std::vector<sim::ScenePart> parts, std::vector<int> target, ObjectModel model,
-                      const Geometry& g, std::uint64_t seed, double noise_mm = 0.2) {
-  sim::VariedScene::Factors f;
-  f.scan.triangulation_deg = g.triangulation_deg;
-  f.scan.camera_side = g.side;
-  f.scan.laser_height_mm = 600.0;
-  f.scan.step_mm = 1.0;
-  f.scan.noise_mm = noise_mm;
-  f.scan.max_points = 60000;
-  const Eigen::AlignedBox3d cover(Eigen::Vector3d(-130, -130, 0), Eigen::Vector3d(130, 130, 120));
-  return sim::scan_varied_scene(std::move(parts), std::move(target), std::move(model),
-                                sim::make_sweep(f.scan, cover), f, seed);
+                      const StripeGeometry& g, std::uint64_t seed, double noise_mm = 0.2) {
+  return test::stripe_scan(std::move(parts), std::move(target), std::move(model), g, seed,
+                           noise_mm, test::table_cover());
 }
 
 ObjectDetectResult detect(const sim::VariedScene& s, std::uint64_t seed) {
-  ObjectDetectOptions o;
-  o.sensor = s.view;
-  o.seed = seed;
-  return detect_object(s.model, s.cloud.points, o);
+  return test::detect_in(s, seed);
 }
 
 std::string describe(const ObjectDetectResult& r) {
@@ -71,7 +52,7 @@ std::string describe(const ObjectDetectResult& r) {
 // ball: a patch of its top face fits the box standing through the table (its long axis along the
 // face normal) as well as lying on it, and those starts used to win every trial.
 TEST(ObjectResting, FindsABoxLyingOnItsSide) {
-  for (const Geometry& g : kGeometries) {
+  for (const StripeGeometry& g : kStripeGeometries) {
     // Lying flat: the part's z along (0.8, 0.6, 0) on the table, its y up.
     Eigen::Isometry3d lying = Eigen::Isometry3d::Identity();
     lying.linear().col(2) = Eigen::Vector3d(0.8, 0.6, 0.0);
@@ -94,7 +75,7 @@ TEST(ObjectResting, FindsABoxLyingOnItsSide) {
 // above the table tells it apart. Beside it, the real box standing is found.
 TEST(ObjectResting, ATallerBoxStandingIsNotTakenForTheBox) {
   const Superquadric taller{25, 25, 52.5, 0.1, 0.1, 0, 0};
-  for (const Geometry& g : kGeometries) {
+  for (const StripeGeometry& g : kStripeGeometries) {
     const sim::VariedScene alone =
         scan({part("taller box", taller, {0, 0, 52.5}, Eigen::Vector3d::UnitZ())}, {},
              test::single("box", test::box_model()), g, 22, 0.5);

@@ -11,40 +11,26 @@
 #include "detect/object_detector.hpp"
 #include "sim/varied_scene.hpp"
 #include "test/detect/object_scenes.hpp"
+#include "test/detect/stripe_scan_fixture.hpp"
 
 namespace rangefit {
 namespace {
 
-struct Geometry {
-  double triangulation_deg;
-  int side;
-};
-#if defined(__SANITIZE_ADDRESS__)
-constexpr Geometry kGeometries[] = {{45.0, -1}};
-#else
-constexpr Geometry kGeometries[] = {{20.0, +1}, {45.0, -1}};
-#endif
+using test::kStripeGeometries;
+using test::StripeGeometry;
 
 sim::ScenePart standing(const std::string& name, const Superquadric& sq, double x, double y) {
-  return {name, sq, sim::pose_from_axis({x, y, sq.a3}, Eigen::Vector3d::UnitZ())};
+  return test::placed(name, sq, {x, y, sq.a3}, Eigen::Vector3d::UnitZ());
 }
 
-sim::VariedScene scan(std::vector<sim::ScenePart> parts, std::vector<int> target, const Geometry& g,
-                      std::uint64_t seed) {
-  sim::VariedScene::Factors f;
-  f.scan.triangulation_deg = g.triangulation_deg;
-  f.scan.camera_side = g.side;
-  f.scan.laser_height_mm = 600.0;
-  f.scan.step_mm = 1.0;
-  f.scan.noise_mm = 0.5;
-  f.scan.max_points = 60000;
-  const Eigen::AlignedBox3d cover(Eigen::Vector3d(-130, -130, 0), Eigen::Vector3d(130, 130, 120));
-  return sim::scan_varied_scene(std::move(parts), std::move(target),
-                                test::single("box", test::box_model()),
-                                sim::make_sweep(f.scan, cover), f, seed);
+sim::VariedScene scan(std::vector<sim::ScenePart> parts, std::vector<int> target,
+                      const StripeGeometry& g, std::uint64_t seed) {
+  return test::stripe_scan(std::move(parts), std::move(target),
+                           test::single("box", test::box_model()), g, seed, 0.5,
+                           test::table_cover());
 }
 
-std::string describe(const ObjectDetectResult& r, const Geometry& g) {
+std::string describe(const ObjectDetectResult& r, const StripeGeometry& g) {
   std::string out = std::to_string(g.triangulation_deg) + " deg, side " + std::to_string(g.side) +
                     ": " + to_string(r.reason);
   for (const DetectedInstance& i : r.instances) {
@@ -59,10 +45,7 @@ std::string describe(const ObjectDetectResult& r, const Geometry& g) {
 }
 
 ObjectDetectResult detect(const sim::VariedScene& s, std::uint64_t seed) {
-  ObjectDetectOptions o;
-  o.sensor = s.view;
-  o.seed = seed;
-  return detect_object(s.model, s.cloud.points, o);
+  return test::detect_in(s, seed);
 }
 
 // A box 7 % larger all over.
@@ -101,7 +84,7 @@ TEST(ObjectSize, FindsTheOccludedCylinderAndConesOfVariedScenes) {
 
 // Beside a box 7 % larger, the box reads its own size to 2 %.
 TEST(ObjectSize, TheBoxReadsItsOwnSizeBesideABoxSevenPercentLarger) {
-  for (const Geometry& g : kGeometries) {
+  for (const StripeGeometry& g : kStripeGeometries) {
     const sim::VariedScene s = scan({standing("box", test::box_model(), -60, 40),
                                      standing("larger box", kLarger, 60, -40)},
                                     {0}, g, 31);
@@ -114,7 +97,7 @@ TEST(ObjectSize, TheBoxReadsItsOwnSizeBesideABoxSevenPercentLarger) {
 }
 
 TEST(ObjectSize, ABoxSevenPercentLargerAloneIsNotTheBox) {
-  for (const Geometry& g : kGeometries) {
+  for (const StripeGeometry& g : kStripeGeometries) {
     const sim::VariedScene s = scan({standing("larger box", kLarger, 0, 0)}, {}, g, 32);
     const ObjectDetectResult r = detect(s, 32);
     EXPECT_FALSE(r.found()) << describe(r, g);
@@ -122,7 +105,7 @@ TEST(ObjectSize, ABoxSevenPercentLargerAloneIsNotTheBox) {
 }
 
 TEST(ObjectSize, AnEmptyTableHasNoBox) {
-  const sim::VariedScene s = scan({}, {}, kGeometries[0], 33);
+  const sim::VariedScene s = scan({}, {}, kStripeGeometries[0], 33);
   EXPECT_FALSE(detect(s, 33).found());
 }
 

@@ -35,6 +35,10 @@ struct RequestArgs {
   double outer_radius_mm = 0;           // bore: a pipe's outer wall
   std::string walls;                    // bore: inner | outer | both
   double normal_keep = 0;               // bore: 0: all
+  double half_angle = 0;                // bore: a cone's half-angle, rad
+  double cylinder_radius_mm = 0;        // bore: the cylinder a countersink ends in
+  double radius2_mm = 0;                // bore: an ellipse's second semi-axis
+  std::vector<double> major_axis;       // bore: the ellipse's --cad-radius direction
   std::vector<double> view_dir;         // bore: optional, replaces the sensor's
   std::vector<double> sensor_position;  // bore --sensor-position, object --viewpoint
   int instances = 1;
@@ -68,6 +72,10 @@ int run(RequestArgs& a, daemon::DetectKind kind) {
   req.bore.outer_radius_mm = a.outer_radius_mm;
   req.bore.walls = a.walls;
   req.bore.normal_keep = a.normal_keep;
+  req.bore.half_angle_rad = a.half_angle;
+  req.bore.cylinder_radius_mm = a.cylinder_radius_mm;
+  req.bore.radius2_mm = a.radius2_mm;
+  if (a.major_axis.size() == 3) req.bore.major_axis = vec3(a.major_axis);
   if (a.view_dir.size() == 3) req.view_dir = vec3(a.view_dir);
   if (a.sensor_position.size() == 3) req.sensor_position = vec3(a.sensor_position);
   req.instances = a.instances;
@@ -161,6 +169,18 @@ void add_request_command(CLI::App& app, int* exit_code) {
   bore->add_option("--normal-keep", bore_args.normal_keep,
                    "share (0..1] of region points that get a normal (thesis: 0.2)")
       ->check(finite_range(0.001, 1.0));
+  bore->add_option("--cad-half-angle", bore_args.half_angle,
+                   "a conical bore's half-angle, rad (a 90 deg countersink: 0.7854)")
+      ->check(finite_range(0.0, 1.39));
+  bore->add_option("--cad-cylinder-radius", bore_args.cylinder_radius_mm,
+                   "with --cad-half-angle: the cylindrical bore the cone ends in, radius mm")
+      ->check(finite_range(1e-3, 1e5));
+  bore->add_option("--cad-radius2", bore_args.radius2_mm,
+                   "an elliptic bore's semi-axis across --cad-major-axis, mm")
+      ->check(finite_range(1e-3, 1e5));
+  add_vector_option(bore, "--cad-major-axis", bore_args.major_axis,
+                    "an elliptic bore: direction x y z of the --cad-radius semi-axis")
+      ->check(finite_range(-kMaxCoordinateMm, kMaxCoordinateMm));
   bore->callback([exit_code] { *exit_code = run(bore_args, daemon::DetectKind::kBore); });
   auto* object = cmd->add_subcommand("object", "find a configured object model");
   common(object, object_args);
