@@ -15,6 +15,11 @@ inline Eigen::Matrix3d rpy_matrix(double roll, double pitch, double yaw) {
       .toRotationMatrix();
 }
 
+// rpy = (roll, pitch, yaw), rad.
+inline Eigen::Matrix3d rpy_matrix(const Eigen::Vector3d& rpy) {
+  return rpy_matrix(rpy.x(), rpy.y(), rpy.z());
+}
+
 inline Eigen::Isometry3d pose_xyz_rpy(double x, double y, double z, double roll, double pitch,
                                       double yaw) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
