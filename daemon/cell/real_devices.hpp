@@ -1,5 +1,6 @@
 #pragma once
-// driver = "real": the cell's drivers, built from each device's kind and transport:
+// driver = "real": the cell's drivers, built from each device's kind (its RealSensor,
+// daemon/cell/sensors/<kind>.cpp) and transport:
 //   axis     - drivers::FhppAxis (Festo FHPP over Modbus): "host:port" (TCP) or "/dev/tty..."
 //              (RTU), unit modbus_unit (default 1);
 //   robot    - drivers::can::Cia402JointSource (CiA 402 joints, SYNC master) on a SocketCAN
@@ -50,20 +51,20 @@ class RealDevices final : public CellDevices {
                    const std::atomic<bool>& cancel, const std::function<void()>& progress) override;
   std::vector<NamedHealth> health() const override;
 
- private:
-  ScanOutcome scan_stripe(const DeviceConfig& device, const ScanRequest& request,
-                          const std::atomic<bool>& cancel, const std::function<void()>& progress);
-  ScanOutcome scan_css(const DeviceConfig& device, const ScanRequest& request,
-                       const std::atomic<bool>& cancel, const std::function<void()>& progress);
-  ScanOutcome scan_pan_tilt(const DeviceConfig& device, const ScanRequest& request,
-                            const std::atomic<bool>& cancel, const std::function<void()>& progress);
-  // The device that moves `device`: its `motion` field, else the only device of `kind`.
-  hal::Device* motion_of(const DeviceConfig& device, const std::string& kind,
-                         std::string* why) const;
+  // What the kinds' scans (daemon/cell/sensors/) reach: the configuration, the drivers' clock,
+  // a driver by its health name (throws std::out_of_range when there is none) and the device
+  // that moves `device`: its `motion` field, else the only real device of the kind that moves
+  // it (SensorKind::moved_by); null with *why when there is none or several.
+  const CellConfig& config() const { return config_; }
+  hal::Clock& clock() const { return *clock_; }
+  hal::Device& driver(const std::string& name) const;
+  hal::Device* motion_of(const DeviceConfig& device, std::string* why) const;
 
+ private:
   CellConfig config_;
   std::unique_ptr<hal::Clock> clock_;  // CLOCK_MONOTONIC, shared by the drivers that take one
-  std::map<std::string, std::unique_ptr<hal::Device>> devices_;  // by config name
+  std::map<std::string, std::unique_ptr<hal::Device>> devices_;  // by health name
+  std::map<std::string, std::vector<std::string>> drivers_of_;   // health names, by config name
 };
 
 }  // namespace rangefit::daemon

@@ -1,6 +1,7 @@
 #pragma once
 // driver = "sim": the simulated cell on the same path as the hardware. Per scan, the sim/ devices
-// of the requested sensor stream into the fusion/ assembler exactly as the real drivers would:
+// of the requested sensor stream into the fusion/ assembler exactly as the real drivers would,
+// as the sensor's kind says (its SimSensor, daemon/cell/sensors/sim/<kind>.cpp):
 //   css      - sim::CssRig: CSS revolutions + the robot's last-joint stream → CssAssembler;
 //   stripe   - sim::StripeCell: ranger profiles + linear-axis samples → StripeCellAssembler;
 //   pan_tilt - sim::PanTiltHead: ranger profiles + pan/tilt samples → PanTiltAssembler.
@@ -49,13 +50,10 @@ class SimCell final : public CellDevices {
   // "/angles" (the stream that moves it).
   std::vector<NamedHealth> health() const override;
 
- private:
   struct LoadedScene;
-  struct Run;  // one scan in progress
-  ScanOutcome scan_css(Run& run);
-  ScanOutcome scan_stripe(Run& run);
-  ScanOutcome scan_pan_tilt(Run& run);
+  struct Run;  // one scan in progress, as the kinds' scans (daemon/cell/sim_sensor.hpp) see it
 
+ private:
   CellConfig config_;
   std::unique_ptr<sim::SimClock> clock_;
   std::map<std::string, std::shared_ptr<LoadedScene>> scenes_;  // by device name

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "daemon/cell/sim_cell.hpp"
+#include "daemon/cell/sim_sensor.hpp"
 #include "daemon/cli/commands.hpp"
 #include "daemon/cli/json_util.hpp"
 #include "io/cloud_io.hpp"
@@ -33,6 +34,16 @@ struct SimulateArgs {
   bool exact = false;
   bool double_precision = false;
 };
+
+// The --sensor spellings (SensorKind::cli_name, else its name) of the kinds the cell simulates.
+std::vector<std::string> simulated_sensors() {
+  std::vector<std::string> out;
+  for (const daemon::SimSensor* s : daemon::all_sim_sensors()) {
+    const daemon::SensorKind& k = *daemon::find_sensor_kind(s->kind);
+    out.emplace_back(*k.cli_name != '\0' ? k.cli_name : k.name);
+  }
+  return out;
+}
 
 nlohmann::json pose_json(const Eigen::Isometry3d& T) {
   return {{"position", json_vec(T.translation())},
@@ -73,7 +84,7 @@ ScanOutcome scan_scene(const SimulateArgs& a, nlohmann::json& health) {
   config.sim.noise = !a.exact;
   DeviceConfig device;
   device.name = a.sensor;
-  device.kind = a.sensor == "pantilt" ? "pan_tilt" : a.sensor;
+  device.kind = *daemon::find_sensor_kind(a.sensor);  // a --sensor spelling of a kind
   device.scene = a.scene;
   config.devices.push_back(device);
   SimCell cell(config);
@@ -158,9 +169,11 @@ void add_simulate_command(CLI::App& app, int* exit_code) {
   cmd->add_option("--scene", args->scene, "scene file (TOML, mm)")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("--sensor", args->sensor, "css | stripe | pantilt")
+  std::string sensors;
+  for (const std::string& s : simulated_sensors()) sensors += (sensors.empty() ? "" : " | ") + s;
+  cmd->add_option("--sensor", args->sensor, sensors)
       ->required()
-      ->check(CLI::IsMember({"css", "stripe", "pantilt"}));
+      ->check(CLI::IsMember(simulated_sensors()));
   cmd->add_option("--seed", args->seed, "seed of all noise and faults");
   cmd->add_option("--out", args->out,
                   "cloud file to write (.ply or .pcd; - writes binary PLY to stdout)")

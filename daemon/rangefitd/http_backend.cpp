@@ -110,7 +110,7 @@ Answer ServiceBackend::detect(const nlohmann::json& json, bool wait) {
                              : request.kind == DetectKind::kBore ? config.service.bore_sensor
                                                                  : config.service.object_sensor;
   if (const DeviceConfig* d = config.device(sensor)) {
-    convert_sweep_units(request, sweep_is_linear(d->kind), /*to_wire=*/true);
+    convert_sweep_units(request, d->kind->sweep_linear, /*to_wire=*/true);
   }
   if (!service_.board().reserve(request.id)) {
     return api::error_answer(Status::kBadRequest,
@@ -158,7 +158,7 @@ Answer ServiceBackend::state() {
   nlohmann::json models = nlohmann::json::array(), sensors = nlohmann::json::array();
   for (const ObjectModelConfig& o : config.objects) models.push_back(o.name);
   for (const DeviceConfig& d : config.devices) {
-    if (d.kind == "css" || d.kind == "stripe" || d.kind == "pan_tilt") sensors.push_back(d.name);
+    if (d.kind->scans) sensors.push_back(d.name);
   }
   const PipelineSnapshot snap = service_.snapshot();
   nlohmann::json diagnostics = nlohmann::json::array();

@@ -13,19 +13,8 @@ int pan_node(const DeviceConfig& d) { return or_default(d.pan_node, kDefaultPanN
 int tilt_node(const DeviceConfig& d) { return or_default(d.tilt_node, kDefaultTiltNode); }
 
 std::vector<CanNodeUse> can_nodes(const DeviceConfig& d) {
-  const CanNodeUse ranger{"can_node", ranger_node(d), d.can_node == 0};
-  if (d.kind == "robot") {
-    // PowerCube modules answer on ids of their own (0x0A0 + module), apart from CiA 402 nodes.
-    if (d.protocol == JointProtocol::kPowerCube) return {};
-    return {{"can_node", joint_node(d), d.can_node == 0}};
-  }
-  if (d.kind == "stripe") return {ranger};
-  if (d.kind == "pan_tilt") {
-    return {ranger,
-            {"pan_node", pan_node(d), d.pan_node == 0},
-            {"tilt_node", tilt_node(d), d.tilt_node == 0}};
-  }
-  return {};
+  if (d.kind->can_nodes == nullptr) return {};
+  return d.kind->can_nodes(d);
 }
 
 }  // namespace rangefit::daemon

@@ -30,7 +30,8 @@ struct CanNodeUse {
   int node;           // 1..127 as the driver will use it (defaults filled in)
   bool is_default;    // the field is not set: node is the driver's default
 };
-// Empty for kinds that are not on a CAN bus (css, axis) and for PowerCube modules.
+// As the device's kind declares them (SensorKind::can_nodes): none for kinds that are not on a
+// CAN bus (css, axis) and for PowerCube modules.
 std::vector<CanNodeUse> can_nodes(const DeviceConfig& d);
 
 }  // namespace rangefit::daemon

@@ -5,6 +5,7 @@
 
 #include <toml++/toml.h>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <set>
 #include <sstream>
@@ -146,25 +147,26 @@ std::string describe(const CanNodeUse& u) {
   return std::to_string(u.node) + (u.is_default ? " (the default)" : "");
 }
 
+// "pan_tilt, robot or stripe": the kinds that read that field.
+std::string kinds_with(bool KindFields::*field) {
+  return sensor_kind_names([field](const SensorKind& k) { return k.fields.*field; });
+}
+
 // CANopen node ids are 1..127; Modbus unit ids 1..247 (0 is broadcast, 248.. reserved).
 void read_bus_addresses(FieldReader& r, DeviceConfig& d) {
   struct Address {
     const char* key;
     int* out;
     std::int64_t max;
-    bool applies;
-    const char* kinds;
+    bool KindFields::*field;
   };
-  const bool ranger = d.kind == "stripe" || d.kind == "pan_tilt";
-  for (const Address& a :
-       {Address{"can_node", &d.can_node, 127, d.kind == "robot" || ranger,
-                "robot, stripe or pan_tilt"},
-        Address{"pan_node", &d.pan_node, 127, d.kind == "pan_tilt", "pan_tilt"},
-        Address{"tilt_node", &d.tilt_node, 127, d.kind == "pan_tilt", "pan_tilt"},
-        Address{"modbus_unit", &d.modbus_unit, 247, d.kind == "axis", "axis"}}) {
+  for (const Address& a : {Address{"can_node", &d.can_node, 127, &KindFields::can_node},
+                           Address{"pan_node", &d.pan_node, 127, &KindFields::pan_node},
+                           Address{"tilt_node", &d.tilt_node, 127, &KindFields::tilt_node},
+                           Address{"modbus_unit", &d.modbus_unit, 247, &KindFields::modbus_unit}}) {
     std::int64_t v = 0;
     r.read(a.key, v, 1, a.max);
-    if (v != 0 && !a.applies) r.fail(a.key, std::string("only for kind ") + a.kinds);
+    if (v != 0 && !(d.kind->fields.*a.field)) r.fail(a.key, "only for kind " + kinds_with(a.field));
     *a.out = static_cast<int>(v);
   }
   // The head's three nodes share its interface.
@@ -201,9 +203,13 @@ void check_can_nodes(const std::vector<DeviceConfig>& devices, std::size_t i, Fi
 void read_device(FieldReader& r, DeviceConfig& d) {
   r.read("name", d.name);
   if (d.name.empty()) r.fail("name", "is required");
-  r.read("kind", d.kind);
-  static const std::set<std::string> kKinds{"css", "stripe", "axis", "robot", "pan_tilt"};
-  if (!kKinds.contains(d.kind)) r.fail("kind", "must be one of css, stripe, axis, robot, pan_tilt");
+  std::string kind;
+  r.read("kind", kind);
+  const SensorKind* known = find_sensor_kind(kind);
+  if (known == nullptr || kind != known->name) {
+    r.fail("kind", "must be one of " + sensor_kind_names({}, ", "));
+  }
+  d.kind = *known;
   std::string driver = "sim";
   r.read("driver", driver);
   if (driver == "sim") {
@@ -230,15 +236,16 @@ void read_device(FieldReader& r, DeviceConfig& d) {
   // The sweep decides how many points a scan produces (sensor rate x sweep time): a CSS sweep of
   // +-30 rad fused 3.6 M points. Rotary sweeps stay within one turn each way, linear ones within
   // 10 m; a slow speed is bounded by scan_timeout_s.
-  const double sweep_limit = sweep_is_linear(d.kind) ? kMaxLinearSweepMm : kMaxRotarySweepRad;
+  const double sweep_limit = d.kind->sweep_linear ? kMaxLinearSweepMm : kMaxRotarySweepRad;
   r.read("sweep_start", d.sweep_start, -sweep_limit, sweep_limit);
   r.read("sweep_end", d.sweep_end, -sweep_limit, sweep_limit);
-  r.read("sweep_speed", d.sweep_speed, 0.0, sweep_is_linear(d.kind) ? 1e5 : 100.0);
+  r.read("sweep_speed", d.sweep_speed, 0.0, d.kind->sweep_linear ? 1e5 : 100.0);
   r.read("motion", d.motion);
   std::string protocol;
   r.read("protocol", protocol);
   if (!protocol.empty()) {
-    if (d.kind != "robot") r.fail("protocol", "only for kind robot");
+    if (!d.kind->fields.protocol)
+      r.fail("protocol", "only for kind " + kinds_with(&KindFields::protocol));
     if (protocol == "cia402") {
       d.protocol = JointProtocol::kCia402;
     } else if (protocol == "powercube") {
@@ -392,9 +399,9 @@ DaemonConfig read_root(const toml::table& root, std::string_view source_name,
       check_can_nodes(c.devices, i, sub);
       d.scene = resolve(d.scene, base_dir);
       if (d.driver == DriverKind::kSim && d.scene.empty()) d.scene = c.sim.scene;
-      const bool scans = d.kind == "css" || d.kind == "stripe" || d.kind == "pan_tilt";
-      if (d.driver == DriverKind::kSim && scans && d.scene.empty()) {
-        sub.fail("scene", "is required for a simulated " + d.kind + " (or set sim.scene)");
+      if (d.driver == DriverKind::kSim && d.kind->scans && d.scene.empty()) {
+        sub.fail("scene", "is required for a simulated " + std::string(d.kind.name()) +
+                              " (or set sim.scene)");
       }
     }
   }

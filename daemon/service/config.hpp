@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "daemon/service/frames_config.hpp"
+#include "daemon/service/sensor_kind.hpp"
 #include "detect/object_model.hpp"
 #include "fusion/config.hpp"
 
@@ -36,7 +37,7 @@ struct SimFaultConfig {
 
 struct DeviceConfig {
   std::string name;  // unique; requests name sensors by it
-  std::string kind;  // css | stripe | axis | robot | pan_tilt
+  DeviceKind kind;   // a registered kind (daemon/service/sensor_kinds/: css, stripe, ...)
   DriverKind driver = DriverKind::kSim;
   std::string transport;              // real driver: "can0", "/dev/ttyACM0", "10.0.0.5:502"
   std::filesystem::path replay_file;  // replay driver: a PLY cloud returned as each scan

@@ -75,8 +75,14 @@ std::string check_bore(BorePrior& bore) {
   return check_bore_shape(bore);
 }
 
+// The kind whose calibration body a calibrate target names; null: none the service calibrates.
+const SensorKind* target_kind(const CalibrationTarget& t) {
+  const SensorKind* k = find_sensor_kind(t.kind);
+  return k != nullptr && t.kind == k->name && k->calibrated_by_service ? k : nullptr;
+}
+
 std::string check_target(const CalibrationTarget& t) {
-  if (t.kind != "stripe") {
+  if (target_kind(t) == nullptr) {
     return "calibrate target must be \"stripe\" (the hollow cube on the stripe cell; the CSS "
            "mount needs scans at several robot poses: `rangefit calibrate`)";
   }
@@ -88,7 +94,7 @@ std::string check_target(const CalibrationTarget& t) {
   return "";
 }
 
-std::string first_device_of_kind(const DaemonConfig& config, const std::string& kind) {
+std::string first_device_of_kind(const DaemonConfig& config, const DeviceKind& kind) {
   for (const auto& d : config.devices) {
     if (d.kind == kind) return d.name;
   }
@@ -115,7 +121,9 @@ std::string validate_request(ScanRequest& request, const DaemonConfig& config) {
     if (auto why = check_name(request.model, "model", kMaxNameLength); !why.empty()) return why;
   } else if (request.kind == DetectKind::kCalibrate) {
     if (auto why = check_target(request.target); !why.empty()) return why;
-    if (request.sensor.empty()) request.sensor = first_device_of_kind(config, "stripe");
+    if (request.sensor.empty()) {
+      request.sensor = first_device_of_kind(config, *target_kind(request.target));
+    }
   } else if (config.object(request.model) == nullptr) {
     std::string known;
     for (const auto& o : config.objects) known += (known.empty() ? "" : ", ") + o.name;
@@ -139,15 +147,15 @@ std::string validate_request(ScanRequest& request, const DaemonConfig& config) {
     return request.sensor.empty() ? std::string("no sensor given and no default configured")
                                   : "unknown sensor \"" + request.sensor + "\"";
   }
-  if (request.kind == DetectKind::kCalibrate && device->kind != request.target.kind) {
+  if (request.kind == DetectKind::kCalibrate && device->kind != *target_kind(request.target)) {
     return "calibrate " + request.target.kind + " needs a " + request.target.kind + " sensor; \"" +
-           request.sensor + "\" is a " + device->kind;
+           request.sensor + "\" is a " + std::string(device->kind.name());
   }
   if (!std::isfinite(request.sweep_start) || !std::isfinite(request.sweep_end) ||
       !std::isfinite(request.sweep_speed) || request.sweep_speed < 0.0) {
     return "sweep values must be finite and sweep_speed >= 0";
   }
-  convert_sweep_units(request, sweep_is_linear(device->kind), /*to_wire=*/false);
+  convert_sweep_units(request, device->kind->sweep_linear, /*to_wire=*/false);
   if (request.sweep_start == request.sweep_end) {  // the device's configured sweep
     request.sweep_start = device->sweep_start;
     request.sweep_end = device->sweep_end;
@@ -155,7 +163,7 @@ std::string validate_request(ScanRequest& request, const DaemonConfig& config) {
   if (request.sweep_speed == 0.0) request.sweep_speed = device->sweep_speed;
   // The sweep decides how many points the scan fuses (a CSS sweep of +-30 rad fused 3.6 M
   // points): the limits of the config's sweeps, one turn each way or 10 m.
-  const bool linear = sweep_is_linear(device->kind);
+  const bool linear = device->kind->sweep_linear;
   const double limit = linear ? 1e4 : 6.283185307179586;
   if (std::abs(request.sweep_start) > limit || std::abs(request.sweep_end) > limit) {
     return linear ? "sweep_start and sweep_end must be within +-10 m"

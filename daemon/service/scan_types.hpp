@@ -114,12 +114,8 @@ struct DetectionResult {
 
 constexpr double kMetresPerMm = 1e-3;  // SI metres on the DDS wire
 
-// Linear sensors sweep along an axis in mm (metres on the wire); the others rotate, in rad.
-inline bool sweep_is_linear(const std::string& device_kind) {
-  return device_kind == "stripe" || device_kind == "axis";
-}
-
-// The wire carries sweep positions in metres for linear sensors; internally they are mm.
+// The wire carries sweep positions in metres for linear sensors (SensorKind::sweep_linear);
+// internally they are mm.
 void convert_sweep_units(ScanRequest& req, bool linear_sweep, bool to_wire);
 
 }  // namespace rangefit::daemon

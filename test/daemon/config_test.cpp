@@ -91,7 +91,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"[[devices]]\nname = \"a\"\nkind = \"axis\"\nmodbus_unit = \"7\"\n",
                 "devices[0].modbus_unit: must be an integer"},
         BadCase{"[[devices]]\nname = \"a\"\nkind = \"axis\"\ncan_node = 3\n",
-                "devices[0].can_node: only for kind robot, stripe or pan_tilt"},
+                "devices[0].can_node: only for kind pan_tilt, robot or stripe"},
         BadCase{"[[devices]]\nname = \"r\"\nkind = \"robot\"\nmodbus_unit = 3\n",
                 "devices[0].modbus_unit: only for kind axis"},
         BadCase{"[[devices]]\nname = \"s\"\nkind = \"stripe\"\npan_node = 3\n",

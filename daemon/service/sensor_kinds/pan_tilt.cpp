@@ -1,0 +1,26 @@
+// kind = "pan_tilt": the laser-stripe ranger on a pan-tilt head (thesis 5.3). It scans while the
+// cell program pans the head: a rotary sweep, in rad. The ranger (can_node) and the head's pan
+// and tilt axes (pan_node, tilt_node) share one CAN interface. `rangefit simulate` spells it
+// "pantilt". Its drivers and scans: daemon/cell/sensors/pan_tilt.cpp and sim/pan_tilt.cpp.
+#include "daemon/service/bus_addresses.hpp"
+#include "daemon/service/sensor_kind.hpp"
+
+namespace rangefit::daemon::sensor_kinds {
+namespace {
+
+std::vector<CanNodeUse> nodes(const DeviceConfig& d) {
+  return {{"can_node", ranger_node(d), d.can_node == 0},
+          {"pan_node", pan_node(d), d.pan_node == 0},
+          {"tilt_node", tilt_node(d), d.tilt_node == 0}};
+}
+
+}  // namespace
+
+extern const SensorKind pan_tilt;
+const SensorKind pan_tilt{.name = "pan_tilt",
+                          .cli_name = "pantilt",
+                          .scans = true,
+                          .fields = {.can_node = true, .pan_node = true, .tilt_node = true},
+                          .can_nodes = nodes};
+
+}  // namespace rangefit::daemon::sensor_kinds
