@@ -56,6 +56,7 @@ TEST(BoreShapeRequest, ConeAndEllipseFieldsRoundTripTheJsonAndReachThePrior) {
   EXPECT_EQ(cone.prior.radius2, 0.0);
 
   req = ScanRequest{};
+  req.id = "ellipse-1";
   req.kind = DetectKind::kBore;
   req.bore.radius_mm = 5.0;
   req.bore.radius2_mm = 4.5;
