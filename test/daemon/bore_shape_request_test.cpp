@@ -3,7 +3,6 @@
 // of HTTP/TCP and the spool and the DDS request (metres), means "a cylinder" in an older request,
 // and comes back as the result's shape in the CLI's JSON.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -18,6 +17,7 @@
 #include "daemon/service/json_codec.hpp"
 #include "daemon/service/request_validation.hpp"
 #include "io/cloud_io.hpp"
+#include "test/daemon/cli_run.hpp"
 #include "test/detect/bore_test_cases.hpp"
 
 namespace rangefit::daemon {
@@ -118,23 +118,8 @@ TEST(BoreShapeRequest, ValidationNamesTheShapeFieldThatIsWrong) {
 }
 
 #ifdef RANGEFIT_CLI_PATH
-struct CliRun {
-  int exit_code = -1;
-  std::string output;
-};
-
-CliRun run_cli(const std::string& args) {
-  CliRun r;
-  const std::string command = std::string(RANGEFIT_CLI_PATH) + " " + args + " 2>&1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return r;
-  char buf[4096];
-  std::size_t n = 0;
-  while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) r.output.append(buf, n);
-  const int status = ::pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using test::CliRun;
+using test::run_cli;
 
 std::string xyz(const Eigen::Vector3d& v) {
   std::ostringstream s;

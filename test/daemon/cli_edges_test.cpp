@@ -2,7 +2,6 @@
 // syntax (X,Y,Z; the old X Y Z still works where a command took it), and "-" for stdin/stdout.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -10,6 +9,7 @@
 #include <string>
 
 #include "io/cloud_io.hpp"
+#include "test/daemon/cli_run.hpp"
 #include "test/daemon/replay_service.hpp"
 
 #if defined(RANGEFIT_CLI_PATH) && defined(RANGEFITD_PATH) && defined(RANGEFIT_PROJECT_VERSION)
@@ -20,23 +20,9 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-struct Outcome {
-  int exit_code = -1;
-  std::string out;  // stdout (and stderr when the command line says 2>&1)
-};
+using Outcome = test::CliRun;
 
-// Runs a shell command line; its stdout and exit code.
-Outcome run(const std::string& command) {
-  Outcome r;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return r;
-  char buffer[4096];
-  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;)
-    r.out.append(buffer, n);
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+Outcome run(const std::string& command) { return test::run_command(command); }
 
 std::string read_file(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -52,23 +38,23 @@ const std::string kBorePrior = " --cad-entrance 0.3,-0.2,285.8 --cad-axis 0,0,-1
 TEST(CliEdges, BothProgramsPrintTheProjectVersion) {
   const Outcome cli = run(kCli + " --version");
   EXPECT_EQ(cli.exit_code, 0);
-  EXPECT_EQ(cli.out, "rangefit " RANGEFIT_PROJECT_VERSION "\n");
+  EXPECT_EQ(cli.output, "rangefit " RANGEFIT_PROJECT_VERSION "\n");
   const Outcome service = run(kDaemon + " --version");
   EXPECT_EQ(service.exit_code, 0);
-  EXPECT_EQ(service.out, "rangefitd " RANGEFIT_PROJECT_VERSION "\n");
+  EXPECT_EQ(service.output, "rangefitd " RANGEFIT_PROJECT_VERSION "\n");
 }
 
 TEST(CliEdges, RangefitdHelpExitsZeroAndBadUsageTwo) {
   const Outcome help = run(kDaemon + " --help 2>/dev/null");
   EXPECT_EQ(help.exit_code, 0);
-  EXPECT_THAT(help.out, StartsWith("usage: rangefitd --config FILE"));
-  EXPECT_THAT(help.out, HasSubstr("--version"));
+  EXPECT_THAT(help.output, StartsWith("usage: rangefitd --config FILE"));
+  EXPECT_THAT(help.output, HasSubstr("--version"));
   const Outcome none = run(kDaemon + " 2>&1");
   EXPECT_EQ(none.exit_code, 2);
-  EXPECT_THAT(none.out, StartsWith("usage: rangefitd"));
+  EXPECT_THAT(none.output, StartsWith("usage: rangefitd"));
   const Outcome bad = run(kDaemon + " --frobnicate 2>&1");
   EXPECT_EQ(bad.exit_code, 2);
-  EXPECT_THAT(bad.out, HasSubstr("unexpected argument '--frobnicate'"));
+  EXPECT_THAT(bad.output, HasSubstr("unexpected argument '--frobnicate'"));
 }
 
 TEST(CliEdges, VectorsAreXyzWithCommasInEveryOfflineCommand) {
@@ -88,8 +74,8 @@ TEST(CliEdges, VectorsAreXyzWithCommasInEveryOfflineCommand) {
   }
   for (const char* command : {"bore", "object"}) {
     const Outcome help = run(kCli + " " + command + " --help");
-    EXPECT_THAT(help.out, HasSubstr("X,Y,Z")) << command;
-    EXPECT_THAT(help.out, ::testing::Not(HasSubstr("x y z"))) << command;
+    EXPECT_THAT(help.output, HasSubstr("X,Y,Z")) << command;
+    EXPECT_THAT(help.output, ::testing::Not(HasSubstr("x y z"))) << command;
   }
   fs::remove_all(dir);
 }
@@ -115,24 +101,24 @@ TEST(CliEdges, DashPipesCloudsFromSimulateIntoBoreAndObject) {
   const Outcome piped = run(cd + simulate + " --out - --format pcd --double 2>/dev/null | " + kCli +
                             " bore --json --cloud -" + kBorePrior);
   for (const Outcome* r : {&from_file, &redirected, &piped}) {
-    EXPECT_EQ(r->exit_code, 0) << r->out;
-    EXPECT_THAT(r->out, HasSubstr("\"found\":true"));
+    EXPECT_EQ(r->exit_code, 0) << r->output;
+    EXPECT_THAT(r->output, HasSubstr("\"found\":true"));
   }
   const auto entrance = [](const std::string& json) {
     return json.substr(json.find("\"entrance\""), 80);
   };
-  EXPECT_EQ(entrance(redirected.out), entrance(from_file.out));
+  EXPECT_EQ(entrance(redirected.output), entrance(from_file.output));
 
   const Outcome object = run(cd + kCli +
                              " object --model " RANGEFIT_SOURCE_DIR
                              "/data/models/sphere.toml --hypotheses 1 --trials 1 "
                              "--cloud - < scan.ply");
-  EXPECT_NE(object.exit_code, 1) << object.out;
+  EXPECT_NE(object.exit_code, 1) << object.output;
 
   // Nothing on stdin: a clear error, exit 1.
   const Outcome empty = run(cd + kCli + " bore --cloud -" + kBorePrior + " < /dev/null 2>&1");
   EXPECT_EQ(empty.exit_code, 1);
-  EXPECT_THAT(empty.out, HasSubstr("stdin: empty"));
+  EXPECT_THAT(empty.output, HasSubstr("stdin: empty"));
 
   // --double where simulate writes a file; the truth file beside it as before.
   ASSERT_EQ(run(cd + simulate + " --double --out exact.ply > /dev/null").exit_code, 0);

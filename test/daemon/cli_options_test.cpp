@@ -3,30 +3,15 @@
 // option, not a detector run on garbage or a length_error from deep inside it.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-#include <cstdio>
 #include <string>
+
+#include "test/daemon/cli_run.hpp"
 
 namespace {
 
 #ifdef RANGEFIT_CLI_PATH
-struct CliRun {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
-
-CliRun run_cli(const std::string& args) {
-  CliRun r;
-  const std::string command = std::string(RANGEFIT_CLI_PATH) + " " + args + " 2>&1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return r;
-  char buf[4096];
-  std::size_t n = 0;
-  while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) r.output.append(buf, n);
-  const int status = ::pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using rangefit::test::CliRun;
+using rangefit::test::run_cli;
 
 // Any existing file passes --cloud's existence check; the options are refused before it is read.
 const std::string kCloud = std::string(" --cloud ") + RANGEFIT_SOURCE_DIR + "/data/models/box.toml";

@@ -3,7 +3,6 @@
 // CSS's view direction: the same entrance, axis and radii, both walls within 50 um of the truth.
 // Without the pipe fields the service used to fit one cylinder between the walls (r = 7).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cmath>
 #include <cstdio>
@@ -17,6 +16,7 @@
 #include "daemon/rangefitd/service.hpp"
 #include "daemon/service/scan_sensor.hpp"
 #include "io/stl.hpp"
+#include "test/daemon/cli_run.hpp"
 #include "test/daemon/replay_service.hpp"
 
 namespace rangefit::daemon {
@@ -55,17 +55,9 @@ io::TriangleMesh pipe_mesh(double inner, double outer, double length, int segmen
 
 #ifdef RANGEFIT_CLI_PATH
 nlohmann::json run_cli_json(const std::string& args, int* exit_code) {
-  const std::string command = std::string(RANGEFIT_CLI_PATH) + " " + args;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  std::string out;
-  if (pipe != nullptr) {
-    char buf[4096];
-    std::size_t n = 0;
-    while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
-    const int status = ::pclose(pipe);
-    *exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
-  return nlohmann::json::parse(out, nullptr, false);
+  const test::CliRun r = test::run_command(std::string(RANGEFIT_CLI_PATH) + " " + args);
+  *exit_code = r.exit_code;
+  return nlohmann::json::parse(r.output, nullptr, false);
 }
 
 std::string arg(const Eigen::Vector3d& v) {
