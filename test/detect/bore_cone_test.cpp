@@ -23,11 +23,9 @@ class BoreCone : public ::testing::TestWithParam<test::ShapeKind> {};
 
 TEST_P(BoreCone, AngleEntranceAndAxisOnEveryTuningSeed) {
   for (std::uint64_t seed = 1; seed <= test::kShapeTuningSeeds; ++seed) {
-    const auto scan = sim::make_synthetic_bore(test::shape_scan_options(GetParam(), seed));
-    const sim::SyntheticBoreTruth& t = scan.truth;
-    BoreOptions o;
-    o.view_dir = t.view_dir;
-    const BoreResult r = detect_bore(scan.cloud, test::shape_prior(t, seed), o);
+    const test::ShapeRun run = test::detect_shape(GetParam(), seed);
+    const sim::SyntheticBoreTruth& t = run.scan.truth;
+    const BoreResult& r = run.result;
     ASSERT_TRUE(r.found) << "seed " << seed << ": " << to_string(r.reason);
     ASSERT_TRUE(r.shape.has_value());
     ASSERT_TRUE(r.shape->cone);

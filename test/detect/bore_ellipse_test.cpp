@@ -21,12 +21,9 @@ double axis_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 
 TEST(BoreEllipse, RadiiMajorAxisEntranceAndAxisOnEveryTuningSeed) {
   for (std::uint64_t seed = 1; seed <= test::kShapeTuningSeeds; ++seed) {
-    const auto scan =
-        sim::make_synthetic_bore(test::shape_scan_options(test::ShapeKind::kEllipse, seed));
-    const sim::SyntheticBoreTruth& t = scan.truth;
-    BoreOptions o;
-    o.view_dir = t.view_dir;
-    const BoreResult r = detect_bore(scan.cloud, test::shape_prior(t, seed), o);
+    const test::ShapeRun run = test::detect_shape(test::ShapeKind::kEllipse, seed);
+    const sim::SyntheticBoreTruth& t = run.scan.truth;
+    const BoreResult& r = run.result;
     ASSERT_TRUE(r.found) << "seed " << seed << ": " << to_string(r.reason);
     ASSERT_TRUE(r.shape.has_value());
     ASSERT_FALSE(r.shape->cone);

@@ -186,4 +186,18 @@ inline BorePrior shape_prior(const sim::SyntheticBoreTruth& t, std::uint64_t see
   return p;
 }
 
+// One shaped bore of a seed, detected with its CAD prior and the scan's view direction.
+struct ShapeRun {
+  sim::SyntheticBoreScan scan;
+  BoreResult result;
+};
+
+inline ShapeRun detect_shape(ShapeKind kind, std::uint64_t seed) {
+  ShapeRun run{sim::make_synthetic_bore(shape_scan_options(kind, seed)), {}};
+  BoreOptions o;
+  o.view_dir = run.scan.truth.view_dir;
+  run.result = detect_bore(run.scan.cloud, shape_prior(run.scan.truth, seed), o);
+  return run;
+}
+
 }  // namespace rangefit::test
