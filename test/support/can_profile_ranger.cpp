@@ -54,8 +54,16 @@ hal::Timestamp SimProfileRanger::tick(hal::Timestamp now, can::CanTransport& bus
       (void)bus.send(frames[i]);
     }
     ++sent_;
+    // The device's clock is steady: a late bus thread sends the slots it owes back to back,
+    // each with its own exposure time. After a stall of more than kCatchUp slots the device
+    // has overrun its buffer; it numbers the exposures it lost, so the driver sees a gap.
+    constexpr int kCatchUp = 10;
     next_profile_ += period;
-    if (next_profile_ <= now) next_profile_ = now + period;
+    if (now - next_profile_ > kCatchUp * period) {
+      const auto lost = (now - next_profile_) / period;
+      sequence_ += static_cast<std::uint32_t>(lost);
+      next_profile_ += lost * period;
+    }
   }
   return std::min(next_profile_, next_heartbeat_);
 }
