@@ -44,6 +44,9 @@ struct DeviceHealth {
   DeviceState state = DeviceState::kDisconnected;
   StreamCounters counters;
   std::string message;  // last problem, human readable; empty when none
+  // The device's own identity (its serial number) once it has told it; empty until then or when
+  // the protocol has none. Diagnostics report it as hardware_id, else the configured name.
+  std::string hardware_id;
 };
 
 // Base of every HAL device. start() and stop() are idempotent; health() is cheap and thread-safe.

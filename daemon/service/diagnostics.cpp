@@ -29,7 +29,7 @@ std::vector<DiagStatus> DiagnosticsBuilder::build(const std::vector<NamedHealth>
     DiagStatus s;
     s.level = level_of(h.state);
     s.name = "rangefitd: device " + name;
-    s.hardware_id = name;
+    s.hardware_id = h.hardware_id.empty() ? name : h.hardware_id;
     s.message = h.message.empty() ? hal::to_string(h.state) : h.message;
     double rate = 0.0;
     if (auto it = last_samples_.find(name); it != last_samples_.end() && now > it->second.first) {

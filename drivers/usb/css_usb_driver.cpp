@@ -221,6 +221,7 @@ hal::DeviceHealth CssUsbDriver::health() const {
     std::lock_guard lock(mutex_);
     h.state = state_;
     h.message = message_;
+    if (info_) h.hardware_id = info_->serial;
   }
   {
     std::lock_guard lock(translator_mutex_);

@@ -18,7 +18,7 @@ class ScriptedSource final : public hal::SampleSource<Sample> {
   std::string name() const override { return "scripted"; }
   hal::Status start() override { return {}; }
   void stop() override {}
-  hal::DeviceHealth health() const override { return {hal::DeviceState::kStreaming, {}, {}}; }
+  hal::DeviceHealth health() const override { return {hal::DeviceState::kStreaming, {}, {}, {}}; }
   std::size_t read(std::vector<Sample>& out, hal::Duration) override {
     if (reads_++ >= batches_.size()) return 0;
     const auto& b = batches_[reads_ - 1];

@@ -46,6 +46,7 @@ TEST(CssUsbDriver, NothingIsReadBeforeStart) {
   std::vector<hal::CssRevolution> out;
   EXPECT_EQ(rig.driver->read(out, milliseconds(1)), 0u);
   EXPECT_EQ(rig.driver->health().state, hal::DeviceState::kDisconnected);
+  EXPECT_EQ(rig.driver->health().hardware_id, "") << "no serial before the device answered";
 }
 
 TEST(CssUsbDriver, StreamsCompleteRevolutionsWithTranslatedStamps) {
@@ -54,6 +55,7 @@ TEST(CssUsbDriver, StreamsCompleteRevolutionsWithTranslatedStamps) {
   const auto revolutions = rig.collect(60);
   ASSERT_GE(revolutions.size(), 60u);
   EXPECT_EQ(rig.driver->info()->serial, "FAKE-1");
+  EXPECT_EQ(rig.driver->health().hardware_id, "FAKE-1") << "diagnostics name the device by it";
   double worst_us = 0;
   for (std::size_t k = 0; k < revolutions.size(); ++k) {
     const hal::CssRevolution& r = revolutions[k];
