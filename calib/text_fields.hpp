@@ -59,8 +59,7 @@ std::string read_lines(std::string_view text, std::string_view source, const cha
     have_header = true;
   }
   if (error.empty() && !have_header) error = no_header;
-  return error.empty() ? error
-                       : std::string(source) + ":" + std::to_string(line_no) + ": " + error;
+  return error.empty() ? error : std::string(source) + ":" + std::to_string(line_no) + ": " + error;
 }
 
 }  // namespace rangefit::calib::text_fields

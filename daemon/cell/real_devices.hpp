@@ -30,8 +30,8 @@
 #include <string>
 #include <vector>
 
-#include "daemon/cell/driver_configs.hpp"
 #include "daemon/cell/cell_devices.hpp"
+#include "daemon/cell/driver_configs.hpp"
 #include "daemon/service/config.hpp"
 #include "daemon/service/pipeline.hpp"
 #include "hal/source.hpp"

@@ -8,9 +8,9 @@
 #include <random>
 #include <vector>
 
+#include "calib/stripe_calibration.hpp"
 #include "hal/pan_tilt_geometry.hpp"
 #include "hal/samples.hpp"
-#include "calib/stripe_calibration.hpp"
 #include "hal/stripe_geometry.hpp"
 #include "sim/calibration_scans.hpp"
 

@@ -55,7 +55,8 @@ TEST(StripeCalibration, ReportsACovarianceThatMatchesTheNoise) {
   double z2 = 0.0;
   int count = 0;
   for (const std::uint64_t seed : {11u, 12u, 13u}) {
-    const auto r = calibrate(stripe_cube_sweep(truth, {.sigma_mm = 0.06, .seed = seed}, 2.0), nominal);
+    const auto r =
+        calibrate(stripe_cube_sweep(truth, {.sigma_mm = 0.06, .seed = seed}, 2.0), nominal);
     ASSERT_TRUE(r.ok) << r.reason;
     const Eigen::Vector3d dp = r.geometry.ranger_position_cell_mm - truth.ranger_position_cell_mm;
     const Eigen::AngleAxisd w(R_true.transpose() * r.geometry.T_cell_ranger().linear());
