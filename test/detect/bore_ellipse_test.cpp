@@ -79,7 +79,8 @@ TEST(BoreEllipse, PointsWhereTheWallFacesAwayFromTheSensorDoNotPullTheFit) {
       }
       const BoreResult r = detect_bore(scan.cloud, prior, o);
       ASSERT_TRUE(r.found) << "seed " << seed << ": " << to_string(r.reason);
-      SCOPED_TRACE(::testing::Message() << "seed " << seed << (view_given ? ", view" : ", no view"));
+      SCOPED_TRACE(::testing::Message()
+                   << "seed " << seed << (view_given ? ", view" : ", no view"));
       EXPECT_NEAR(r.radius, clean.radius, 0.003);
       EXPECT_NEAR(r.shape->radius2, clean.shape->radius2, 0.003);
       EXPECT_LT((r.entrance - clean.entrance).norm(), 0.003);
