@@ -27,43 +27,33 @@ void xyz_rpy_of(const Eigen::Isometry3d& T, double v[6]) {
 CssScansParse parse_css_scans(std::string_view text, std::string_view source) {
   CssScansParse out;
   std::vector<CssSphereScan> scans;
-  bool header = false;
-  std::size_t line_no = 0;
-  auto fail = [&](const std::string& what) {
-    out.error = std::string(source) + ":" + std::to_string(line_no) + ": " + what;
-    return out;
-  };
-  while (!text.empty()) {
-    const std::string_view line = text_fields::next_line(text);
-    ++line_no;
-    const auto w = words(line);
-    if (w.empty()) continue;
-    if (!header) {
-      if (w.size() != 2 || w[0] != "rangefit-css-sphere-scans" || w[1] != "1") {
-        return fail("expected the header 'rangefit-css-sphere-scans 1'");
-      }
-      header = true;
-      continue;
+  const auto header = [](const std::vector<std::string_view>& w) -> std::string {
+    if (w.size() != 2 || w[0] != "rangefit-css-sphere-scans" || w[1] != "1") {
+      return "expected the header 'rangefit-css-sphere-scans 1'";
     }
+    return {};
+  };
+  const auto record = [&](const std::vector<std::string_view>& w) -> std::string {
     if (w[0] == "pose") {
       double v[6];
       bool ok = w.size() == 7;
       for (std::size_t i = 0; ok && i < 6; ++i) ok = number(w[i + 1], v[i]);
-      if (!ok) return fail("expected 'pose X_MM Y_MM Z_MM ROLL PITCH YAW' (rad)");
+      if (!ok) return "expected 'pose X_MM Y_MM Z_MM ROLL PITCH YAW' (rad)";
       scans.push_back({pose_from_xyz_rpy(v), {}});
-      continue;
+      return {};
     }
     CssSample s;
     if (w.size() != 3 || !number(w[0], s.omega_rad) || !number(w[1], s.beam_rad) ||
         !number(w[2], s.range_mm)) {
-      return fail("expected 'OMEGA_RAD BEAM_RAD RANGE_MM' or 'pose ...'");
+      return "expected 'OMEGA_RAD BEAM_RAD RANGE_MM' or 'pose ...'";
     }
-    if (scans.empty()) return fail("a sample before the first 'pose ...' line");
-    if (!(s.range_mm > 0.0)) return fail("the range must be positive");
+    if (scans.empty()) return "a sample before the first 'pose ...' line";
+    if (!(s.range_mm > 0.0)) return "the range must be positive";
     scans.back().samples.push_back(s);
-  }
-  if (!header) return fail("empty scan file (no header)");
-  out.scans = std::move(scans);
+    return {};
+  };
+  out.error = text_fields::read_lines(text, source, "empty scan file (no header)", header, record);
+  if (out.error.empty()) out.scans = std::move(scans);
   return out;
 }
 

@@ -12,29 +12,18 @@ using text_fields::words;
 RawSweepParse parse_raw_sweep(std::string_view text, std::string_view source) {
   RawSweepParse out;
   RawSweep sweep;
-  bool header = false;
-  std::size_t line_no = 0;
-  auto fail = [&](const std::string& what) {
-    out.error = std::string(source) + ":" + std::to_string(line_no) + ": " + what;
-    return out;
-  };
-  while (!text.empty()) {
-    const std::string_view line = text_fields::next_line(text);
-    ++line_no;
-    const auto w = words(line);
-    if (w.empty()) continue;
-    if (!header) {
-      double n = 0.0;
-      if (w.size() != 4 || w[0] != "rangefit-raw-sweep" || w[1] != "1" ||
-          (w[2] != "stripe" && w[2] != "pantilt") || !number(w[3], n) || n < 2 || n > 65536 ||
-          n != std::floor(n)) {
-        return fail("expected the header 'rangefit-raw-sweep 1 stripe|pantilt POINTS'");
-      }
-      sweep.kind = w[2] == "stripe" ? SweepKind::kStripe : SweepKind::kPanTilt;
-      sweep.points_per_profile = static_cast<int>(n);
-      header = true;
-      continue;
+  const auto header = [&](const std::vector<std::string_view>& w) -> std::string {
+    double n = 0.0;
+    if (w.size() != 4 || w[0] != "rangefit-raw-sweep" || w[1] != "1" ||
+        (w[2] != "stripe" && w[2] != "pantilt") || !number(w[3], n) || n < 2 || n > 65536 ||
+        n != std::floor(n)) {
+      return "expected the header 'rangefit-raw-sweep 1 stripe|pantilt POINTS'";
     }
+    sweep.kind = w[2] == "stripe" ? SweepKind::kStripe : SweepKind::kPanTilt;
+    sweep.points_per_profile = static_cast<int>(n);
+    return {};
+  };
+  const auto record = [&](const std::vector<std::string_view>& w) -> std::string {
     const auto n = static_cast<std::size_t>(sweep.points_per_profile);
     if (w[0] == "p") {
       hal::RangerProfile p;
@@ -43,32 +32,33 @@ RawSweepParse parse_raw_sweep(std::string_view text, std::string_view source) {
       p.z_mm.assign(n, hal::kNoReturn);
       if (sweep.kind == SweepKind::kStripe) {
         double a = 0.0;
-        if (w.size() != 2 || !number(w[1], a)) return fail("expected 'p AXIS_MM'");
+        if (w.size() != 2 || !number(w[1], a)) return "expected 'p AXIS_MM'";
         sweep.axis_mm.push_back(a);
       } else {
         hal::PanTiltSample s;
         if (w.size() != 3 || !number(w[1], s.pan_rad) || !number(w[2], s.tilt_rad)) {
-          return fail("expected 'p PAN_RAD TILT_RAD'");
+          return "expected 'p PAN_RAD TILT_RAD'";
         }
         sweep.angles.push_back(s);
       }
       sweep.profiles.push_back(std::move(p));
-      continue;
+      return {};
     }
     double k = 0.0, x = 0.0, z = 0.0;
     if (w.size() != 3 || !number(w[0], k) || !number(w[1], x) || !number(w[2], z)) {
-      return fail("expected 'K X_MM Z_MM' or 'p ...'");
+      return "expected 'K X_MM Z_MM' or 'p ...'";
     }
-    if (sweep.profiles.empty()) return fail("a point before the first profile line 'p ...'");
+    if (sweep.profiles.empty()) return "a point before the first profile line 'p ...'";
     if (k < 0 || k >= static_cast<double>(n) || k != std::floor(k)) {
-      return fail("point index outside 0.." + std::to_string(n - 1));
+      return "point index outside 0.." + std::to_string(n - 1);
     }
     auto& p = sweep.profiles.back();
     p.x_mm[static_cast<std::size_t>(k)] = static_cast<float>(x);
     p.z_mm[static_cast<std::size_t>(k)] = static_cast<float>(z);
-  }
-  if (!header) return fail("empty sweep file (no header)");
-  out.sweep = std::move(sweep);
+    return {};
+  };
+  out.error = text_fields::read_lines(text, source, "empty sweep file (no header)", header, record);
+  if (out.error.empty()) out.sweep = std::move(sweep);
   return out;
 }
 

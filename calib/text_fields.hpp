@@ -4,6 +4,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -38,6 +39,28 @@ inline std::string_view next_line(std::string_view& text) {
     line = line.substr(0, hash);
   }
   return line;
+}
+
+// Reads a text format of a header line and record lines: `header(words)` on the first line that
+// has words, `record(words)` on each later one; each returns an error message, empty when the
+// line is good. Returns "SOURCE:LINE: message" for the first bad line, `no_header` when there is
+// no line at all, else an empty string.
+template <class Header, class Record>
+std::string read_lines(std::string_view text, std::string_view source, const char* no_header,
+                       Header&& header, Record&& record) {
+  bool have_header = false;
+  std::size_t line_no = 0;
+  std::string error;
+  while (error.empty() && !text.empty()) {
+    const auto w = words(next_line(text));
+    ++line_no;
+    if (w.empty()) continue;
+    error = have_header ? record(w) : header(w);
+    have_header = true;
+  }
+  if (error.empty() && !have_header) error = no_header;
+  return error.empty() ? error
+                       : std::string(source) + ":" + std::to_string(line_no) + ": " + error;
 }
 
 }  // namespace rangefit::calib::text_fields

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <unordered_map>
 #include <vector>
 
@@ -24,6 +25,15 @@ constexpr double kFontSize = 12.0;
 constexpr Rgb kTextColour{222, 224, 228};
 
 using Cairo = std::unique_ptr<cairo_t, decltype(&cairo_destroy)>;
+
+// Cairo's text path shares process-wide font caches that are not safe to use from two threads
+// at once (cairo 1.16 asserts in cairo_scaled_font_destroy), and release_font_caches() tears
+// them down; two services in one process, or a command and a test, may draw concurrently. Every
+// use of cairo here holds this lock: a picture is drawn once per detection, so the wait is short.
+std::mutex& cairo_lock() {
+  static std::mutex m;
+  return m;
+}
 
 void set_colour(cairo_t* cr, Rgb c, double alpha = 1.0) {
   cairo_set_source_rgba(cr, c.r / 255.0, c.g / 255.0, c.b / 255.0, alpha);
@@ -415,6 +425,7 @@ Rendering render_scan(const PointCloud& cloud, const Drawing& input, const Rende
   const std::vector<float> zbuf_sensor = draw_points(out.image, out.sensor, cloud, colours);
   const std::vector<float> zbuf_top = draw_points(out.image, out.top, cloud, colours);
 
+  const std::lock_guard lock(cairo_lock());
   cairo_surface_t* surface = cairo_image_surface_create_for_data(
       reinterpret_cast<unsigned char*>(out.image.pixels.data()), CAIRO_FORMAT_RGB24,
       out.image.width, out.image.height, out.image.width * 4);
@@ -446,6 +457,7 @@ bool write_detection_png(const std::string& path, const PointCloud& cloud, const
 }
 
 void release_font_caches() {
+  const std::lock_guard lock(cairo_lock());
   cairo_debug_reset_static_data();
   FcFini();
 }

@@ -76,8 +76,8 @@ bool write_detection_png(const std::string& path, const PointCloud& cloud, const
                          const RenderOptions& options, std::string* error);
 
 // Frees cairo's and fontconfig's process-wide font caches (the legend's font), which otherwise
-// live until exit and show up as leaks under LeakSanitizer. Call once no picture is being drawn
-// any more: at the end of a command, at service shutdown, after a test program's last picture.
+// live until exit and show up as leaks under LeakSanitizer. It waits for a picture being drawn
+// in another thread; the next picture builds the caches again.
 void release_font_caches();
 
 }  // namespace rangefit::render

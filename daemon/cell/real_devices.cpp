@@ -46,8 +46,6 @@ std::vector<NamedHealth> RealDevices::health() const {
   return out;
 }
 
-hal::Device& RealDevices::driver(const std::string& name) const { return *devices_.at(name); }
-
 hal::Device* RealDevices::motion_of(const DeviceConfig& device, std::string* why) const {
   const DeviceKind kind(device.kind->moved_by);
   std::string name = device.motion;

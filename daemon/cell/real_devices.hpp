@@ -52,15 +52,32 @@ class RealDevices final : public CellDevices {
   std::vector<NamedHealth> health() const override;
 
   // What the kinds' scans (daemon/cell/sensors/) reach: the configuration, the drivers' clock,
-  // a driver by its health name (throws std::out_of_range when there is none) and the device
-  // that moves `device`: its `motion` field, else the only real device of the kind that moves
-  // it (SensorKind::moved_by); null with *why when there is none or several.
+  // a driver by its health name and the device that moves `device` (its `motion` field, else
+  // the only real device of the kind that moves it, SensorKind::moved_by), each as the
+  // interface T the scan drives (hal::RangerSource, hal::LinearAxis, ...). Null with *why when
+  // there is none, several, or it is not a T, so a scan never casts.
   const CellConfig& config() const { return config_; }
   hal::Clock& clock() const { return *clock_; }
-  hal::Device& driver(const std::string& name) const;
-  hal::Device* motion_of(const DeviceConfig& device, std::string* why) const;
+  template <class T>
+  T* driver_as(const std::string& name, std::string* why) const {
+    const auto it = devices_.find(name);
+    T* typed = it == devices_.end() ? nullptr : dynamic_cast<T*>(it->second.get());
+    if (typed == nullptr) *why = name + ": no real driver of the interface its scan needs";
+    return typed;
+  }
+  template <class T>
+  T* motion_as(const DeviceConfig& device, std::string* why) const {
+    hal::Device* motion = motion_of(device, why);
+    T* typed = dynamic_cast<T*>(motion);
+    if (motion != nullptr && typed == nullptr) {
+      *why = device.name + ": " + motion->name() + " cannot move it";
+    }
+    return typed;
+  }
 
  private:
+  hal::Device* motion_of(const DeviceConfig& device, std::string* why) const;
+
   CellConfig config_;
   std::unique_ptr<hal::Clock> clock_;  // CLOCK_MONOTONIC, shared by the drivers that take one
   std::map<std::string, std::unique_ptr<hal::Device>> devices_;  // by health name

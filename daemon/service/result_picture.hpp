@@ -20,8 +20,7 @@ namespace rangefit::daemon {
 render::Drawing result_drawing(const DetectionResult& result, const ObjectModel* model);
 
 // Renders and writes path; false and *error when it cannot (an unknown part, an unwritable
-// file). Frees the font caches afterwards (render::release_font_caches), so call it from one
-// thread at a time.
+// file). Frees the font caches afterwards (render::release_font_caches).
 bool write_result_picture(const std::filesystem::path& path, const PointCloud& cloud,
                           const DetectionResult& result, const ObjectModel* model,
                           std::string* error);

@@ -10,7 +10,9 @@
 
 #include "hal/pan_tilt_geometry.hpp"
 #include "hal/samples.hpp"
+#include "calib/stripe_calibration.hpp"
 #include "hal/stripe_geometry.hpp"
+#include "sim/calibration_scans.hpp"
 
 namespace rangefit::test {
 
@@ -94,6 +96,34 @@ inline std::vector<hal::PanTiltSample> pan_sweep(double tilt_deg, double step_de
 
 inline double angle_between(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
   return Eigen::AngleAxisd(a.transpose() * b).angle();
+}
+
+// One stripe-cell sweep of the calibration cube by the `truth` cell, a profile every step_mm
+// of the axis.
+struct Sweep {
+  std::vector<double> axis;
+  std::vector<hal::RangerProfile> profiles;
+};
+
+inline Sweep stripe_cube_sweep(const hal::StripeCellGeometry& truth, const sim::RangerNoise& noise,
+                               double step_mm = 1.0) {
+  const calib::CalibrationCube cube;
+  Sweep s;
+  for (double a = 60.0; a <= 340.0; a += step_mm) s.axis.push_back(a);
+  const sim::Scene scene =
+      sim::calibration_cube_scene(cube.edge_mm, cube.bar_mm, cube_on_table(), true);
+  s.profiles = sim::simulate_stripe_sweep(scene, truth, s.axis, noise);
+  return s;
+}
+
+// The stripe cell calibrated from that sweep, starting from `start` (the configured cell).
+inline calib::StripeCalibrationResult calibrate(const Sweep& s,
+                                                const hal::StripeCellGeometry& start) {
+  calib::StripeCalibrationInput in;
+  in.profiles = s.profiles;
+  in.axis_mm = s.axis;
+  in.T_table_cube = cube_on_table();
+  return calib::calibrate_stripe_cell(in, start);
 }
 
 }  // namespace rangefit::test

@@ -43,22 +43,13 @@ void print(const char* title, int n, std::vector<Spread>& s) {
 void stripe(int seeds) {
   const hal::StripeCellGeometry nominal;
   const hal::StripeCellGeometry truth = perturbed_cell(nominal, 7);
-  const calib::CalibrationCube cube;
-  const sim::Scene scene =
-      sim::calibration_cube_scene(cube.edge_mm, cube.bar_mm, cube_on_table(), true);
-  std::vector<double> axis;
-  for (double a = 60.0; a <= 340.0; a += 1.0) axis.push_back(a);
   std::vector<Spread> s = {{"x mm", 1.0},        {"y mm", 1.0},        {"z mm", 1.0},
                            {"rx deg", 1 / kDeg}, {"ry deg", 1 / kDeg}, {"rz deg", 1 / kDeg}};
   int n = 0;
   for (int k = 0; k < seeds; ++k) {
-    const auto profiles = sim::simulate_stripe_sweep(
-        scene, truth, axis, {.sigma_mm = 0.06, .seed = 100000u + static_cast<unsigned>(k)});
-    calib::StripeCalibrationInput in;
-    in.profiles = profiles;
-    in.axis_mm = axis;
-    in.T_table_cube = cube_on_table();
-    const auto r = calib::calibrate_stripe_cell(in, nominal);
+    const auto r = calibrate(
+        stripe_cube_sweep(truth, {.sigma_mm = 0.06, .seed = 100000u + static_cast<unsigned>(k)}),
+        nominal);
     if (!r.ok) {
       std::printf("stripe seed %d: %s\n", k, r.reason.c_str());
       continue;

@@ -3,43 +3,16 @@
 #include <gtest/gtest.h>
 
 #include "calib_fixtures.hpp"
-#include "sim/calibration_scans.hpp"
 
 namespace rangefit::test {
 namespace {
-
-using calib::CalibrationCube;
-
-struct Sweep {
-  std::vector<double> axis;
-  std::vector<hal::RangerProfile> profiles;
-};
-
-Sweep sweep_of(const hal::StripeCellGeometry& truth, const sim::RangerNoise& noise,
-               double step_mm = 1.0) {
-  const CalibrationCube cube;
-  Sweep s;
-  for (double a = 60.0; a <= 340.0; a += step_mm) s.axis.push_back(a);
-  const sim::Scene scene =
-      sim::calibration_cube_scene(cube.edge_mm, cube.bar_mm, cube_on_table(), true);
-  s.profiles = sim::simulate_stripe_sweep(scene, truth, s.axis, noise);
-  return s;
-}
-
-calib::StripeCalibrationResult run(const Sweep& s, const hal::StripeCellGeometry& start) {
-  calib::StripeCalibrationInput in;
-  in.profiles = s.profiles;
-  in.axis_mm = s.axis;
-  in.T_table_cube = cube_on_table();
-  return calib::calibrate_stripe_cell(in, start);
-}
 
 class StripeCalibrationSeeds : public ::testing::TestWithParam<std::uint64_t> {};
 
 TEST_P(StripeCalibrationSeeds, RecoversAPerturbedCellFromOneSweep) {
   const hal::StripeCellGeometry nominal;
   const hal::StripeCellGeometry truth = perturbed_cell(nominal, GetParam());
-  const auto r = run(sweep_of(truth, {}, 2.0), nominal);
+  const auto r = calibrate(stripe_cube_sweep(truth, {}, 2.0), nominal);
   ASSERT_TRUE(r.ok) << r.reason;
   const double dp = (r.geometry.ranger_position_cell_mm - truth.ranger_position_cell_mm).norm();
   const double da =
@@ -68,7 +41,7 @@ TEST(StripeCalibration, RecoversACellOffByTheFullRangeInEveryField) {
   truth.axis_direction_cell =
       (Eigen::AngleAxisd(3.0 * kDeg, Eigen::Vector3d::UnitX()) *
        Eigen::AngleAxisd(-3.0 * kDeg, Eigen::Vector3d::UnitZ()) * nominal.axis_direction_cell);
-  const auto r = run(sweep_of(truth, {}, 2.0), nominal);
+  const auto r = calibrate(stripe_cube_sweep(truth, {}, 2.0), nominal);
   ASSERT_TRUE(r.ok) << r.reason;
   EXPECT_LT((r.geometry.ranger_position_cell_mm - truth.ranger_position_cell_mm).norm(), 0.05);
   EXPECT_LT(angle_between(r.geometry.T_cell_ranger().linear(), truth.T_cell_ranger().linear()),
@@ -82,7 +55,7 @@ TEST(StripeCalibration, ReportsACovarianceThatMatchesTheNoise) {
   double z2 = 0.0;
   int count = 0;
   for (const std::uint64_t seed : {11u, 12u, 13u}) {
-    const auto r = run(sweep_of(truth, {.sigma_mm = 0.06, .seed = seed}, 2.0), nominal);
+    const auto r = calibrate(stripe_cube_sweep(truth, {.sigma_mm = 0.06, .seed = seed}, 2.0), nominal);
     ASSERT_TRUE(r.ok) << r.reason;
     const Eigen::Vector3d dp = r.geometry.ranger_position_cell_mm - truth.ranger_position_cell_mm;
     const Eigen::AngleAxisd w(R_true.transpose() * r.geometry.T_cell_ranger().linear());
@@ -101,18 +74,18 @@ TEST(StripeCalibration, ReportsACovarianceThatMatchesTheNoise) {
 }
 
 TEST(StripeCalibration, EmptySweepIsAClearError) {
-  const auto r = run(Sweep{}, hal::StripeCellGeometry{});
+  const auto r = calibrate(Sweep{}, hal::StripeCellGeometry{});
   EXPECT_FALSE(r.ok);
   EXPECT_NE(r.reason.find("too few points"), std::string::npos);
 }
 
 TEST(StripeCalibration, SweepThatMissesTheCubeNamesTheMissingPlane) {
   const hal::StripeCellGeometry nominal;
-  Sweep s = sweep_of(nominal, {}, 4.0);
+  Sweep s = stripe_cube_sweep(nominal, {}, 4.0);
   // Only the first quarter of the sweep: the laser never reaches most of the cube.
   s.axis.resize(s.axis.size() / 4);
   s.profiles.resize(s.axis.size());
-  const auto r = run(s, nominal);
+  const auto r = calibrate(s, nominal);
   EXPECT_FALSE(r.ok);
   EXPECT_FALSE(r.reason.empty());
 }

@@ -37,9 +37,9 @@ std::vector<NamedDriver> make_drivers(const DeviceConfig& d, const CellConfig&, 
 ScanOutcome scan(RealDevices& cell, const DeviceConfig& device, const ScanRequest& request,
                  ScanControl control) {
   std::string why;
-  auto* joints = dynamic_cast<hal::JointSource*>(cell.motion_of(device, &why));
-  auto* css = dynamic_cast<hal::CssSource*>(&cell.driver(device.name));
-  if (joints == nullptr || css == nullptr) return {hal::Status::Error(why), {}};
+  auto* joints = cell.motion_as<hal::JointSource>(device, &why);
+  auto* css = joints ? cell.driver_as<hal::CssSource>(device.name, &why) : nullptr;
+  if (css == nullptr) return {hal::Status::Error(why), {}};
   const std::string robot_name = joints->name();
   if (hal::Status s = usable(device.name, *css, robot_name, *joints); !s) return {s, {}};
   fusion::CssFusionConfig fc = cell.config().fusion.css;

@@ -29,8 +29,10 @@ std::vector<NamedDriver> make_drivers(const DeviceConfig& d, const CellConfig&, 
 ScanOutcome scan(RealDevices& cell, const DeviceConfig& device, const ScanRequest& request,
                  ScanControl control) {
   const std::string head_name = pan_tilt_angles_name(device.name);
-  auto* ranger = dynamic_cast<hal::RangerSource*>(&cell.driver(device.name));
-  auto* head = dynamic_cast<hal::PanTiltSource*>(&cell.driver(head_name));
+  std::string why;
+  auto* ranger = cell.driver_as<hal::RangerSource>(device.name, &why);
+  auto* head = ranger ? cell.driver_as<hal::PanTiltSource>(head_name, &why) : nullptr;
+  if (head == nullptr) return {hal::Status::Error(why), {}};
   if (hal::Status s = usable(device.name, *ranger, head_name, *head); !s) return {s, {}};
   fusion::PanTiltFusionConfig fc = cell.config().fusion.pan_tilt;
   if (request.sweep_start != request.sweep_end) {
@@ -50,7 +52,6 @@ ScanOutcome scan(RealDevices& cell, const DeviceConfig& device, const ScanReques
     }
     for (const auto& p : profiles) assembler.add_profile(p);
   };
-  std::string why;
   const ScanLoopEnd end = run_scan_loop(
       *head, *ranger, control, [&] { return sweep.at_end; }, fuse,
       health_watch(device.name, *ranger, head_name, *head), &why);

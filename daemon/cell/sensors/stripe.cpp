@@ -20,9 +20,9 @@ std::vector<NamedDriver> make_drivers(const DeviceConfig& d, const CellConfig&, 
 ScanOutcome scan(RealDevices& cell, const DeviceConfig& device, const ScanRequest& request,
                  ScanControl control) {
   std::string why;
-  auto* axis = dynamic_cast<hal::LinearAxis*>(cell.motion_of(device, &why));
-  auto* ranger = dynamic_cast<hal::RangerSource*>(&cell.driver(device.name));
-  if (axis == nullptr || ranger == nullptr) return {hal::Status::Error(why), {}};
+  auto* axis = cell.motion_as<hal::LinearAxis>(device, &why);
+  auto* ranger = axis ? cell.driver_as<hal::RangerSource>(device.name, &why) : nullptr;
+  if (ranger == nullptr) return {hal::Status::Error(why), {}};
   const std::string axis_name = axis->name();
   if (hal::Status s = usable(device.name, *ranger, axis_name, *axis); !s) return {s, {}};
   const fusion::StripeCellFusionConfig& fc = cell.config().fusion.stripe_cell;
