@@ -105,8 +105,10 @@ bool has_shape(const BorePrior& prior);
 bool valid_shape(const BorePrior& prior, const BoreOptions& o);
 // The wall's model, seeded by the RSF cylinder of the segmented wall where it has one that
 // agrees with the CAD axis (a countersink's cylinder, a taper of less than eq. 4.6's 5 deg, an
-// ellipse), else by the CAD axis, then fitted on the region's points near it and polished on
-// the full-resolution points within 3 robust sigmas (detect/bore_surface.hpp).
+// ellipse), else by the CAD axis, then fitted on the region's points near it where it faces the
+// sensor (BoreOptions::view_dir or sensor_position; an ellipse without either: the side its
+// segmented wall was seen from) and polished on the full-resolution points within 3 robust
+// sigmas (detect/bore_surface.hpp).
 struct ShapeWallFit {
   BoreReason reason = BoreReason::kShapeFitFailed;
   SurfaceFitResult fit;

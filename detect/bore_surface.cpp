@@ -116,7 +116,6 @@ Linearised linearise(std::span<const Eigen::Vector3d> pts, const BoreSurface& s,
     const Eigen::Vector3d q = frame.transpose() * (p - s.entrance);
     const Local l = local(s, q);
     const double r = std::abs(l.f);
-    if (o.trim > 0.0 && r > o.trim) continue;
     const double w = delta > 0.0 && r > delta ? delta / r : 1.0;  // Huber, as weights
     out.lin.cost += delta > 0.0 && r > delta ? delta * (r - 0.5 * delta) : 0.5 * r * r;
     const Row j = jacobian_row(s, frame, b, q, l);
@@ -158,6 +157,11 @@ void standard_errors(const Linearised& l, const BoreSurface& s, SurfaceFitResult
 
 double surface_residual(const BoreSurface& s, const Eigen::Vector3d& p) {
   return local(s, frame_of(s).transpose() * (p - s.entrance)).f;
+}
+
+Eigen::Vector3d surface_normal(const BoreSurface& s, const Eigen::Vector3d& p) {
+  const Eigen::Matrix3d frame = frame_of(s);
+  return (frame * local(s, frame.transpose() * (p - s.entrance)).dq).normalized();
 }
 
 SurfaceFitResult fit_bore_surface(std::span<const Eigen::Vector3d> points, const BoreSurface& start,

@@ -30,10 +30,13 @@ struct BoreSurface {
 // at an axis ratio of 0.9).
 double surface_residual(const BoreSurface& s, const Eigen::Vector3d& p);
 
+// Unit direction in which that residual grows at p: the wall's normal into the material at the
+// wall point nearest p (the cylinder's where a countersink's cylinder is nearer).
+Eigen::Vector3d surface_normal(const BoreSurface& s, const Eigen::Vector3d& p);
+
 struct SurfaceFitOptions {
   int max_iterations = 100;
   double huber_delta = 0.15;     // mm; residuals beyond count linearly
-  double trim = 0.0;             // > 0: residuals beyond this (mm) get no weight in a step
   double step_tolerance = 1e-7;  // relative, eq. 2.64
 };
 

@@ -1,6 +1,7 @@
 #include "render/drawing.hpp"
 
 #include <cstdio>
+#include <numbers>
 #include <string>
 
 namespace rangefit::render {
@@ -17,20 +18,32 @@ std::string vec(const Eigen::Vector3d& v, const char* digits = "%.3f") {
   return format(f.c_str(), v.x(), v.y(), v.z());
 }
 
+constexpr double kDeg = 180.0 / std::numbers::pi;
+
 }  // namespace
+
+std::string shape_line(const BoreShape& s) {
+  if (!s.cone) {
+    return format("ellipse   radius2 %.3f mm, major axis ", s.radius2) + vec(s.major_axis, "%.4f");
+  }
+  return format("cone      half-angle %.3f deg", s.half_angle * kDeg) +
+         (s.cylinder_radius > 0.0 ? format(", into a cylinder of %.3f mm", s.cylinder_radius)
+                                  : std::string());
+}
 
 Drawing bore_drawing(const BoreResult& r) {
   Drawing d;
   if (!r.found) {
     d.legend.push_back("bore not found: " + std::string(to_string(r.reason)));
   } else {
-    d.bores.push_back({r.entrance, r.axis, r.radius, r.plane_normal, 0.0});
+    d.bores.push_back({r.entrance, r.axis, r.radius, r.plane_normal, 0.0, r.shape});
     d.legend.push_back("bore found" + std::string(r.refined ? ", refined" : "") +
                        (r.second_fit ? ", notch re-fit" : ""));
     d.legend.push_back("entrance  " + vec(r.entrance) + " mm");
     d.legend.push_back("axis      " + vec(r.axis, "%.4f") + " (out of the bore)");
     d.legend.push_back(
         format("radius    %.3f mm (before refinement %.3f mm)", r.radius, r.rsf_radius));
+    if (r.shape) d.legend.push_back(shape_line(*r.shape));
   }
   const BoreCounts& c = r.counts;
   d.legend.push_back(format("points    %zu in region, %zu plane, %zu wall (%zu in last fit)", c.roi,

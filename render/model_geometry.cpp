@@ -12,39 +12,78 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// Two unit vectors completing `axis` to an orthonormal frame.
-void basis(const Eigen::Vector3d& axis, Eigen::Vector3d& u, Eigen::Vector3d& v) {
-  Eigen::Index i = 0;
-  axis.cwiseAbs().minCoeff(&i);
-  u = axis.cross(Eigen::Vector3d::Unit(i)).normalized();
-  v = axis.cross(u);
+}  // namespace
+
+BoreSurface bore_surface(const DrawnBore& bore) {
+  BoreSurface s;
+  s.entrance = bore.entrance;
+  s.axis = bore.axis.normalized();
+  s.radius = bore.radius;
+  s.cone = bore.shape && bore.shape->cone;
+  if (s.cone) {
+    s.half_angle = bore.shape->half_angle;
+    s.cylinder_radius = bore.shape->cylinder_radius;
+    s.major = s.axis.unitOrthogonal();
+    return s;
+  }
+  // A circular cylinder is the ellipse of equal semi-axes.
+  s.radius2 = bore.shape ? bore.shape->radius2 : bore.radius;
+  const Eigen::Vector3d m = bore.shape ? bore.shape->major_axis : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d across = m - m.dot(s.axis) * s.axis;
+  s.major = across.norm() > 1e-9 ? Eigen::Vector3d(across.normalized()) : s.axis.unitOrthogonal();
+  return s;
+}
+
+double wall_depth(const DrawnBore& bore, double depth) {
+  const BoreSurface s = bore_surface(bore);
+  if (!s.cone || s.cylinder_radius > 0.0 || !(std::tan(s.half_angle) > 0.0)) return depth;
+  return std::min(depth, s.radius / std::tan(s.half_angle));  // a pure cone ends in its apex
+}
+
+namespace {
+
+// The wall's point at `t` below the entrance (along the axis) and angle w about it from the
+// major direction: the ellipse (x/a)^2 + (y/b)^2 = 1, or the cone's radius at that depth, not
+// below the cylinder it ends in.
+Eigen::Vector3d wall_point(const BoreSurface& s, double t, double w) {
+  const Eigen::Vector3d minor = s.axis.cross(s.major);
+  double a = s.radius, b = s.radius2;
+  if (s.cone) a = b = std::max(s.radius - t * std::tan(s.half_angle), s.cylinder_radius);
+  return s.entrance - t * s.axis + a * std::cos(w) * s.major + b * std::sin(w) * minor;
 }
 
 }  // namespace
 
 std::vector<Polyline> bore_wireframe(const DrawnBore& bore, double depth) {
-  const Eigen::Vector3d a = bore.axis.normalized();
-  Eigen::Vector3d u, v;
-  basis(a, u, v);
+  const BoreSurface s = bore_surface(bore);
+  depth = wall_depth(bore, depth);
+  // Rings at the entrance, half way, the bottom and where a countersink's cone meets its
+  // cylinder; generators through those depths (bent there).
+  std::vector<double> rings = {0.0, 0.5 * depth, depth};
+  if (s.cone && s.cylinder_radius > 0.0 && std::tan(s.half_angle) > 0.0) {
+    const double bend = (s.radius - s.cylinder_radius) / std::tan(s.half_angle);
+    if (bend < depth) rings.push_back(bend);
+  }
+  std::sort(rings.begin(), rings.end());
   std::vector<Polyline> lines;
   constexpr int kRingSegments = 72;
-  for (const double t : {0.0, 0.5 * depth, depth}) {
+  for (const double t : rings) {
     Polyline ring;
     for (int k = 0; k <= kRingSegments; ++k) {
-      const double w = 2.0 * kPi * k / kRingSegments;
-      ring.points.push_back(bore.entrance - t * a +
-                            bore.radius * (std::cos(w) * u + std::sin(w) * v));
+      ring.points.push_back(wall_point(s, t, 2.0 * kPi * k / kRingSegments));
     }
     lines.push_back(std::move(ring));
   }
   constexpr int kGenerators = 12;
   for (int k = 0; k < kGenerators; ++k) {
-    const double w = 2.0 * kPi * k / kGenerators;
-    const Eigen::Vector3d off = bore.radius * (std::cos(w) * u + std::sin(w) * v);
-    lines.push_back({LineRole::kModel, {bore.entrance + off, bore.entrance - depth * a + off}, {}});
+    Polyline generator;
+    for (const double t : rings)
+      generator.points.push_back(wall_point(s, t, 2.0 * kPi * k / kGenerators));
+    lines.push_back(std::move(generator));
   }
-  lines.push_back(
-      {LineRole::kAxis, {bore.entrance - depth * a, bore.entrance + 1.5 * bore.radius * a}, {}});
+  lines.push_back({LineRole::kAxis,
+                   {bore.entrance - depth * s.axis, bore.entrance + 1.5 * bore.radius * s.axis},
+                   {}});
   return lines;
 }
 
@@ -88,14 +127,12 @@ std::vector<Polyline> part_wireframe(const DrawnPart& part) {
 
 double bore_depth(const DrawnBore& bore, std::span<const Eigen::Vector3d> points) {
   if (bore.depth > 0.0) return bore.depth;
-  const Eigen::Vector3d a = bore.axis.normalized();
+  const BoreSurface s = bore_surface(bore);
   std::vector<double> behind;
   for (const Eigen::Vector3d& p : points) {
-    const Eigen::Vector3d d = p - bore.entrance;
-    const double t = -d.dot(a);
+    const double t = -(p - bore.entrance).dot(s.axis);
     if (!(t > 0.0) || t > 50.0 * bore.radius) continue;
-    const double r = (d + t * a).norm();
-    if (std::abs(r - bore.radius) <= 0.1 * bore.radius) behind.push_back(t);
+    if (std::abs(surface_residual(s, p)) <= 0.1 * bore.radius) behind.push_back(t);
   }
   if (behind.size() < 10) return 2.0 * bore.radius;
   const auto k = static_cast<std::ptrdiff_t>(0.98 * static_cast<double>(behind.size() - 1));
@@ -128,15 +165,15 @@ Eigen::Vector3d entrance_plane_normal(const DrawnBore& bore,
 double model_distance(const Drawing& drawing, const Eigen::Vector3d& p) {
   double best = std::numeric_limits<double>::infinity();
   for (const DrawnBore& b : drawing.bores) {
-    const Eigen::Vector3d a = b.axis.normalized();
+    const BoreSurface s = bore_surface(b);
     const Eigen::Vector3d d = p - b.entrance;
-    const double t = d.dot(a);
-    const double r = (d - t * a).norm();
-    const Eigen::Vector3d n = b.plane_normal.norm() > 0.0 ? b.plane_normal.normalized() : a;
+    const double t = d.dot(s.axis);
+    const double f = surface_residual(s, p);  // > 0 in the material
+    const Eigen::Vector3d n = b.plane_normal.norm() > 0.0 ? b.plane_normal.normalized() : s.axis;
     const double plane = std::abs(d.dot(n));
     // The wall only below the entrance, the plane only outside the hole.
-    const double wall = t <= 0.0 ? std::abs(r - b.radius) : std::hypot(r - b.radius, t);
-    best = std::min(best, r >= b.radius ? std::min(wall, plane) : wall);
+    const double wall = t <= 0.0 ? std::abs(f) : std::hypot(f, t);
+    best = std::min(best, f >= 0.0 ? std::min(wall, plane) : wall);
   }
   for (const DrawnPart& part : drawing.parts) {
     const Eigen::Vector3d q = part.T_world_part.inverse() * p;

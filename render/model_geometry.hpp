@@ -6,6 +6,7 @@
 #include <span>
 #include <vector>
 
+#include "detect/bore_surface.hpp"
 #include "render/drawing.hpp"
 
 namespace rangefit::render {
@@ -26,8 +27,15 @@ struct Polyline {
   std::vector<Eigen::Vector3d> normals;
 };
 
-// Rings at the entrance and at `depth` into the part (and one between), 12 generators, the
-// axis from the bottom to one radius outside the entrance.
+// The drawn bore's wall as detect/ fits it: a circular cylinder, or its cone or ellipse.
+BoreSurface bore_surface(const DrawnBore& bore);
+
+// How far into the part the wall is drawn for `depth`: a pure cone no deeper than its apex.
+double wall_depth(const DrawnBore& bore, double depth);
+
+// The fitted wall (bore_surface): rings at the entrance and at wall_depth(depth) into the part,
+// one between and one where a countersink's cone meets its cylinder, 12 generators through
+// them, the axis from the bottom to 1.5 radii outside the entrance.
 std::vector<Polyline> bore_wireframe(const DrawnBore& bore, double depth);
 
 // Parallels and meridians of the tapered superquadric (eq. 2.14, 2.19-2.21) with their normals,
@@ -45,7 +53,7 @@ double bore_depth(const DrawnBore& bore, std::span<const Eigen::Vector3d> points
 Eigen::Vector3d entrance_plane_normal(const DrawnBore& bore,
                                       std::span<const Eigen::Vector3d> points);
 
-// Distance of p to the nearest model, mm: for a bore, to its wall or its entrance plane,
+// Distance of p to the nearest model, mm: for a bore, to its fitted wall or its entrance plane,
 // whichever is nearer; for a part, along the ray from its centre (the radial Euclidean distance
 // of the superquadric literature). Infinity without models.
 double model_distance(const Drawing& drawing, const Eigen::Vector3d& p);

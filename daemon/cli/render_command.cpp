@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "daemon/cli/commands.hpp"
+#include "daemon/service/bore_shape_json.hpp"
 #include "daemon/service/json_codec.hpp"
 #include "daemon/service/result_picture.hpp"
 #include "io/cloud_io.hpp"
@@ -61,6 +62,7 @@ render::Drawing bore_json(const nlohmann::json& j) {
     r.rsf_radius = j.value("rsf_radius", r.radius);
     r.second_fit = j.value("second_fit", false);
     r.refined = j.value("refined", false);
+    r.shape = daemon::bore_shape_from_json(j);
   }
   const nlohmann::json points = j.value("points", nlohmann::json::object());
   r.counts.roi = points.value("roi", std::size_t{0});

@@ -1,9 +1,15 @@
 #include "daemon/service/bore_shape_json.hpp"
 
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
 namespace rangefit::daemon {
 namespace {
 
 nlohmann::json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+constexpr double kMaxHalfAngle = 80.0 * std::numbers::pi / 180.0;
 
 }  // namespace
 
@@ -29,6 +35,46 @@ nlohmann::json bore_shape_json(const BoreShape& s) {
   j["rms"] = s.rms;
   j["seeded_by_rsf"] = s.seeded_by_rsf;
   return j;
+}
+
+std::optional<BoreShape> bore_shape_from_json(const nlohmann::json& j) {
+  if (!j.is_object() || !j.contains("model")) return std::nullopt;
+  const std::string model = j.at("model").get<std::string>();
+  if (model == "cylinder") return std::nullopt;  // `rangefit bore --json` of a plain bore
+  if (model != "cone" && model != "ellipse") {
+    throw std::invalid_argument("bore model \"" + model + "\" is not cylinder, cone or ellipse");
+  }
+  BoreShape s;
+  s.cone = model == "cone";
+  if (s.cone) {
+    s.half_angle = j.at("half_angle").get<double>();
+    s.cylinder_radius = j.value("cylinder_radius", 0.0);
+    if (!(s.half_angle > 0.0 && s.half_angle < kMaxHalfAngle) || !(s.cylinder_radius >= 0.0)) {
+      throw std::invalid_argument(
+          "a cone needs 0 < half_angle < 80 deg (rad) and "
+          "cylinder_radius >= 0");
+    }
+  } else {
+    s.radius2 = j.at("radius2").get<double>();
+    const auto& m = j.at("major_axis");
+    s.major_axis = {m.at(0).get<double>(), m.at(1).get<double>(), m.at(2).get<double>()};
+    if (!(s.radius2 > 0.0 && std::isfinite(s.radius2)) || !s.major_axis.allFinite() ||
+        !(s.major_axis.norm() > 0.0)) {
+      throw std::invalid_argument("an ellipse needs radius2 > 0 and a major_axis");
+    }
+    s.major_axis.normalize();
+  }
+  const nlohmann::json sigma = j.value("sigma", nlohmann::json::object());
+  s.sigma_radius = sigma.value("radius", 0.0);
+  s.sigma_entrance = sigma.value("entrance", 0.0);
+  s.sigma_axis = sigma.value("axis", 0.0);
+  s.sigma_half_angle = sigma.value("half_angle", 0.0);
+  s.sigma_cylinder_radius = sigma.value("cylinder_radius", 0.0);
+  s.sigma_radius2 = sigma.value("radius2", 0.0);
+  s.sigma_major_axis = sigma.value("major_axis", 0.0);
+  s.rms = j.value("rms", 0.0);
+  s.seeded_by_rsf = j.value("seeded_by_rsf", false);
+  return s;
 }
 
 }  // namespace rangefit::daemon

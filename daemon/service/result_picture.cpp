@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "daemon/service/bore_shape_json.hpp"
 #include "render/legend_text.hpp"
 #include "render/render.hpp"
 
@@ -42,6 +43,12 @@ double wall_radius(const DetectionResult& r, const PartPose& p) {
   return r.bore_radius_mm;
 }
 
+// A cone's or ellipse's fitted shape in the details (the bore itself, not a pipe's outer wall).
+std::optional<BoreShape> bore_shape(const DetectionResult& r, const PartPose& p) {
+  if (p.name == "outer" || !r.details.is_object() || !r.details.contains("shape")) return {};
+  return bore_shape_from_json(r.details["shape"]);
+}
+
 }  // namespace
 
 render::Drawing result_drawing(const DetectionResult& r, const ObjectModel* model) {
@@ -54,10 +61,12 @@ render::Drawing result_drawing(const DetectionResult& r, const ObjectModel* mode
     if (r.kind == DetectKind::kBore) {
       // The service's result has no entrance plane: the renderer estimates it from the scan.
       const double radius = wall_radius(r, p);
-      d.bores.push_back({c, z, radius, Eigen::Vector3d::Zero(), 0.0});
+      const std::optional<BoreShape> shape = bore_shape(r, p);
+      d.bores.push_back({c, z, radius, Eigen::Vector3d::Zero(), 0.0, shape});
       d.legend.push_back(p.name + " entrance  " + legend_vector(c) + " mm");
       d.legend.push_back("axis      " + legend_vector(z) + " (out of the bore)");
       d.legend.push_back(legend_format("radius    %.3f mm, score %.3f", radius, p.score));
+      if (shape) d.legend.push_back(render::shape_line(*shape));
     } else if (r.kind == DetectKind::kCalibrate) {
       d.legend.push_back(p.name + "  " + legend_vector(c) + " mm, z-axis " + legend_vector(z) +
                          " (calibrated, not applied)");

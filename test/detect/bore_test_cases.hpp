@@ -112,7 +112,7 @@ namespace rangefit::test {
 // tuning set the tests run; seeds from kShapeHeldOutSeed on are held out and only reported
 // (bore_benchmark --shape_accuracy=N --held_out).
 enum class ShapeKind { kCountersink, kCone, kTaper, kEllipse };
-constexpr std::uint64_t kShapeTuningSeeds = 6;
+constexpr std::uint64_t kShapeTuningSeeds = 40;
 constexpr std::uint64_t kShapeHeldOutSeed = 1001;
 
 inline const char* shape_name(ShapeKind k) {

@@ -131,6 +131,25 @@ TEST_F(RenderCli, ResultsItCannotDrawAreBadInput) {
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(is_png(dir_ / "x.png"));
 
+  // A cone or ellipse result draws its shape; one no fit gives is bad input.
+  const auto bore_json = [&](const std::string& shape) {
+    std::ofstream(dir_ / "shape.json")
+        << R"({"found": true, "entrance": [)" << t.entrance.x() << "," << t.entrance.y() << ","
+        << t.entrance.z() << R"(], "axis": [)" << t.axis.x() << "," << t.axis.y() << ","
+        << t.axis.z() << R"(], "radius": 5, )" << shape << "}";
+    fs::remove(dir_ / "x.png");
+    return run(base + (dir_ / "shape.json").string());
+  };
+  r = bore_json(R"("model": "ellipse", "radius2": 4.5, "major_axis": [1, 0, 0])");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(is_png(dir_ / "x.png"));
+  r = bore_json(R"("model": "cone", "half_angle": 0.7854, "cylinder_radius": 3)");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  r = bore_json(R"("model": "ellipse", "radius2": -1, "major_axis": [1, 0, 0])");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("radius2"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "x.png"));
+
   // A PNG that cannot be written fails the command.
   r = run(bore_args() + " --png " + (dir_ / "no" / "such" / "dir.png").string());
   EXPECT_EQ(r.exit_code, 1);

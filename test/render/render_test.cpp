@@ -40,7 +40,7 @@ TEST(Render, BoreEntranceRingLiesOnTheHoleEdgeInBothViews) {
   const sim::SyntheticBoreScan scan = clean_bore();
   const sim::SyntheticBoreTruth& t = scan.truth;
   Drawing drawing;
-  drawing.bores.push_back({t.entrance, t.axis, t.radius, t.plane_normal, 6.0 * t.radius});
+  drawing.bores.push_back({t.entrance, t.axis, t.radius, t.plane_normal, 6.0 * t.radius, {}});
   RenderOptions o;
   o.panel_width = o.panel_height = 400;
   o.toward_sensor = t.axis;
@@ -211,6 +211,85 @@ TEST(Render, AStripeScanIsDrawnFromItsOwnSensor) {
   }
 }
 
+// A countersink (Ø12 x 90 deg into Ø6) and a 10 x 8 mm ellipse, on a tilted axis, as fitted.
+struct ShapedBore {
+  DrawnBore drawn;
+  BoreSurface fitted;  // the same wall as detect/ describes it
+};
+
+ShapedBore shaped_bore(bool cone) {
+  ShapedBore b;
+  const Eigen::Vector3d axis = Eigen::Vector3d(0.1, -0.2, 1.0).normalized();
+  const Eigen::Vector3d major = axis.cross(Eigen::Vector3d(1.0, 1.0, 0.0)).normalized();
+  BoreShape shape;
+  shape.cone = cone;
+  if (cone) {
+    shape.half_angle = kPi / 4.0;
+    shape.cylinder_radius = 3.0;
+  } else {
+    shape.radius2 = 4.0;
+    shape.major_axis = major;
+  }
+  const double radius = cone ? 6.0 : 5.0;
+  b.drawn = {Eigen::Vector3d(10.0, -5.0, 2.0), axis, radius, axis, 8.0, shape};
+  b.fitted.cone = cone;
+  b.fitted.entrance = b.drawn.entrance;
+  b.fitted.axis = axis;
+  b.fitted.major = major;
+  b.fitted.radius = radius;
+  b.fitted.radius2 = shape.radius2;
+  b.fitted.half_angle = shape.half_angle;
+  b.fitted.cylinder_radius = shape.cylinder_radius;
+  return b;
+}
+
+// The wireframe lies on the fitted cone or ellipse (not on a cylinder of the entrance radius),
+// the picture along the axis shows the countersink's cylinder and the ellipse's minor extent,
+// and points on the fitted wall are at distance 0 from the model.
+TEST(Render, ConeAndEllipseBoresAreDrawnAsFittedNotAsCylinders) {
+  for (const bool cone : {true, false}) {
+    SCOPED_TRACE(cone ? "countersink" : "ellipse");
+    const ShapedBore b = shaped_bore(cone);
+    int checked = 0, off_cylinder = 0;
+    for (const Polyline& line : bore_wireframe(b.drawn, b.drawn.depth)) {
+      if (line.role != LineRole::kModel) continue;
+      for (const Eigen::Vector3d& p : line.points) {
+        ++checked;
+        EXPECT_NEAR(surface_residual(b.fitted, p), 0.0, 1e-9);
+        const Eigen::Vector3d d = p - b.drawn.entrance;
+        off_cylinder +=
+            std::abs((d - d.dot(b.fitted.axis) * b.fitted.axis).norm() - b.drawn.radius) > 0.5;
+      }
+    }
+    EXPECT_GT(checked, 200);
+    EXPECT_GT(off_cylinder, checked / 4);
+
+    Drawing drawing;
+    drawing.bores.push_back(b.drawn);
+    RenderOptions o;
+    o.panel_width = o.panel_height = 400;
+    o.toward_sensor = b.fitted.axis;
+    o.look_at = b.drawn.entrance;
+    o.px_per_mm = 10.0;
+    const Rendering r = render_scan(PointCloud{}, drawing, o);
+    keep(r.image, cone ? "countersink_along_axis" : "ellipse_along_axis");
+    const Eigen::Vector3d minor = b.fitted.axis.cross(b.fitted.major);
+    for (const double w : {1.3, 1.85, 4.45, 5.0}) {  // between the generators, off the major axis
+      const Eigen::Vector3d dir = std::cos(w) * b.fitted.major + std::sin(w) * minor;
+      // Countersink: its cylinder's ring (nothing of an entrance-radius cylinder is there);
+      // ellipse: its outline, and nothing where a circle of the entrance radius would be.
+      const double on = cone ? 3.0 : 5.0 * 4.0 / std::hypot(4.0 * std::cos(w), 5.0 * std::sin(w));
+      const Eigen::Vector3d wall = b.drawn.entrance - 6.0 * b.fitted.axis + on * dir;
+      EXPECT_TRUE(colour_near(r.image, r.sensor.pixel(wall), kModelColour)) << "angle " << w;
+      if (!cone) {
+        EXPECT_EQ(pixel(r.image, r.sensor.pixel(b.drawn.entrance + 5.0 * dir)), kBackground)
+            << "angle " << w;
+      }
+      EXPECT_NEAR(model_distance(drawing, wall), 0.0, 1e-9) << "angle " << w;
+    }
+  }
+}
+
 TEST(Render, ModelWithoutScanLeavesTheRestBackground) {
   Drawing drawing;
   Superquadric sphere;
@@ -236,7 +315,7 @@ TEST(Render, EntrancePlaneOfASlantedBoreFromTheScan) {
   o.slant_deg = 30.0;
   o.spacing = 0.3;
   const sim::SyntheticBoreScan scan = sim::make_synthetic_bore(o);
-  const DrawnBore bore{scan.truth.entrance, scan.truth.axis, 5.0, Eigen::Vector3d::Zero(), 0.0};
+  const DrawnBore bore{scan.truth.entrance, scan.truth.axis, 5.0, Eigen::Vector3d::Zero(), 0.0, {}};
   const Eigen::Vector3d n = entrance_plane_normal(bore, scan.cloud.points);
   EXPECT_GT(n.dot(scan.truth.plane_normal), std::cos(2.0 * kPi / 180.0));
   // The wall is as deep as the scan shows it, not the drawing's default of two radii.

@@ -25,7 +25,7 @@ TEST(RenderThreads, PicturesDrawnConcurrentlyWithCacheReleasesAreAllWhole) {
   const sim::SyntheticBoreScan scan = test::clean_bore();
   const sim::SyntheticBoreTruth& t = scan.truth;
   Drawing drawing;
-  drawing.bores.push_back({t.entrance, t.axis, t.radius, t.plane_normal, 6.0 * t.radius});
+  drawing.bores.push_back({t.entrance, t.axis, t.radius, t.plane_normal, 6.0 * t.radius, {}});
   drawing.legend = {"bore: radius 5.000 mm", "entrance 0.000 0.000 0.000"};
   RenderOptions o;
   o.panel_width = o.panel_height = 160;

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <numbers>
 
+#include "daemon/service/bore_shape_json.hpp"
 #include "daemon/service/spool.hpp"
 #include "render/render.hpp"
 #include "test/render/picture_checks.hpp"
@@ -65,6 +66,46 @@ TEST(ResultPicture, ASpooledBoreResultIsDrawnOnTheHoleEdge) {
   }
   EXPECT_FALSE(white_near(r.image, Eigen::Vector2d(200 + 80, 200 + 10)));  // the plate
   render::release_font_caches();
+}
+
+// A countersink's result (details.shape as the service writes it, bore_shape_json): drawn as
+// its cone into its cylinder, seen along the axis the cylinder's ring at 3 mm = 30 px, where a
+// cylinder of the entrance radius (6 mm) draws nothing; a shape no fit gives is refused.
+TEST(ResultPicture, ASpooledCountersinkIsDrawnAsItsConeAndCylinder) {
+  const sim::SyntheticBoreScan scan = render::test::clean_bore();
+  DetectionResult r = bore_result(scan.truth);
+  r.bore_radius_mm = 6.0;
+  BoreShape shape;
+  shape.cone = true;
+  shape.half_angle = std::numbers::pi / 4.0;
+  shape.cylinder_radius = 3.0;
+  r.details["shape"] = bore_shape_json(shape);
+  const render::Drawing d = result_drawing(r, nullptr);
+  ASSERT_EQ(d.bores.size(), 1u);
+  ASSERT_TRUE(d.bores[0].shape.has_value());
+  EXPECT_TRUE(d.bores[0].shape->cone);
+  EXPECT_DOUBLE_EQ(d.bores[0].shape->half_angle, shape.half_angle);
+  EXPECT_DOUBLE_EQ(d.bores[0].shape->cylinder_radius, 3.0);
+  render::RenderOptions o;
+  o.panel_width = o.panel_height = 400;
+  o.toward_sensor = scan.truth.axis;
+  o.look_at = scan.truth.entrance;
+  o.px_per_mm = 10.0;
+  const render::Rendering picture = render::render_scan(PointCloud{}, d, o);
+  for (const double w : {0.26, 1.83, 3.4, 4.97}) {  // between the generators (every 30 deg)
+    EXPECT_TRUE(white_near(picture.image, Eigen::Vector2d(200, 200) +
+                                              30.0 * Eigen::Vector2d(std::cos(w), std::sin(w))))
+        << "angle " << w;
+  }
+  render::release_font_caches();
+
+  r.details["shape"]["half_angle"] = 2.0;  // 115 deg
+  std::string error;
+  EXPECT_FALSE(write_result_picture(fs::temp_directory_path() / "rangefit_bad_shape.png",
+                                    scan.cloud, r, nullptr, &error));
+  EXPECT_NE(error.find("half_angle"), std::string::npos) << error;
+  r.details["shape"] = {{"model", "sphere"}};
+  EXPECT_THROW(result_drawing(r, nullptr), std::invalid_argument);
 }
 
 TEST(ResultPicture, ObjectPartsNeedTheirModel) {
