@@ -29,6 +29,7 @@ StripeCellPeer::StripeCellPeer(const StripeProfiles& profiles, StripeCellPeerOpt
 
 hal::Status StripeCellPeer::start_axis() {
   std::lock_guard lock(server_mutex_);
+  stop_past_ = -1.0;
   const hal::Status s = server_.start();
   up_ = static_cast<bool>(s);
   return s;

@@ -30,6 +30,7 @@ class StripeCellPeer {
   // profiles must outlive the peer.
   StripeCellPeer(const StripeProfiles& profiles, StripeCellPeerOptions options);
 
+  // Starts the server (again) and cancels a stop_axis_past() that has not fired.
   hal::Status start_axis();
   // The server closes its connections and the port refuses new ones; the drive faults after its
   // connection timeout and stops, as a real drive whose master went away.
