@@ -70,10 +70,11 @@ drivers::can::PowerCubeConfig robot_powercube_config(const DeviceConfig& d, int 
   return c;
 }
 
-drivers::can::RangerConfig ranger_config(const DeviceConfig& d) {
+drivers::can::RangerConfig ranger_config(const DeviceConfig& d, const hal::StripeRanger& geometry) {
   drivers::can::RangerConfig c;
   c.name = d.name;
   c.node = static_cast<std::uint8_t>(ranger_node(d));
+  c.fan_angle_rad = geometry.fan_angle_rad;
   return c;
 }
 

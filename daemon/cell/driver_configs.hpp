@@ -33,8 +33,9 @@ drivers::FhppAxisConfig fhpp_axis_config(const DeviceConfig& d, double axis_trav
 drivers::can::Cia402Config robot_joint_config(const DeviceConfig& d, int joint);
 // kind = "robot", protocol = "powercube": the same joint as PowerCube module can_node (1).
 drivers::can::PowerCubeConfig robot_powercube_config(const DeviceConfig& d, int joint);
-// kind = "stripe" or "pan_tilt": the laser-stripe ranger on node can_node.
-drivers::can::RangerConfig ranger_config(const DeviceConfig& d);
+// kind = "stripe" or "pan_tilt": the laser-stripe ranger on node can_node, its columns on the fan
+// rays of `geometry` (the cell's or the head's ranger, as fusion reads the points back).
+drivers::can::RangerConfig ranger_config(const DeviceConfig& d, const hal::StripeRanger& geometry);
 // kind = "pan_tilt": the head's pan and tilt axes (pan_node, tilt_node), named "<name>/angles".
 drivers::can::PanTiltConfig pan_tilt_config(const DeviceConfig& d);
 std::string pan_tilt_angles_name(const std::string& head);

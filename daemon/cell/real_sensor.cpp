@@ -43,10 +43,11 @@ ScanOutcome failed(const DeviceConfig& device, const std::string& why) {
 }
 
 std::unique_ptr<drivers::can::CanTransport> socketcan(const std::string& interface,
-                                                      drivers::can::FrameFilter filter) {
+                                                      drivers::can::FrameFilter filter, bool fd) {
   drivers::can::SocketCanConfig c;
   c.interface = interface;
   c.filter = std::move(filter);
+  c.fd = fd;
   return std::make_unique<drivers::can::SocketCanTransport>(c);
 }
 

@@ -63,8 +63,10 @@ void drop_stale(hal::SampleSource<A>& a, hal::SampleSource<B>& b) {
 
 ScanOutcome failed(const DeviceConfig& device, const std::string& why);
 
-// A SocketCAN transport on `interface` receiving what `filter` passes.
+// A SocketCAN transport on `interface` receiving what `filter` passes; fd: CAN FD frames too (the
+// ranger's profiles are FD frames, a classic socket never sees them).
 std::unique_ptr<drivers::can::CanTransport> socketcan(const std::string& interface,
-                                                      drivers::can::FrameFilter filter);
+                                                      drivers::can::FrameFilter filter,
+                                                      bool fd = false);
 
 }  // namespace rangefit::daemon

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "drivers/can/cia402_codec.hpp"
+#include "hal/stripe_geometry.hpp"
 
 namespace rangefit::drivers::can {
 
@@ -135,12 +136,19 @@ void RangerCanSource::deliver_profile() {
   scratch_.z_mm.resize(n);
   const double centre = (static_cast<double>(n) - 1.0) / 2.0;
   const double unit_mm = w.units_um / 1000.0;
+  const hal::StripeRanger fan{.fan_angle_rad = config_.fan_angle_rad};
   for (std::size_t k = 0; k < n; ++k) {
-    scratch_.x_mm[k] =
-        static_cast<float>((static_cast<double>(k) - centre) * config_.lateral_pitch_mm);
-    scratch_.z_mm[k] = w.range[k] == ranger::kNoReturn
-                           ? hal::kNoReturn
-                           : static_cast<float>(config_.range_offset_mm + w.range[k] * unit_mm);
+    if (w.range[k] == ranger::kNoReturn) {
+      scratch_.x_mm[k] = hal::kNoReturn;
+      scratch_.z_mm[k] = hal::kNoReturn;
+      continue;
+    }
+    const double z = config_.range_offset_mm + w.range[k] * unit_mm;
+    const double x = config_.fan_angle_rad > 0.0 && n > 1
+                         ? z * std::tan(fan.ray_angle(static_cast<int>(k), static_cast<int>(n)))
+                         : (static_cast<double>(k) - centre) * config_.lateral_pitch_mm;
+    scratch_.x_mm[k] = static_cast<float>(x);
+    scratch_.z_mm[k] = static_cast<float>(z);
   }
   deliver(scratch_);
 }

@@ -17,8 +17,13 @@ namespace rangefit::drivers::can {
 struct RangerConfig {
   std::string name = "ranger";
   std::uint8_t node = 0x20;
-  double lateral_pitch_mm = 0.1;  // spacing of the points along the laser line
-  double range_offset_mm = 0.0;   // z = offset + raw * units
+  // Where column k of n lies in the laser plane. A fan laser (fan_angle_rad > 0, the geometry
+  // of hal::StripeRanger that fusion and the simulator use): on the fan ray at
+  // theta_k = -fan/2 + fan k / (n - 1) from the centre line, x = z tan(theta_k). A line sensor
+  // with parallel columns (fan_angle_rad = 0): x = (k - (n - 1) / 2) lateral_pitch_mm.
+  double fan_angle_rad = 0.0;
+  double lateral_pitch_mm = 0.1;
+  double range_offset_mm = 0.0;  // z = offset + raw * units
   hal::Duration incomplete_timeout = std::chrono::milliseconds(50);
   hal::Duration heartbeat_timeout = std::chrono::milliseconds(300);
   // How fast the clock-offset estimate may rise per profile (covers drift, forgets old minima).

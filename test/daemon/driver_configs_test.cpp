@@ -33,8 +33,8 @@ TEST(DriverConfigs, ConfiguredNodesReachTheCanDriversAndTheirFilters) {
   head.can_node = 40;
   head.pan_node = 21;
   head.tilt_node = 22;
-  EXPECT_EQ(ranger_config(head).node, 40);
-  EXPECT_TRUE(drivers::can::ranger_filter(ranger_config(head)).accepts(0x380 + 40));
+  EXPECT_EQ(ranger_config(head, {}).node, 40);
+  EXPECT_TRUE(drivers::can::ranger_filter(ranger_config(head, {})).accepts(0x380 + 40));
   const auto bus = drivers::can::pan_tilt_bus_config(pan_tilt_config(head));
   ASSERT_EQ(bus.joints.size(), 2u);
   EXPECT_EQ(bus.joints[0].node, 21);
@@ -45,12 +45,22 @@ TEST(DriverConfigs, ConfiguredNodesReachTheCanDriversAndTheirFilters) {
 TEST(DriverConfigs, UnsetAddressesKeepTheDriversDefaults) {
   EXPECT_EQ(robot_joint_config(device("robot", "can0"), 6).joints.at(0).node,
             drivers::can::Cia402JointConfig{}.node);
-  EXPECT_EQ(ranger_config(device("stripe", "can0")).node, drivers::can::RangerConfig{}.node);
+  EXPECT_EQ(ranger_config(device("stripe", "can0"), {}).node, drivers::can::RangerConfig{}.node);
   const auto head = pan_tilt_config(device("pan_tilt", "can0"));
   EXPECT_EQ(head.pan.node, drivers::can::PanTiltConfig{}.pan.node);
   EXPECT_EQ(head.tilt.node, drivers::can::PanTiltConfig{}.tilt.node);
   EXPECT_EQ(fhpp_axis_config(device("axis", "10.0.0.5:502"), 400).link.unit_id,
             drivers::ModbusLinkConfig{}.unit_id);
+}
+
+TEST(DriverConfigs, TheRangerReadsItsColumnsOnTheFanOfTheConfiguredGeometry) {
+  // The real ranger's points must land where fusion and the simulator put them: on the fan
+  // rays of [fusion.stripe_cell.ranger] (or the head's), not on parallel columns.
+  hal::StripeRanger geometry;
+  geometry.fan_angle_rad = 0.4;
+  EXPECT_DOUBLE_EQ(ranger_config(device("stripe", "can0"), geometry).fan_angle_rad, 0.4);
+  EXPECT_DOUBLE_EQ(ranger_config(device("pan_tilt", "can0"), hal::StripeRanger{}).fan_angle_rad,
+                   hal::StripeRanger{}.fan_angle_rad);
 }
 
 TEST(DriverConfigs, AxisGetsItsUnitAddressAndTravel) {

@@ -4,9 +4,11 @@
 
 #include <cmath>
 #include <memory>
+#include <span>
 #include <thread>
 
 #include "drivers/can/ranger_source.hpp"
+#include "hal/stripe_geometry.hpp"
 #include "test/drivers/can_test_rig.hpp"
 #include "test/support/can_profile_ranger.hpp"
 #include "test/support/inprocess_transport.hpp"
@@ -28,8 +30,11 @@ class RangerDriver : public ::testing::Test {
     rc.node = 0x21;
     rc.rate_hz = 100;
     rc.units_um = 4;
-    ranger_ = std::make_shared<sim::SimProfileRanger>(rc, [](std::uint32_t seq, std::size_t k) {
-      return k == 7 ? std::uint16_t{0xFFFF} : static_cast<std::uint16_t>(1000 + k + seq % 10);
+    ranger_ = std::make_shared<sim::SimProfileRanger>(rc, [](std::uint32_t seq, hal::Timestamp,
+                                                             std::span<std::uint16_t> range) {
+      for (std::size_t k = 0; k < range.size(); ++k) {
+        range[k] = k == 7 ? std::uint16_t{0xFFFF} : static_cast<std::uint16_t>(1000 + k + seq % 10);
+      }
     });
     rig_.wire(config_, ranger_filter(config_), {ranger_});
     driver_ = rig_.driver.get();
@@ -69,6 +74,32 @@ TEST_F(RangerDriver, ProfilesAt100HzArriveCompleteInOrderWithValues) {
   EXPECT_EQ(count(Counter::kCrcErrors), 0u);
   EXPECT_EQ(count(Counter::kTimeouts), 0u);
   EXPECT_EQ(driver_->health().state, hal::DeviceState::kStreaming);
+}
+
+// A fan laser (the cell's and the head's ranger, hal::StripeRanger): every point lies on the fan
+// ray of its column, where fusion and the simulator put it.
+class FanRangerDriver : public RangerDriver {
+ protected:
+  void SetUp() override {
+    config_.fan_angle_rad = 0.5;
+    RangerDriver::SetUp();
+  }
+};
+
+TEST_F(FanRangerDriver, EveryPointLiesOnTheFanRayOfItsColumn) {
+  const auto profiles = collect(3);
+  ASSERT_GE(profiles.size(), 3u);
+  const hal::StripeRanger fan{.fan_angle_rad = 0.5};
+  for (const auto& p : profiles) {
+    ASSERT_EQ(p.x_mm.size(), 512u);
+    for (int k : {0, 100, 255, 256, 511}) {
+      const auto i = static_cast<std::size_t>(k);
+      EXPECT_NEAR(p.z_mm[i], 60.0 + (1000 + k + p.sequence % 10) * 0.004, 1e-4);
+      EXPECT_NEAR(std::atan2(p.x_mm[i], p.z_mm[i]), fan.ray_angle(k, 512), 1e-6) << k;
+    }
+    EXPECT_NEAR(p.x_mm[0], -p.z_mm[0] * std::tan(0.25), 1e-3);
+    EXPECT_TRUE(std::isnan(p.x_mm[7]) && std::isnan(p.z_mm[7])) << "no return has no point";
+  }
 }
 
 TEST_F(RangerDriver, DeviceClockIsMappedToTheExposureCentre) {

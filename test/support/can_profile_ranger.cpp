@@ -8,9 +8,8 @@ namespace rangefit::sim {
 
 namespace can = drivers::can;
 
-SimProfileRanger::SimProfileRanger(SimRangerConfig config,
-                                   std::function<std::uint16_t(std::uint32_t, std::size_t)> range)
-    : config_(config), range_(std::move(range)) {}
+SimProfileRanger::SimProfileRanger(SimRangerConfig config, ProfileFill fill)
+    : config_(config), fill_(std::move(fill)) {}
 
 std::uint32_t SimProfileRanger::device_time_of(hal::Timestamp exposure) const {
   const std::int64_t us = exposure.count() / 1000 - config_.device_clock_offset_us;
@@ -35,15 +34,20 @@ hal::Timestamp SimProfileRanger::tick(hal::Timestamp now, can::CanTransport& bus
     profile_.sequence = sequence_;
     // Exposure is timed by the device's own clock: the centre lies half an exposure before
     // the scheduled read-out slot, however late the bus thread gets to send it.
-    profile_.device_time_us =
-        device_time_of(next_profile_ - std::chrono::microseconds(config_.exposure_us / 2));
+    const hal::Timestamp exposure =
+        next_profile_ - std::chrono::microseconds(config_.exposure_us / 2);
+    profile_.device_time_us = device_time_of(exposure);
     profile_.exposure_us = config_.exposure_us;
     profile_.point_count = config_.points;
     profile_.units_um = config_.units_um;
     profile_.flags = 0;
-    for (std::size_t k = 0; k < config_.points; ++k) {
-      profile_.range[k] = range_ ? range_(sequence_, k)
-                                 : static_cast<std::uint16_t>(10'000 + k + (sequence_ % 100));
+    const std::span<std::uint16_t> range(profile_.range.data(), config_.points);
+    if (fill_) {
+      fill_(sequence_, exposure, range);
+    } else {
+      for (std::size_t k = 0; k < range.size(); ++k) {
+        range[k] = static_cast<std::uint16_t>(10'000 + k + (sequence_ % 100));
+      }
     }
     std::array<can::CanFrame, can::ranger::kMaxSegments + 1> frames;
     const std::size_t n = can::ranger::encode(config_.node, profile_, frames);

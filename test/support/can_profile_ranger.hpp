@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <functional>
+#include <span>
 
 #include "drivers/can/ranger_codec.hpp"
 #include "test/support/can_bus.hpp"
@@ -22,12 +23,16 @@ struct SimRangerConfig {
   std::uint16_t heartbeat_ms = 100;
 };
 
+// Fills a profile's range values (raw units, kNoReturn for no return) for the profile numbered
+// `sequence`, exposed at host time `exposure` (its centre, CLOCK_MONOTONIC): what the scene in
+// front of the device looks like then.
+using ProfileFill =
+    std::function<void(std::uint32_t sequence, hal::Timestamp exposure, std::span<std::uint16_t>)>;
+
 class SimProfileRanger final : public SimCanDevice {
  public:
-  // range(sequence, k) in raw units (kNoReturn for no return); default: a ramp.
-  explicit SimProfileRanger(
-      SimRangerConfig config,
-      std::function<std::uint16_t(std::uint32_t, std::size_t)> range = nullptr);
+  // fill: the profiles' contents; default: a ramp.
+  explicit SimProfileRanger(SimRangerConfig config, ProfileFill fill = nullptr);
 
   void on_frame(const drivers::can::CanFrame&, drivers::can::CanTransport&) override {}
   hal::Timestamp tick(hal::Timestamp now, drivers::can::CanTransport& bus) override;
@@ -42,7 +47,7 @@ class SimProfileRanger final : public SimCanDevice {
 
  private:
   SimRangerConfig config_;
-  std::function<std::uint16_t(std::uint32_t, std::size_t)> range_;
+  ProfileFill fill_;
   drivers::can::ranger::WireProfile profile_;
   std::uint32_t sequence_ = 0;
   hal::Timestamp next_profile_{};

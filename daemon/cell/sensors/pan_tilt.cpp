@@ -13,12 +13,14 @@
 namespace rangefit::daemon::real_sensors {
 namespace {
 
-std::vector<NamedDriver> make_drivers(const DeviceConfig& d, const CellConfig&, hal::Clock&) {
-  const auto ranger = ranger_config(d);
+std::vector<NamedDriver> make_drivers(const DeviceConfig& d, const CellConfig& config,
+                                      hal::Clock&) {
+  const auto ranger = ranger_config(d, config.fusion.pan_tilt.geometry.ranger);
   const auto head = pan_tilt_config(d);
   std::vector<NamedDriver> out;
-  out.push_back({d.name, std::make_unique<drivers::can::RangerCanSource>(
-                             ranger, socketcan(d.transport, drivers::can::ranger_filter(ranger)))});
+  out.push_back(
+      {d.name, std::make_unique<drivers::can::RangerCanSource>(
+                   ranger, socketcan(d.transport, drivers::can::ranger_filter(ranger), true))});
   out.push_back({pan_tilt_angles_name(d.name),
                  std::make_unique<drivers::can::Cia402PanTiltSource>(
                      head, socketcan(d.transport, drivers::can::cia402_filter(

@@ -9,11 +9,12 @@
 namespace rangefit::daemon::real_sensors {
 namespace {
 
-std::vector<NamedDriver> make_drivers(const DeviceConfig& d, const CellConfig&, hal::Clock&) {
-  const auto c = ranger_config(d);
+std::vector<NamedDriver> make_drivers(const DeviceConfig& d, const CellConfig& config,
+                                      hal::Clock&) {
+  const auto c = ranger_config(d, config.fusion.stripe_cell.geometry.ranger);
   std::vector<NamedDriver> out;
   out.push_back({d.name, std::make_unique<drivers::can::RangerCanSource>(
-                             c, socketcan(d.transport, drivers::can::ranger_filter(c)))});
+                             c, socketcan(d.transport, drivers::can::ranger_filter(c), true))});
   return out;
 }
 

@@ -3,12 +3,19 @@
 // (FunctionFS on dummy_hcd) streaming revolutions cast by the simulated cell (sim::CssRig over a
 // scene, recorded on the host by --record) while the robot's last joint, a CiA 402 node on a
 // SocketCAN interface, answers every SYNC with the angle of the same sweep (test/hil/cell_peer/
-// css_sweep.hpp: -delta .. +delta in scan_s, back with the laser off, again). Needs root, vcan and
-// the gadget modules (test/hil/run_vm.sh).
+// css_sweep.hpp: -delta .. +delta in scan_s, back with the laser off, again). With --stripe, the
+// stripe cell too (stripe_cell.hpp): the linear axis' Festo drive as a Modbus TCP server on
+// 127.0.0.1:--modbus-port and the laser-stripe ranger on the same CAN bus (node --ranger-node),
+// its profiles those the simulated cell casts at the table's position (recorded on the host by
+// --record-stripe). Needs root, vcan and the gadget modules (test/hil/run_vm.sh).
 //   rangefit_cell_peer --frames FILE [--can vcan0] [--node 1] [--scan-s 6] [--vid 0x1d6b]
 //                      [--pid 0x0105] [--udc NAME]
+//                      [--stripe FILE.profiles [--modbus-port 1502] [--ranger-node 0x20]]
 //   rangefit_cell_peer --record FILE --scene bore_plate.toml [--scan-s 6]   (host, no root)
-// Then one command per line on stdin: unplug, replug, status, quit (or end of input).
+//   rangefit_cell_peer --record-stripe FILE.profiles --scene table_top_fig5_18.toml   (host)
+// Then one command per line on stdin: unplug, replug (the CSS), axis-stop, axis-start,
+// axis-stop-past MM (the stripe cell's Modbus server; the last stops it once the table passes MM
+// moving up), status, quit (or end of input).
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -17,6 +24,7 @@
 
 #include "drivers/can/socketcan_transport.hpp"
 #include "test/hil/cell_peer/css_sweep.hpp"
+#include "test/hil/cell_peer/stripe_cell.hpp"
 #include "test/hil/css_gadget/css_gadget.hpp"
 #include "test/support/can_bus.hpp"
 #include "test/support/can_cia402_node.hpp"
@@ -31,9 +39,10 @@ int usage(const std::string& why) {
 }
 
 struct Args {
-  std::string frames, record, scene, can = "vcan0", udc;
+  std::string frames, record, scene, can = "vcan0", udc, stripe, record_stripe;
   double scan_s = 6.0;
-  unsigned node = 1, vid = 0x1d6b, pid = 0x0105;
+  unsigned node = 1, vid = 0x1d6b, pid = 0x0105, ranger_node = 0x20;
+  int modbus_port = 1502;
 };
 
 bool parse(int argc, char** argv, Args& a, std::string& why) {
@@ -48,6 +57,14 @@ bool parse(int argc, char** argv, Args& a, std::string& why) {
       a.frames = v;
     } else if (arg == "--record") {
       a.record = v;
+    } else if (arg == "--stripe") {
+      a.stripe = v;
+    } else if (arg == "--record-stripe") {
+      a.record_stripe = v;
+    } else if (arg == "--modbus-port") {
+      a.modbus_port = std::atoi(v.c_str());
+    } else if (arg == "--ranger-node") {
+      a.ranger_node = static_cast<unsigned>(std::strtoul(v.c_str(), nullptr, 0));
     } else if (arg == "--scene") {
       a.scene = v;
     } else if (arg == "--can") {
@@ -69,7 +86,11 @@ bool parse(int argc, char** argv, Args& a, std::string& why) {
   }
   if (!(a.scan_s >= 1.0 && a.scan_s <= 60.0)) why = "--scan-s must be within 1..60";
   if (a.node < 1 || a.node > 127) why = "--node must be within 1..127";
-  if (a.record.empty() && a.frames.empty()) why = "--frames or --record is required";
+  if (a.ranger_node < 1 || a.ranger_node > 127) why = "--ranger-node must be within 1..127";
+  if (a.modbus_port < 1 || a.modbus_port > 65535) why = "--modbus-port must be within 1..65535";
+  if (a.record.empty() && a.record_stripe.empty() && a.frames.empty()) {
+    why = "--frames, --record or --record-stripe is required";
+  }
   return why.empty();
 }
 
@@ -87,6 +108,15 @@ int main(int argc, char** argv) {
                 a.record.c_str());
     return 0;
   }
+  if (!a.record_stripe.empty()) {
+    if (a.scene.empty()) return usage("--record-stripe needs --scene");
+    const hil::StripeProfiles cast(a.scene);
+    if (!cast.error().empty()) return usage(cast.error());
+    if (!cast.save(a.record_stripe)) return usage("cannot write " + a.record_stripe);
+    std::printf("rangefit_cell_peer: %zu stripe profiles of %s in %s\n", cast.size(),
+                a.scene.c_str(), a.record_stripe.c_str());
+    return 0;
+  }
   const hil::RevolutionSource forward(a.frames);
   if (!forward.error().empty()) return usage(forward.error());
   hil::CssSweepOptions so;
@@ -96,6 +126,7 @@ int main(int argc, char** argv) {
 
   drivers::can::SocketCanConfig cc;
   cc.interface = a.can;
+  cc.fd = !a.stripe.empty();  // the ranger's profiles are CAN FD frames
   auto transport = std::make_unique<drivers::can::SocketCanTransport>(cc);
   if (const hal::Status s = transport->open(); !s) return usage(a.can + ": " + s.message);
   sim::SimCanBus bus(std::move(transport));
@@ -103,6 +134,18 @@ int main(int argc, char** argv) {
   jc.node = static_cast<std::uint8_t>(a.node);
   bus.add(std::make_shared<sim::SimCia402Node>(
       jc, [&sweep](hal::Timestamp t) { return sweep.omega_at(t); }));
+  std::unique_ptr<hil::StripeProfiles> profiles;
+  std::unique_ptr<hil::StripeCellPeer> stripe;
+  if (!a.stripe.empty()) {
+    profiles = std::make_unique<hil::StripeProfiles>(a.stripe);
+    if (!profiles->error().empty()) return usage(profiles->error());
+    stripe = std::make_unique<hil::StripeCellPeer>(
+        *profiles,
+        hil::StripeCellPeerOptions{.modbus_port = a.modbus_port,
+                                   .ranger_node = static_cast<std::uint8_t>(a.ranger_node)});
+    if (const hal::Status s = stripe->start_axis(); !s) return usage(s.message);
+    bus.add(stripe->ranger());
+  }
   bus.start();
 
   hil::CssGadgetOptions go;
@@ -117,18 +160,38 @@ int main(int argc, char** argv) {
       "rangefit_cell_peer: css cell up: %zu revolutions per %.1f s stroke, cycle %.2f s, "
       "joint node %u on %s\n",
       forward.size(), a.scan_s, sweep.cycle_s(), a.node, a.can.c_str());
+  if (stripe) {
+    std::printf(
+        "rangefit_cell_peer: stripe cell up: %zu profiles, axis on 127.0.0.1:%d, ranger "
+        "node %u on %s\n",
+        profiles->size(), a.modbus_port, a.ranger_node, a.can.c_str());
+  }
   std::fflush(stdout);
   for (std::string line; std::getline(std::cin, line) && line != "quit";) {
     if (line == "unplug") {
       gadget.unplug();
     } else if (line == "replug") {
       gadget.replug();
+    } else if (stripe && line == "axis-stop") {
+      stripe->stop_axis();
+    } else if (stripe && line.starts_with("axis-stop-past ")) {
+      stripe->stop_axis_past(std::strtod(line.c_str() + 15, nullptr));
+    } else if (stripe && line == "axis-start") {
+      if (const hal::Status s = stripe->start_axis(); !s) {
+        std::fprintf(stderr, "rangefit_cell_peer: %s\n", s.message.c_str());
+      }
     } else if (line != "status") {
       std::fprintf(stderr, "rangefit_cell_peer: unknown command %s\n", line.c_str());
     }
-    std::printf("frames %llu streaming %d starts %llu\n",
+    std::printf("frames %llu streaming %d starts %llu",
                 static_cast<unsigned long long>(gadget.frames_sent()), gadget.streaming() ? 1 : 0,
                 static_cast<unsigned long long>(gadget.starts()));
+    if (stripe) {
+      std::printf(" profiles %llu axis %.3f mm%s%s",
+                  static_cast<unsigned long long>(stripe->profiles_sent()), stripe->position_mm(),
+                  stripe->axis_up() ? "" : " server-down", stripe->axis_fault() ? " fault" : "");
+    }
+    std::printf("\n");
     std::fflush(stdout);
   }
   bus.stop();
