@@ -65,8 +65,9 @@ FarEyes far_eyes(const SuperquadricMetric& m, const Eigen::Isometry3d& T, double
 // Height of the posed part's lowest point above the plane (along its normal): the minimum over a
 // coarse grid of the surface's parametrisation, then over finer grids around it. The coverage's
 // samples alone leave a rounded bottom up to a few tenths of a millimetre above its lowest point,
-// as much as the rest-on-table check must tell apart.
-double lowest_height(const Superquadric& sq, const Eigen::Isometry3d& T, const pca::Plane& plane) {
+// as much as the rest-on-table check must tell apart. `at`: the lowest point, part frame.
+double lowest_height(const Superquadric& sq, const Eigen::Isometry3d& T, const pca::Plane& plane,
+                     Eigen::Vector3d* at = nullptr) {
   constexpr int kEta = 16, kOmega = 32, kRefinements = 4;
   const Eigen::Vector3d n = T.linear().transpose() * plane.normal;  // part frame
   const double base = plane.normal.dot(T.translation() - plane.point);
@@ -93,6 +94,10 @@ double lowest_height(const Superquadric& sq, const Eigen::Isometry3d& T, const p
         if (h < best) best = h, best_eta = e0 + i * d_eta, best_omega = o0 + j * d_omega;
       }
     }
+  }
+  if (at) {
+    *at = surface_point(sq, std::clamp(best_eta, -0.5 * std::numbers::pi, 0.5 * std::numbers::pi),
+                        best_omega);
   }
   return best;
 }
@@ -176,7 +181,7 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
     // Sinking is judged on the model itself and standing above the table on its sharp hull: a
     // flat-faced part's rounded edges (eps 0.1) lie a few per cent inside the real object's
     // edges, so a box tilted onto an edge rests on the table while its model stands ~3 mm above.
-    below = std::max(0.0, -lowest_height(sq, T, *o.removed_plane));
+    below = std::max(0.0, -lowest_height(sq, T, *o.removed_plane, &c.deepest_part));
     Superquadric sharp = sq;
     if (sharp.eps1 <= kFlatEdgeExponent) sharp.eps1 = kSharpExponent;
     if (sharp.eps2 <= kFlatEdgeExponent) sharp.eps2 = kSharpExponent;

@@ -50,6 +50,8 @@ struct SurfaceCoverage {
   double lowest_mm = 0.0;       // height of its lowest point above the removed plane, its flat
                                 // faces' rounded edges taken as sharp (refined on the surface's
                                 // parametrisation, to ~0.01 mm)
+  Eigen::Vector3d deepest_part = Eigen::Vector3d::Zero();  // the model's lowest point, part
+                                                           // frame (below_plane_mm is its depth)
   double min_size_mm = 0.0;     // the part's smallest size parameter
   double max_size_mm = 0.0;     // and its largest
 };

@@ -57,7 +57,8 @@ bool options_ok(const ObjectDetectOptions& o) {
          o.min_coverage_unknown_sensor >= 0.0 && o.max_seen_through >= 0.0 &&
          o.max_size_deviation > 0.0 && o.max_candidates >= 1 && o.min_measurable_samples >= 0 &&
          o.min_measurable_share >= 0.0 && o.max_continuation >= 0.0 && o.plane_margin_mm >= 0.0 &&
-         o.rest_noise_factor >= 0.0 && o.rest_size_share >= 0.0 && valid(o.sensor);
+         o.rest_noise_factor >= 0.0 && o.rest_size_share >= 0.0 && o.sink_floor_mm >= 0.0 &&
+         o.sink_noise_factor >= 0.0 && o.sink_sigma_factor >= 0.0 && valid(o.sensor);
 }
 
 // The check of eq. 5.2-5.4 that a hypothesis fails (see ObjectDetectOptions::max_measure).
@@ -180,16 +181,28 @@ std::optional<Rejection> floating(double lowest_mm, double max_size_mm, bool pla
 }
 
 // The fit-quality checks in mm (see ObjectDetectOptions::max_size_deviation and
-// residual_noise_factor); noise_mm is the scan's range noise (the removed plane's rms).
+// residual_noise_factor), and, with `judge_sink`, the part's sink into the table judged by how
+// well its points place it (sink_floor_mm); noise_mm is the scan's range noise (the removed
+// plane's rms). A compound object's parts are held to the table margin only: a mallet's shaft
+// touches the table at its far end, 240 mm from its centre, where the 0.8 degrees of tilt a true
+// shaft was fitted with (3.3 mm) are far more than the covariance of its fit admits.
 std::optional<Rejection> misfit(const HypothesisContext& ctx, const Superquadric& part,
                                 const Eigen::Isometry3d& T, std::span<const PlacedPart> others,
-                                double noise_mm, PartScores* scores = nullptr) {
+                                double noise_mm, const SurfaceCoverage& seen, bool judge_sink,
+                                PartScores* scores = nullptr) {
   const ObjectDetectOptions& o = *ctx.options;
   const SizeEvidence e = size_evidence(ctx, part, T, others);
+  // Unknown when the fit had too few points: then only the table margin of unconfirmed() holds.
+  double sigma = INFINITY;
+  if (ctx.table && !e.pose_covariance.isZero()) {
+    sigma = height_sigma_mm(T, seen.deepest_part, ctx.table->normal, e.pose_covariance);
+  }
   if (scores) {
     scores->size_determined = e.determined;
     scores->size_scale = e.scale;
     scores->residual_mm = e.residual_mm;
+    scores->below_plane_mm = seen.below_plane_mm;
+    scores->height_sigma_mm = sigma;
   }
   const double max_residual = o.residual_noise_factor * noise_mm + o.max_residual_floor_mm;
   if (e.residual_mm > max_residual) {
@@ -197,6 +210,11 @@ std::optional<Rejection> misfit(const HypothesisContext& ctx, const Superquadric
   }
   if (e.determined && std::abs(e.scale - 1.0) > o.max_size_deviation) {
     return Rejection{0, Check::kSize, e.scale - 1.0, o.max_size_deviation, T.translation()};
+  }
+  const double sink_limit =
+      o.sink_floor_mm + o.sink_noise_factor * noise_mm + o.sink_sigma_factor * sigma;
+  if (judge_sink && ctx.table && seen.below_plane_mm > sink_limit) {
+    return Rejection{0, Check::kBelowPlane, seen.below_plane_mm, sink_limit, T.translation()};
   }
   return std::nullopt;
 }
@@ -245,7 +263,7 @@ std::optional<Rejection> judge_part(const HypothesisContext& ctx, const Superqua
   if (!why && alone) {
     why = floating(c.lowest_mm, part.max_size(), cover.removed_plane.has_value(), noise_mm, o);
   }
-  if (!why) why = misfit(ctx, part, T, others, noise_mm, scores);
+  if (!why) why = misfit(ctx, part, T, others, noise_mm, c, alone, scores);
   if (!why) why = continues(ctx, part, T, others, noise_mm, scores);
   if (why) why->centre = T.translation();
   return why;

@@ -85,6 +85,15 @@ struct ObjectDetectOptions {
   // taller fitted to the model by their tops stood 4.3-5.8 mm off at 0.6-0.8 mm noise.
   double rest_noise_factor = 2.0;
   double rest_size_share = 0.06;
+  // And a confirmed part sinks into the table by no more than its own points allow: sink_floor_mm
+  // plus sink_noise_factor x the table's noise plus sink_sigma_factor x the standard deviation of
+  // its lowest point's height under the pose covariance of its fit (the LM's s^2 (J^T J)^-1). A
+  // part whose top and sides are seen is placed to a few hundredths of a millimetre, so a
+  // look-alike a few per cent shorter, fitted by its top, sinks deeper than that; a part whose
+  // points leave its height open (only its side seen) is held only to the table margin.
+  double sink_floor_mm = 1.0;
+  double sink_noise_factor = 2.0;
+  double sink_sigma_factor = 3.0;
   // And, where its points determine it, the size the points want is the model's within this
   // share (object_hypotheses.hpp size_evidence): a sphere 4 % larger or smaller is not it; a box
   // or a cone seen from one side places its size to about 2 %.
@@ -144,7 +153,8 @@ enum class Check {
   kResidual,       // the points' spread about the surface (mm) above the scan's noise allows
   kHidden,         // fewer measurable samples than min_measurable_samples (value: the count),
                    // or less than min_measurable_share of the facing ones (value: the share)
-  kBelowPlane,     // reaches through the removed plane by more than the table margin (mm)
+  kBelowPlane,     // reaches through the removed plane by more than the table margin, or than
+                   // its points' uncertainty allows (sink_floor_mm; mm)
   kFloating,       // rest_on_plane: its lowest point is higher above the plane than the rest
                    // tolerance (mm)
   kContinues,      // the scan carries on past its flat faces (share of its surface points)
@@ -163,6 +173,8 @@ struct PartScores {
   double coverage = 0.0;         // share of them with scan points
   double seen_through = 0.0;     // share of them the sensor saw past
   double lowest_mm = 0.0;        // height of its lowest point above the removed plane
+  double below_plane_mm = 0.0;   // how far the model reaches through it (0: not at all)
+  double height_sigma_mm = 0.0;  // standard deviation of its lowest point's height (pose fit)
   bool size_determined = false;  // the points determine the part's size (size_evidence)
   double size_scale = 1.0;       // the scale of the model they want
   double residual_mm = 0.0;      // robust spread of their distances from the surface
