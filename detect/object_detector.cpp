@@ -55,6 +55,7 @@ bool options_ok(const ObjectDetectOptions& o) {
          o.confirmations >= 1 && o.refine_trim >= 0.0 && o.max_measure > 0.0 &&
          o.max_interior_ratio >= 0.0 && o.min_coverage >= 0.0 &&
          o.min_coverage_unknown_sensor >= 0.0 && o.max_seen_through >= 0.0 &&
+         o.max_open_end >= 0.0 &&
          o.max_size_deviation > 0.0 && o.max_candidates >= 1 && o.min_measurable_samples >= 0 &&
          o.min_measurable_share >= 0.0 && o.max_continuation >= 0.0 && o.plane_margin_mm >= 0.0 &&
          o.rest_noise_factor >= 0.0 && o.rest_size_share >= 0.0 && o.sink_floor_mm >= 0.0 &&
@@ -84,7 +85,7 @@ bool plausible(const PartHypothesis& h, const ObjectDetectOptions& o) {
 
 // Confirmation by the surface evidence (see ObjectDetectOptions::min_coverage).
 // For a part of a compound object the measurable share is judged over the whole object (its
-// siblings hide some of it: the head hides the end of the shaft).
+// siblings hide some of it: the head hides the end of the shaft), and its open ends not at all.
 std::optional<Rejection> unconfirmed(const SurfaceCoverage& c, const ObjectDetectOptions& o,
                                      bool sensor_known, bool judge_share, double noise_mm) {
   const double min_cover = sensor_known ? o.min_coverage : o.min_coverage_unknown_sensor;
@@ -106,6 +107,10 @@ std::optional<Rejection> unconfirmed(const SurfaceCoverage& c, const ObjectDetec
   }
   if (!(c.covered >= min_cover))
     return Rejection{0, Check::kCoverage, c.covered, min_cover, Eigen::Vector3d::Zero()};
+  // Single parts only: a compound object's parts end by their siblings (a mallet's shaft by its
+  // head), and on the tuning scenes the check cost two true mallets.
+  if (judge_share && c.open_end > o.max_open_end)
+    return Rejection{0, Check::kOpenEnd, c.open_end, o.max_open_end, Eigen::Vector3d::Zero()};
   return std::nullopt;
 }
 
@@ -256,6 +261,7 @@ std::optional<Rejection> judge_part(const HypothesisContext& ctx, const Superqua
     scores->measurable = c.measurable;
     scores->coverage = c.covered;
     scores->seen_through = c.seen_through;
+    scores->open_end = c.open_end;
     scores->lowest_mm = c.lowest_mm;
   }
   std::optional<Rejection> why =
@@ -543,6 +549,8 @@ const char* to_string(Check check) {
       return "coverage";
     case Check::kSeenThrough:
       return "seen through";
+    case Check::kOpenEnd:
+      return "open end";
     case Check::kSize:
       return "size";
     case Check::kResidual:

@@ -61,6 +61,11 @@ struct ObjectDetectOptions {
   // And at most this share of it lies where the sensor saw past it (free space). Rejects a part
   // posed on a fragment of a larger object.
   double max_seen_through = 0.05;
+  // And by each of its flat ends (a box, a can) whose side wall the scan shows farther in, at
+  // most this share of the side wall it could have measured there has no scan points near it
+  // (object_coverage.hpp open_end): a part fitted to a shorter look-alike lying along the sweep
+  // reaches past its end.
+  double max_open_end = 0.4;
   // And it shows the sensor at least this many of the coverage's surface samples, and this share
   // of those facing it (a part hidden behind others, under the table or inside a measured
   // object leaves too little to judge it by), and it does not reach farther than the table
@@ -149,6 +154,7 @@ enum class Check {
   kSurfacePoints,  // S < min_surface_points
   kCoverage,       // coverage < min_coverage (or min_coverage_unknown_sensor)
   kSeenThrough,    // seen_through > max_seen_through
+  kOpenEnd,        // open_end > max_open_end: no surface by one of its flat ends
   kSize,           // |size the points want - 1| > max_size_deviation
   kResidual,       // the points' spread about the surface (mm) above the scan's noise allows
   kHidden,         // fewer measurable samples than min_measurable_samples (value: the count),
@@ -172,6 +178,7 @@ struct PartScores {
   int measurable = 0;            // of them, the ones not hidden behind measured surface
   double coverage = 0.0;         // share of them with scan points
   double seen_through = 0.0;     // share of them the sensor saw past
+  double open_end = 0.0;         // share of the side wall by a flat end with no scan points
   double lowest_mm = 0.0;        // height of its lowest point above the removed plane
   double below_plane_mm = 0.0;   // how far the model reaches through it (0: not at all)
   double height_sigma_mm = 0.0;  // standard deviation of its lowest point's height (pose fit)
