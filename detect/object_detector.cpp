@@ -189,8 +189,8 @@ std::optional<Rejection> floating(double lowest_mm, double max_size_mm, bool pla
 // residual_noise_factor), and, with `judge_sink`, the part's sink into the table judged by how
 // well its points place it (sink_floor_mm); noise_mm is the scan's range noise (the removed
 // plane's rms). A compound object's parts are held to the table margin only: a mallet's shaft
-// touches the table at its far end, 240 mm from its centre, where the 0.8 degrees of tilt a true
-// shaft was fitted with (3.3 mm) are far more than the covariance of its fit admits.
+// touches the table at its far end, 120 mm from its centre, and a true shaft of the tuning
+// scenes was fitted 3.3 mm into the table there against a standard deviation of 0.28 mm.
 std::optional<Rejection> misfit(const HypothesisContext& ctx, const Superquadric& part,
                                 const Eigen::Isometry3d& T, std::span<const PlacedPart> others,
                                 double noise_mm, const SurfaceCoverage& seen, bool judge_sink,
