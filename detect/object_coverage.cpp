@@ -20,6 +20,18 @@ constexpr double kSharpExponent = 0.02;
 // Eyes of an unknown sensor are this far away along their direction (mm): beyond any scene.
 constexpr double kFarEye = 1e4;
 
+// The inner rings by a flat end must show this share of their samples for the end to be judged.
+constexpr double kEndReference = 0.8;
+
+// What the scan says of one surface sample.
+enum class Sample {
+  kNoEvidence,   // by the table, outside the sweep, or not facing the sensor's eyes
+  kHidden,       // facing them, but measured surface lies between
+  kCovered,      // measurable, and a scan point lies near it
+  kUncovered,    // measurable, no scan point near it
+  kSeenThrough,  // measurable, and the laser went on past it to measured surface
+};
+
 // Where the ray from the part centre along d leaves the part (G = 1), part frame. G is
 // homogeneous of degree 2 without taper (G(s d) = s^2 G(d)); with taper it is still increasing
 // along the ray (the tapered part is star-shaped about its centre), so bisection finishes it.
@@ -65,8 +77,9 @@ FarEyes far_eyes(const SuperquadricMetric& m, const Eigen::Isometry3d& T, double
 // Height of the posed part's lowest point above the plane (along its normal): the minimum over a
 // coarse grid of the surface's parametrisation, then over finer grids around it. The coverage's
 // samples alone leave a rounded bottom up to a few tenths of a millimetre above its lowest point,
-// as much as the rest-on-table check must tell apart.
-double lowest_height(const Superquadric& sq, const Eigen::Isometry3d& T, const pca::Plane& plane) {
+// as much as the rest-on-table check must tell apart. `at`: the lowest point, part frame.
+double lowest_height(const Superquadric& sq, const Eigen::Isometry3d& T, const pca::Plane& plane,
+                     Eigen::Vector3d* at = nullptr) {
   constexpr int kEta = 16, kOmega = 32, kRefinements = 4;
   const Eigen::Vector3d n = T.linear().transpose() * plane.normal;  // part frame
   const double base = plane.normal.dot(T.translation() - plane.point);
@@ -94,6 +107,10 @@ double lowest_height(const Superquadric& sq, const Eigen::Isometry3d& T, const p
       }
     }
   }
+  if (at) {
+    *at = surface_point(sq, std::clamp(best_eta, -0.5 * std::numbers::pi, 0.5 * std::numbers::pi),
+                        best_omega);
+  }
   return best;
 }
 
@@ -112,27 +129,20 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
   // Lines of sight start this far from the surface: its own points and its pose error stay out
   // (along an oblique line of sight, farther from the sample).
   const double clearance = o.occupancy ? tol + o.occupancy->cell_mm() : tol;
-  const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
   std::vector<std::uint32_t> nbr;
-  int facing = 0, measurable = 0, covered = 0, seen_through = 0;
   double below = 0.0, lowest = INFINITY;
-  for (int i = 0; i < o.samples; ++i) {
-    // Fibonacci sphere, stretched by the sizes: even in the normalised coordinates.
-    const double z = 1.0 - (2.0 * i + 1.0) / o.samples;
-    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-    const double phi = golden * i;
-    const Eigen::Vector3d d(sq.a1 * r * std::cos(phi), sq.a2 * r * std::sin(phi), sq.a3 * z);
-    const Eigen::Vector3d q = surface_along(m, d);
+  // What the scan says of the surface point q (part frame).
+  const auto judge = [&](const Eigen::Vector3d& q) {
     Eigen::Vector3d grad;
     m.value_and_gradient(q, grad);
-    if (grad.squaredNorm() == 0.0) continue;
+    if (grad.squaredNorm() == 0.0) return Sample::kNoEvidence;
     const Eigen::Vector3d p = T * q;
     const Eigen::Vector3d n = T.linear() * grad;
     if (o.removed_plane && o.removed_plane->valid) {
       const double h = o.removed_plane->normal.dot(p - o.removed_plane->point);
       below = std::max(below, -h);
       lowest = std::min(lowest, h);
-      if (std::abs(h) < o.plane_margin_mm + tol) continue;
+      if (std::abs(h) < o.plane_margin_mm + tol) return Sample::kNoEvidence;
     }
     Eyes eyes;
     if (known) {
@@ -141,7 +151,7 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
       eyes.count = far.count;
       for (int k = 0; k < far.count; ++k) eyes.at[k] = p + kFarEye * far.dir[k];
     }
-    if (eyes.count == 0) continue;  // outside the sweep
+    if (eyes.count == 0) return Sample::kNoEvidence;  // outside the sweep
     bool faces = true, hidden = false;
     const Eigen::Vector3d un = n.normalized();
     std::array<double, 2> skip{clearance, clearance};
@@ -150,25 +160,71 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
       faces = faces && incidence > kMinIncidenceCosine;
       skip[k] = clearance / std::max(incidence, kMinIncidenceCosine);
     }
-    if (!faces) continue;  // in the part's own shadow, or seen too obliquely to judge
-    ++facing;
+    // In the part's own shadow, or seen too obliquely to judge.
+    if (!faces) return Sample::kNoEvidence;
     for (int k = 0; k < eyes.count && o.occupancy && !hidden; ++k) {
       hidden = o.occupancy->first_hit(p, eyes.at[k], skip[k]) >= 0.0;
     }
-    if (hidden) continue;
-    ++measurable;
+    if (hidden) return Sample::kHidden;
     tree.knn_search(p, 1, nbr);
     const double nearest = nbr.empty() ? INFINITY : (points[nbr[0]] - p).norm();
-    if (nearest <= tol) {
-      ++covered;
-      continue;
-    }
+    if (nearest <= tol) return Sample::kCovered;
     // The first eye (the laser, or the only one) lit everything along its ray until the first
     // surface: a measured cell beyond the sample means the light went through it. A sample
     // between scan lines (grazing surface, coarse step) is not: it has points within a cell.
     if (o.occupancy && nearest > tol + o.occupancy->cell_mm()) {
       const Eigen::Vector3d beyond = p + kFarEye * (p - eyes.at[0]).normalized();
-      if (o.occupancy->first_hit(p, beyond, skip[0]) >= 0.0) ++seen_through;
+      if (o.occupancy->first_hit(p, beyond, skip[0]) >= 0.0) return Sample::kSeenThrough;
+    }
+    return Sample::kUncovered;
+  };
+  const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+  int facing = 0, measurable = 0, covered = 0, seen_through = 0;
+  for (int i = 0; i < o.samples; ++i) {
+    // Fibonacci sphere, stretched by the sizes: even in the normalised coordinates.
+    const double z = 1.0 - (2.0 * i + 1.0) / o.samples;
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const double phi = golden * i;
+    const Eigen::Vector3d d(sq.a1 * r * std::cos(phi), sq.a2 * r * std::sin(phi), sq.a3 * z);
+    const Sample v = judge(surface_along(m, d));
+    facing += v != Sample::kNoEvidence;
+    measurable += v == Sample::kCovered || v == Sample::kUncovered || v == Sample::kSeenThrough;
+    covered += v == Sample::kCovered;
+    seen_through += v == Sample::kSeenThrough;
+  }
+  // The side wall by each flat end, densely: end_rings rings at even steps over end_strip of the
+  // half-length from the cap, and as many farther in. An end is judged when the inner rings show
+  // the side wall (at least kEndReference of their measurable samples covered): then the scan
+  // would have shown it on to the cap, and the share of the outer rings' measurable samples with
+  // no scan points near them is how much of the end is missing. A true part whose end the scan
+  // does not show for another reason (grazed, behind a wall) shows little of the inner rings
+  // either.
+  double open_end = 0.0;
+  if (sq.eps1 <= kFlatEdgeExponent && sq.kx == 0.0 && sq.ky == 0.0 && o.end_rings > 0) {
+    const double step = o.end_strip / o.end_rings;  // of the half-length
+    for (double side : {-1.0, 1.0}) {
+      int outer = 0, open = 0, inner = 0, inner_covered = 0;
+      for (int k = 0; k < 2 * o.end_rings; ++k) {
+        const double u = 1.0 - (k + 0.5) * step;  // z / a3
+        const double eta = side * std::asin(std::pow(u, 1.0 / sq.eps1));
+        for (int j = 0; j < o.end_ring_samples; ++j) {
+          const double omega = 2.0 * std::numbers::pi * (j + 0.5) / o.end_ring_samples;
+          const Sample v = judge(surface_point(sq, eta, omega));
+          const bool seen = v == Sample::kCovered || v == Sample::kUncovered ||
+                            v == Sample::kSeenThrough;
+          if (k < o.end_rings) {
+            outer += seen;
+            open += seen && v != Sample::kCovered;
+          } else {
+            inner += seen;
+            inner_covered += v == Sample::kCovered;
+          }
+        }
+      }
+      if (outer >= o.min_end_samples && inner >= o.min_end_samples &&
+          inner_covered >= kEndReference * inner) {
+        open_end = std::max(open_end, static_cast<double>(open) / outer);
+      }
     }
   }
   SurfaceCoverage c;
@@ -176,7 +232,7 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
     // Sinking is judged on the model itself and standing above the table on its sharp hull: a
     // flat-faced part's rounded edges (eps 0.1) lie a few per cent inside the real object's
     // edges, so a box tilted onto an edge rests on the table while its model stands ~3 mm above.
-    below = std::max(0.0, -lowest_height(sq, T, *o.removed_plane));
+    below = std::max(0.0, -lowest_height(sq, T, *o.removed_plane, &c.deepest_part));
     Superquadric sharp = sq;
     if (sharp.eps1 <= kFlatEdgeExponent) sharp.eps1 = kSharpExponent;
     if (sharp.eps2 <= kFlatEdgeExponent) sharp.eps2 = kSharpExponent;
@@ -187,6 +243,7 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
   c.min_size_mm = sq.min_size();
   c.max_size_mm = sq.max_size();
   c.facing = facing;
+  c.open_end = open_end;
   if (measurable == 0) return c;
   c.measurable = measurable;
   c.covered = static_cast<double>(covered) / measurable;

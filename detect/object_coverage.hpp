@@ -34,6 +34,16 @@ struct CoverageOptions {
   // normal points to the side the scan's objects are on.
   std::optional<pca::Plane> removed_plane;
   double plane_margin_mm = 5.0;
+  // The side wall by each flat end of a part with flat caps (eps1 <= 0.5, no taper): end_rings
+  // rings of end_ring_samples samples spread over end_strip of its half-length from the cap, and
+  // as many farther in (object_coverage.cpp). A
+  // part fitted to a shorter look-alike lying along the sweep (its caps face along the sweep and
+  // show no points) reaches past the look-alike's end, where the sensor saw no surface; the few
+  // of the 200 samples there are lost among the rest.
+  double end_strip = 0.2;
+  int end_rings = 4;
+  int end_ring_samples = 16;
+  int min_end_samples = 8;  // an end with fewer measurable samples is not judged
   // The whole scan (plane included) as occupied cells: lines of sight blocked by it are
   // occluded, and a line of sight that runs on past a sample to a measured cell saw past it.
   // Without it nothing counts as occluded or seen past.
@@ -46,10 +56,15 @@ struct SurfaceCoverage {
                                 // have measured them
   double covered = 0.0;         // share of them with a scan point near them
   double seen_through = 0.0;    // share of them the sensor saw past: free space
+  double open_end = 0.0;        // of the measurable samples by a flat end whose side wall the
+                                // scan shows farther in, the largest share (of the two ends)
+                                // with no scan points near them
   double below_plane_mm = 0.0;  // how far the part (as modelled) reaches through the removed plane
   double lowest_mm = 0.0;       // height of its lowest point above the removed plane, its flat
                                 // faces' rounded edges taken as sharp (refined on the surface's
                                 // parametrisation, to ~0.01 mm)
+  Eigen::Vector3d deepest_part = Eigen::Vector3d::Zero();  // the model's lowest point, part
+                                                           // frame (below_plane_mm is its depth)
   double min_size_mm = 0.0;     // the part's smallest size parameter
   double max_size_mm = 0.0;     // and its largest
 };

@@ -61,6 +61,12 @@ struct ObjectDetectOptions {
   // And at most this share of it lies where the sensor saw past it (free space). Rejects a part
   // posed on a fragment of a larger object.
   double max_seen_through = 0.05;
+  // And by each of its flat ends (a box, a can) whose side wall the scan shows farther in, at
+  // most this share of the side wall it could have measured there has no scan points near it
+  // (object_coverage.hpp open_end): a part fitted to a shorter look-alike lying along the sweep
+  // reaches past its end. The true single parts confirmed on the varied tuning scenes had 0; a can
+  // 7 % shorter lying along the sweep, fitted by the model, had 0.4.
+  double max_open_end = 0.3;
   // And it shows the sensor at least this many of the coverage's surface samples, and this share
   // of those facing it (a part hidden behind others, under the table or inside a measured
   // object leaves too little to judge it by), and it does not reach farther than the table
@@ -85,6 +91,15 @@ struct ObjectDetectOptions {
   // taller fitted to the model by their tops stood 4.3-5.8 mm off at 0.6-0.8 mm noise.
   double rest_noise_factor = 2.0;
   double rest_size_share = 0.06;
+  // And a confirmed part sinks into the table by no more than its own points allow: sink_floor_mm
+  // plus sink_noise_factor x the table's noise plus sink_sigma_factor x the standard deviation of
+  // its lowest point's height under the pose covariance of its fit (the LM's s^2 (J^T J)^-1). A
+  // part whose top and sides are seen is placed to a few hundredths of a millimetre, so a
+  // look-alike a few per cent shorter, fitted by its top, sinks deeper than that; a part whose
+  // points leave its height open (only its side seen) is held only to the table margin.
+  double sink_floor_mm = 1.0;
+  double sink_noise_factor = 2.0;
+  double sink_sigma_factor = 3.0;
   // And, where its points determine it, the size the points want is the model's within this
   // share (object_hypotheses.hpp size_evidence): a sphere 4 % larger or smaller is not it; a box
   // or a cone seen from one side places its size to about 2 %.
@@ -140,11 +155,13 @@ enum class Check {
   kSurfacePoints,  // S < min_surface_points
   kCoverage,       // coverage < min_coverage (or min_coverage_unknown_sensor)
   kSeenThrough,    // seen_through > max_seen_through
+  kOpenEnd,        // open_end > max_open_end: no surface by one of its flat ends
   kSize,           // |size the points want - 1| > max_size_deviation
   kResidual,       // the points' spread about the surface (mm) above the scan's noise allows
   kHidden,         // fewer measurable samples than min_measurable_samples (value: the count),
                    // or less than min_measurable_share of the facing ones (value: the share)
-  kBelowPlane,     // reaches through the removed plane by more than the table margin (mm)
+  kBelowPlane,     // reaches through the removed plane by more than the table margin, or than
+                   // its points' uncertainty allows (sink_floor_mm; mm)
   kFloating,       // rest_on_plane: its lowest point is higher above the plane than the rest
                    // tolerance (mm)
   kContinues,      // the scan carries on past its flat faces (share of its surface points)
@@ -162,7 +179,10 @@ struct PartScores {
   int measurable = 0;            // of them, the ones not hidden behind measured surface
   double coverage = 0.0;         // share of them with scan points
   double seen_through = 0.0;     // share of them the sensor saw past
+  double open_end = 0.0;         // share of the side wall by a flat end with no scan points
   double lowest_mm = 0.0;        // height of its lowest point above the removed plane
+  double below_plane_mm = 0.0;   // how far the model reaches through it (0: not at all)
+  double height_sigma_mm = 0.0;  // standard deviation of its lowest point's height (pose fit)
   bool size_determined = false;  // the points determine the part's size (size_evidence)
   double size_scale = 1.0;       // the scale of the model they want
   double residual_mm = 0.0;      // robust spread of their distances from the surface

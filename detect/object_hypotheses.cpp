@@ -148,6 +148,16 @@ double rest_tolerance_mm(const ObjectDetectOptions& o, double max_size_mm, doubl
   return o.rest_noise_factor * noise_mm + o.rest_size_share * max_size_mm;
 }
 
+double height_sigma_mm(const Eigen::Isometry3d& T, const Eigen::Vector3d& q,
+                       const Eigen::Vector3d& normal, const Eigen::Matrix<double, 6, 6>& cov) {
+  // h = n . (R q + t): dh/d(dt) = n, and R <- R exp([w]x) moves R q by R (w x q), so
+  // dh/dw = q x (R^T n).
+  Eigen::Matrix<double, 6, 1> g;
+  g.head<3>() = normal;
+  g.tail<3>() = q.cross(T.linear().transpose() * normal);
+  return std::sqrt(std::max(0.0, g.dot(cov * g)));
+}
+
 std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t a, std::uint64_t b) {
   std::uint64_t s = seed;
   s ^= splitmix64(s) + a * 0x632BE59BD9B4E019ull;
@@ -262,6 +272,7 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
   fit.max_iterations = std::min(o.iterations, kSizeFitIterations);  // from a converged pose
   const PoseFitResult at_model = fit_pose(part, sel, T, fit);
   if (!at_model.ok()) return e;
+  e.pose_covariance = at_model.covariance();
   const double ms1 = mean_square_distance(part, at_model.T_world_part, sel);
   enum Mode { kAll, kAcross, kAlong };
   for (Mode mode : {kAll, kAcross, kAlong}) {

@@ -46,6 +46,12 @@ double table_margin_mm(const ObjectDetectOptions& options, double min_size_mm, d
 // rest_noise_factor): the scan's noise and a small share of the part's largest size (its tilt).
 double rest_tolerance_mm(const ObjectDetectOptions& options, double max_size_mm, double noise_mm);
 
+// Standard deviation (mm) of the height along `normal` of the posed part's point `q_part` (part
+// frame) under the pose covariance `cov` (increments [dt world, w part frame], pose_fit.hpp):
+// how well the points place the part's lowest point above the table.
+double height_sigma_mm(const Eigen::Isometry3d& T_world_part, const Eigen::Vector3d& q_part,
+                       const Eigen::Vector3d& normal, const Eigen::Matrix<double, 6, 6>& cov);
+
 // A part already placed (another part of the same compound object): the points it explains
 // (G < 1 + refine_trim of its own, or 1 + gamma without trimming) stay out of the refinement
 // and scores of the part being fitted, so a head does not drag its shaft towards itself.
@@ -79,6 +85,9 @@ struct SizeEvidence {
   // Robust spread of the distances from the surface of the points near it at the given pose,
   // mm (1.4826 median |d|: the sigma of the range noise for a part that is really there).
   double residual_mm = 0.0;
+  // The pose's covariance as the points determine it (PoseFitResult::covariance of the fit at the
+  // model's size); zero when there were too few points.
+  Eigen::Matrix<double, 6, 6> pose_covariance = Eigen::Matrix<double, 6, 6>::Zero();
 };
 SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& part,
                            const Eigen::Isometry3d& T_world_part,

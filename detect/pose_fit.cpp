@@ -1,5 +1,7 @@
 #include "detect/pose_fit.hpp"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -146,6 +148,23 @@ bool finite_points(std::span<const Eigen::Vector3d> points) {
 
 }  // namespace
 
+// The pseudo-inverse: J^T J is singular along a symmetric part's free directions (a cylinder's
+// spin, every turn of a sphere), which move none of its surface and so no quantity of it either;
+// they get variance 0 rather than an undefined one. Eigenvalues below 1e-9 of the largest are
+// those (numerically ~1e-16); a direction the points determine only poorly keeps its large
+// variance.
+Eigen::Matrix<double, 6, 6> PoseFitResult::covariance() const {
+  if (points <= 6 || !ok()) return Matrix6d::Zero();
+  const double s2 = measure * measure * static_cast<double>(points) / static_cast<double>(points - 6);
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(jtj);
+  const Vector6d& lambda = eig.eigenvalues();  // ascending
+  Vector6d inverse = Vector6d::Zero();
+  for (int i = 0; i < 6; ++i) {
+    if (lambda[i] > 1e-9 * lambda[5]) inverse[i] = 1.0 / lambda[i];
+  }
+  return s2 * eig.eigenvectors() * inverse.asDiagonal() * eig.eigenvectors().transpose();
+}
+
 double measure_of_fit(const Superquadric& sq, const Eigen::Isometry3d& T_world_part,
                       std::span<const Eigen::Vector3d> points) {
   if (points.empty()) return 0.0;
@@ -185,6 +204,8 @@ PoseFitResult fit_pose(const Superquadric& sq, std::span<const Eigen::Vector3d> 
   result.iterations = out.iterations;
   result.T_world_part = out.x;
   result.measure = std::sqrt(2.0 * out.lin.cost / n);
+  result.jtj = out.lin.jtj;
+  result.points = points.size();
   return result;
 }
 

@@ -34,6 +34,14 @@ struct PoseFitResult {
   double initial_measure = 0.0;  // M at `initial` (the first linearisation's cost)
   int iterations = 0;
   FitTermination termination = FitTermination::kInvalidInput;
+  // J^T J of eq. 2.58 at the result, for the increment [dt (world, mm), w (part frame, rad)],
+  // and the number of points: covariance() is the pose's covariance from them.
+  Eigen::Matrix<double, 6, 6> jtj = Eigen::Matrix<double, 6, 6>::Zero();
+  std::size_t points = 0;
+  // s^2 (J^T J)^+ with s^2 = sum r^2 / (n - 6), the residual variance. A symmetric part's free
+  // directions (a cylinder's spin) move none of its surface and get variance 0. Zero when the fit
+  // did not run.
+  Eigen::Matrix<double, 6, 6> covariance() const;
   bool ok() const {
     return termination != FitTermination::kTooFewPoints &&
            termination != FitTermination::kInvalidInput;

@@ -48,6 +48,34 @@ std::string describe(const ObjectDetectResult& r) {
   return out;
 }
 
+std::string label(const StripeGeometry& g) {
+  return std::to_string(g.triangulation_deg) + " deg, side " + std::to_string(g.side) + ": ";
+}
+
+// The detection is the scene part `truth` (the thesis's criterion; a sphere's axis is free).
+void expect_true_positive(const ObjectDetectResult& r, const sim::ScenePart& truth, bool axis,
+                          const std::string& at) {
+  ASSERT_TRUE(r.found()) << at << describe(r);
+  EXPECT_TRUE(test::true_positive(r.instances[0].parts[0].T_world_part, truth, axis))
+      << at << describe(r);
+}
+
+// A scan of the look-alike `p` alone (seed, noise) does not give the model.
+void expect_not_found_alone(const sim::ScenePart& p, const ObjectModel& model,
+                            const StripeGeometry& g, std::uint64_t seed, double noise_mm,
+                            const std::string& at) {
+  const ObjectDetectResult r = detect(scan({p}, {}, model, g, seed, noise_mm), seed);
+  EXPECT_FALSE(r.found()) << at << describe(r);
+}
+
+// A scan of the model's part `truth` beside the look-alike `other` at 0.5 mm noise gives truth.
+void expect_found_beside(const sim::ScenePart& truth, const sim::ScenePart& other,
+                         const ObjectModel& model, const StripeGeometry& g, std::uint64_t seed,
+                         bool axis) {
+  const sim::VariedScene s = scan({truth, other}, {0}, model, g, seed, 0.5);
+  expect_true_positive(detect(s, seed), s.parts[0], axis, label(g));
+}
+
 // The fig. 5.18 box (25 x 25 x 50) lying on a long side, its axis oblique to the sweep, beside a
 // ball: a patch of its top face fits the box standing through the table (its long axis along the
 // face normal) as well as lying on it, and those starts used to win every trial.
@@ -63,10 +91,7 @@ TEST(ObjectResting, FindsABoxLyingOnItsSide) {
         scan({{"box", test::box_model(), lying},
               part("ball", {30, 30, 30, 1, 1, 0, 0}, {-70, 80, 30}, Eigen::Vector3d::UnitZ())},
              {0}, test::single("box", test::box_model()), g, 21);
-    const ObjectDetectResult r = detect(s, 21);
-    ASSERT_TRUE(r.found()) << g.triangulation_deg << " deg, side " << g.side << ": " << describe(r);
-    EXPECT_TRUE(test::true_positive(r.instances[0].parts[0].T_world_part, s.parts[0]))
-        << g.triangulation_deg << " deg, side " << g.side << ": " << describe(r);
+    expect_true_positive(detect(s, 21), s.parts[0], true, label(g));
   }
 }
 
@@ -76,20 +101,64 @@ TEST(ObjectResting, FindsABoxLyingOnItsSide) {
 TEST(ObjectResting, ATallerBoxStandingIsNotTakenForTheBox) {
   const Superquadric taller{25, 25, 52.5, 0.1, 0.1, 0, 0};
   for (const StripeGeometry& g : kStripeGeometries) {
-    const sim::VariedScene alone =
-        scan({part("taller box", taller, {0, 0, 52.5}, Eigen::Vector3d::UnitZ())}, {},
-             test::single("box", test::box_model()), g, 22, 0.5);
-    const ObjectDetectResult r = detect(alone, 22);
-    EXPECT_FALSE(r.found()) << g.triangulation_deg << " deg, side " << g.side << ": "
-                            << describe(r);
-    const sim::VariedScene both =
-        scan({part("box", test::box_model(), {-60, 70, 50}, Eigen::Vector3d::UnitZ()),
-              part("taller box", taller, {40, -40, 52.5}, Eigen::Vector3d::UnitZ())},
-             {0}, test::single("box", test::box_model()), g, 23, 0.5);
-    const ObjectDetectResult b = detect(both, 23);
-    ASSERT_TRUE(b.found()) << g.triangulation_deg << " deg, side " << g.side << ": " << describe(b);
-    EXPECT_TRUE(test::true_positive(b.instances[0].parts[0].T_world_part, both.parts[0]))
-        << g.triangulation_deg << " deg, side " << g.side << ": " << describe(b);
+    expect_not_found_alone(part("taller box", taller, {0, 0, 52.5}, Eigen::Vector3d::UnitZ()),
+                           test::single("box", test::box_model()), g, 22, 0.5, label(g));
+    expect_found_beside(part("box", test::box_model(), {-60, 70, 50}, Eigen::Vector3d::UnitZ()),
+                        part("taller box", taller, {40, -40, 52.5}, Eigen::Vector3d::UnitZ()),
+                        test::single("box", test::box_model()), g, 23, true);
+  }
+}
+
+// Look-alikes a little shorter than the model, standing, at 0.5 mm noise: a box 4 % smaller all
+// over and a ball 4.4 % flatter (varied tuning scenes had both). The model fits their tops and
+// sides as well as the noise allows and their size evidence from one view is weak; the model then
+// reaches 4 mm through the table, inside the table margin, while its points place its lowest
+// point to a few hundredths of a millimetre (the pose covariance): it is not resting there.
+TEST(ObjectResting, AShorterBoxOrAFlatterBallIsNotTakenForTheModel) {
+  const Superquadric shorter{24, 24, 48, 0.1, 0.1, 0, 0};
+  const Superquadric flatter{50, 50, 47.8, 1, 1, 0, 0};
+  for (const StripeGeometry& g : kStripeGeometries) {
+    expect_not_found_alone(part("shorter box", shorter, {10, -20, 48}, Eigen::Vector3d::UnitZ()),
+                           test::single("box", test::box_model()), g, 24, 0.5, label(g));
+    expect_not_found_alone(
+        part("flatter ball", flatter, {-10, 20, 47.8}, Eigen::Vector3d::UnitZ()),
+        test::single("sphere", test::sphere_model()), g, 25, 0.5, label(g));
+  }
+}
+
+// The true sphere beside the flatter ball is still found: the sink check holds a part to what
+// its own points say, not to a fixed millimetre.
+TEST(ObjectResting, FindsTheSphereBesideAFlatterBall) {
+  const Superquadric flatter{50, 50, 47.8, 1, 1, 0, 0};
+  for (const StripeGeometry& g : kStripeGeometries) {
+    expect_found_beside(
+        part("sphere", test::sphere_model(), {-65, 60, 50}, Eigen::Vector3d::UnitZ()),
+        part("flatter ball", flatter, {55, -55, 47.8}, Eigen::Vector3d::UnitZ()),
+        test::single("sphere", test::sphere_model()), g, 26, false);
+  }
+}
+
+// Lying along the sweep, a box's or a can's caps face along it and show no points: where the part
+// ends is told only by where its side wall stops. A box and a can 10-12 % shorter (varied scenes
+// without the target had both) fitted by the model leave it reaching 5-6 mm past their far end,
+// too few of its 200 coverage samples to count; the dense rings by each end see no surface there.
+// The true box and can lying the same way are found.
+TEST(ObjectResting, AShorterBoxOrCanLyingAlongTheSweepIsNotTakenForTheModel) {
+  const Eigen::Vector3d along = Eigen::Vector3d::UnitY();  // the sweep's direction
+  const struct {
+    const char* name;
+    Superquadric model, shorter;
+  } cases[] = {{"box", test::box_model(), {25, 25, 44.2, 0.1, 0.1, 0, 0}},
+               {"cylinder", test::cylinder_model(), {30, 30, 45.2, 0.1, 1.0, 0, 0}}};
+  for (const StripeGeometry& g : kStripeGeometries) {
+    for (const auto& c : cases) {
+      const std::string at = std::string(c.name) + ", " + label(g);
+      expect_not_found_alone(part("shorter", c.shorter, {10, -20, c.shorter.a1}, along),
+                             test::single(c.name, c.model), g, 27, 0.3, at);
+      const sim::VariedScene real = scan({part(c.name, c.model, {10, -20, c.model.a1}, along)},
+                                         {0}, test::single(c.name, c.model), g, 28, 0.3);
+      expect_true_positive(detect(real, 28), real.parts[0], true, at);
+    }
   }
 }
 
