@@ -1,8 +1,9 @@
 // Fifty clients at once, each its own DDS participant, send 1,000 requests to a rangefitd process
 // on the simulated cell (time_scale 0): bore scans, bad requests and, as a queue of 4 meets 150
 // requests in flight, "busy" answers. Mid-run the daemon gets a SIGHUP with a valid configuration
-// (queue capacity 6) while requests keep coming: every client has sent 7 requests when the signal
-// goes and sends its 15th only once the daemon has confirmed the reload over $NOTIFY_SOCKET.
+// (queue capacity 6) while requests keep coming: the signal goes once 350 requests are out, in
+// the thick of the run (a scan running, the queue full), and no client sends its last request
+// before the daemon has confirmed the reload over $NOTIFY_SOCKET.
 // Each client counts the answers to its own ids: every id must get exactly one, of its kind.
 // (The new queue takes over between scans, so how many "busy" answers name it varies with the
 // scans' timing: printed, not checked; dds_delivery_test checks the swap itself.)
@@ -13,7 +14,6 @@
 #include <chrono>
 #include <cstdio>
 #include <future>
-#include <latch>
 #include <map>
 #include <string>
 #include <thread>
@@ -32,9 +32,9 @@ using std::chrono::seconds;
 
 constexpr int kClients = 50;
 constexpr std::size_t kPerClient = 20;
-constexpr std::size_t kWindow = 3;              // each client's requests in flight
-constexpr std::size_t kSentAtSighup = 7;        // every client has sent this many when SIGHUP goes
-constexpr std::size_t kHeldUntilReloaded = 14;  // request index no client sends before "reloaded"
+constexpr std::size_t kWindow = 3;                          // each client's requests in flight
+constexpr std::size_t kSentAtSighup = 350;                  // requests out, of all clients
+constexpr std::size_t kHeldUntilReloaded = kPerClient - 1;  // no client sends it before "reloaded"
 constexpr std::size_t kCapacityAfterReload = 6;
 
 // What one client saw.
@@ -45,18 +45,13 @@ struct Tally {
   std::vector<std::string> wrong;  // an answer of the wrong kind, or a failed send
 };
 
-// The points in the run every client passes.
+// What the clients share with the thread that signals the daemon.
 struct Gates {
-  std::latch sent_enough{kClients};  // each client counts down once (also when it gives up)
+  std::atomic<std::size_t> sent{0};  // by all clients
   std::shared_future<void> reloaded;
 };
 
 void run_client(int c, std::uint32_t domain, Gates& gates, Tally& t) {
-  bool counted_down = false;
-  auto count_down = [&] {
-    if (!counted_down) gates.sent_enough.count_down();
-    counted_down = true;
-  };
   DdsClient client(domain);
   t.discovered = client.wait_for_daemon(seconds(60));
   const auto give_up = Clock::now() + seconds(120);  // a bound for a broken daemon, not a goal
@@ -88,11 +83,11 @@ void run_client(int c, std::uint32_t domain, Gates& gates, Tally& t) {
       index[request.id] = i;
       if (!client.send(request, false)) t.wrong.push_back(request.id + ": send failed");
       ++open;
-      if (++next == kSentAtSighup) count_down();
+      ++next;
+      ++gates.sent;
     }
     client.poll(milliseconds(100), callbacks);
   }
-  count_down();
 }
 
 TEST(ManyClients, FiftyClientsGetEachOfTheirThousandAnswersAcrossASighupReload) {
@@ -112,14 +107,14 @@ TEST(ManyClients, FiftyClientsGetEachOfTheirThousandAnswersAcrossASighupReload) 
     });
   }
   // This thread plays systemd: it reads every notification (a full socket would block the
-  // daemon's sd_notify), sends the SIGHUP once every client has requests out and releases the
-  // clients when the daemon answers it.
+  // daemon's sd_notify), sends the SIGHUP once 350 requests are out and releases the clients'
+  // last requests when the daemon answers it.
   bool signalled = false, released = false;
   std::string reload_answer;
   const auto give_up = Clock::now() + seconds(180);
   while (finished.load() < kClients && Clock::now() < give_up) {
     const std::string message = notify.next(milliseconds(50));
-    if (!signalled && gates.sent_enough.try_wait()) {
+    if (!signalled && gates.sent.load() >= kSentAtSighup) {
       daemon.write_config(kCapacityAfterReload);
       daemon.signal(SIGHUP);
       signalled = true;
