@@ -107,7 +107,9 @@ PointCloud from_msg(const sensor_msgs_msg_dds__PointCloud2_& msg) {
         std::memcpy(&v[k], bytes, 8);
       }
     }
-    if (v.allFinite()) cloud.points.push_back(v / kMetresPerMm);
+    // Checked in mm: FLOAT64 metres near the double's limit are finite, x 1000 they are not.
+    const Eigen::Vector3d mm = v / kMetresPerMm;
+    if (mm.allFinite()) cloud.points.push_back(mm);
   }
   return cloud;
 }

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cstring>
 #include <vector>
 
 namespace rangefit::daemon {
@@ -31,6 +33,32 @@ TEST(CloudMsgGuard, AHostileCloudDecodesToAnEmptyCloudInsteadOfThrowing) {
   EXPECT_NO_THROW(hostile = cloud_from_wire(msg));
   EXPECT_TRUE(hostile.points.empty());
   EXPECT_EQ(hostile.frame_id, "world");
+}
+
+// FLOAT64 metres near the double's limit are finite on the wire but not in mm (x 1000): such a
+// point is dropped like a NaN one, so a decoded cloud holds finite points only (the input the
+// dds_messages fuzzer found).
+TEST(CloudMsgGuard, APointFiniteInMetresButNotInMillimetresIsDropped) {
+  const double points[2][3] = {{1e308, 0.0, 0.0}, {0.5, -0.25, 2.0}};  // metres
+  std::vector<std::uint8_t> data(sizeof points);
+  std::memcpy(data.data(), points, sizeof points);
+  char x[] = "x", y[] = "y", z[] = "z";
+  sensor_msgs_msg_dds__PointField_ fields[3] = {{x, 0, 8, 1}, {y, 8, 8, 1}, {z, 16, 8, 1}};
+  char frame[] = "world";
+  sensor_msgs_msg_dds__PointCloud2_ msg{};
+  msg.header.frame_id = frame;
+  msg.height = 1;
+  msg.width = 2;
+  msg.fields = {3, 3, fields, false};
+  msg.is_bigendian = std::endian::native == std::endian::big;
+  msg.point_step = 24;
+  msg.row_step = 48;
+  msg.data = {48, 48, data.data(), false};
+  const PointCloud cloud = cloud_from_wire(msg);
+  ASSERT_EQ(cloud.points.size(), 1u);
+  EXPECT_TRUE(cloud.points[0].allFinite());
+  EXPECT_NEAR(cloud.points[0].x(), 500.0, 1e-9);  // mm
+  EXPECT_NEAR(cloud.points[0].z(), 2000.0, 1e-9);
 }
 
 }  // namespace

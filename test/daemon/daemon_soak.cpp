@@ -20,8 +20,7 @@
 #include <vector>
 
 #include "daemon/dds/client.hpp"
-#include "test/daemon/daemon_process.hpp"
-#include "test/daemon/dds_test_env.hpp"
+#include "test/daemon/sim_daemon.hpp"
 
 #ifdef RANGEFITD_PATH
 namespace rangefit::daemon {
@@ -29,8 +28,6 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 using std::chrono::seconds;
-
-const std::string kScenes = std::string(RANGEFIT_SOURCE_DIR) + "/data/scenes/";
 
 // What /proc says about the daemon at one moment.
 struct ProcSample {
@@ -68,49 +65,7 @@ ProcSample sample(pid_t pid, std::size_t answered, Clock::time_point start) {
           std::chrono::duration<double>(Clock::now() - start).count()};
 }
 
-// The kinds of request the soak sends, in a fixed rotation.
-enum class Kind { kBore, kBadRadius, kUnknownSensor, kUnknownModel };
-Kind kind_of(std::size_t i) {
-  switch (i % 10) {
-    case 6:
-      return Kind::kBadRadius;
-    case 7:
-      return Kind::kUnknownSensor;
-    case 8:
-      return Kind::kUnknownModel;
-    default:
-      return Kind::kBore;
-  }
-}
-
-// A short sweep over the 12 mm bore under the CSS (bore_plate.toml): a few thousand points, a
-// found bore with its pose, cloud, spool entry and (when on) picture, in a few milliseconds.
-ScanRequest make_request(std::size_t i) {
-  ScanRequest r;
-  r.id = "soak-" + std::to_string(i);
-  r.kind = DetectKind::kBore;
-  r.bore.position_mm = Eigen::Vector3d(0.8, -0.5, 285.8);
-  r.bore.axis = Eigen::Vector3d::UnitZ();
-  r.bore.radius_mm = 6.0;
-  r.sweep_start = -0.05;  // rad
-  r.sweep_end = 0.05;
-  r.sweep_speed = 0.1;  // rad/s
-  switch (kind_of(i)) {
-    case Kind::kBore:
-      break;
-    case Kind::kBadRadius:
-      r.bore.radius_mm = 0.0;
-      break;
-    case Kind::kUnknownSensor:
-      r.sensor = "no_such_sensor";
-      break;
-    case Kind::kUnknownModel:
-      r.kind = DetectKind::kObject;
-      r.model = "no_such_model";
-      break;
-  }
-  return r;
-}
+ScanRequest make_request(std::size_t i) { return test::load_request(i, "soak-"); }
 
 struct SoakOptions {
   std::size_t requests = 300;
@@ -124,46 +79,9 @@ struct SoakReport {
   std::vector<std::string> unanswered, wrong;  // ids; wrong: an answer of the wrong kind
 };
 
-class SoakDaemon {
- public:
-  // pictures: spool a picture.png per scan (cairo), as the default configuration does.
-  SoakDaemon(const std::string& name, bool pictures) {
-    dir_ = fs::temp_directory_path() / ("rangefit_soak_" + name);
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    domain_ = test::dds_test_domain();  // also points CYCLONEDDS_URI at the loopback config
-    // A small spool, so old entries are pruned all along as on a cell that runs for weeks.
-    std::ofstream(dir_ / "rangefitd.toml")
-        << "[service]\nbore_sensor = \"css\"\nqueue_capacity = 4\nlog_level = \"warn\"\n"
-        << "[dds]\ndomain_id = " << domain_ << "\ndiagnostics_period_s = 0.5\n"
-        << "[spool]\ndirectory = \"" << (dir_ / "spool").string()
-        << "\"\nmax_bytes = 8000000\npictures = " << (pictures ? "true" : "false") << "\n"
-        << "[sim]\ntime_scale = 0\nseed = 3\n"
-        << "[[devices]]\nname = \"css\"\nkind = \"css\"\ndriver = \"sim\"\nscene = \"" << kScenes
-        << "bore_plate.toml\"\n";
-    process_.emplace(RANGEFITD_PATH, dir_ / "rangefitd.toml");
-  }
-  ~SoakDaemon() {
-    if (process_) process_->stop();
-    fs::remove_all(dir_);
-  }
-  std::uint32_t domain() const { return domain_; }
-  pid_t pid() const { return process_->pid(); }
-  int stop() {
-    const int status = process_->stop();
-    process_.reset();
-    return status;
-  }
-
- private:
-  fs::path dir_;
-  std::uint32_t domain_ = 0;
-  std::optional<test::DaemonProcess> process_;
-};
-
 // Sends opt.requests requests, at most opt.window unanswered at a time, and takes a sample each
 // time opt.sample_every more are answered (with none in flight, so the daemon is idle).
-SoakReport soak(SoakDaemon& daemon, DdsClient& client, const SoakOptions& opt) {
+SoakReport soak(test::SimDaemon& daemon, DdsClient& client, const SoakOptions& opt) {
   SoakReport report;
   const auto start = Clock::now();
   report.samples.push_back(sample(daemon.pid(), 0, start));
@@ -184,7 +102,7 @@ SoakReport soak(SoakDaemon& daemon, DdsClient& client, const SoakOptions& opt) {
     report.bad += bad ? 1 : 0;
     report.found += r->found ? 1 : 0;
     report.not_found += !r->found && !busy && !bad ? 1 : 0;
-    const bool expected = kind_of(i) == Kind::kBore ? !bad : bad;
+    const bool expected = test::is_bad(i) ? bad : !bad;
     if (!expected) report.wrong.push_back(req.id + ": " + r->reason);
   };
   for (std::size_t i = 0; i < opt.requests; ++i) {
@@ -231,7 +149,7 @@ void expect_all_answered_and_flat(const SoakReport& report, std::size_t requests
 }
 
 TEST(DaemonSoak, ShortRunAnswersEveryRequestWithDescriptorsAndThreadsFlat) {
-  SoakDaemon daemon("short", false);
+  test::SimDaemon daemon("soak_short", {});
   std::optional<DdsClient> client(std::in_place, daemon.domain());
   ASSERT_TRUE(client->wait_for_daemon(seconds(30)));
   SoakOptions opt;
@@ -243,7 +161,7 @@ TEST(DaemonSoak, ShortRunAnswersEveryRequestWithDescriptorsAndThreadsFlat) {
 
 // The figures the note reports: RSS at 2,000 and 10,000 answered requests, fds, threads, time.
 TEST(DaemonSoak, TenThousandRequestsStayFlatAfterWarmUp) {
-  SoakDaemon daemon("long", true);
+  test::SimDaemon daemon("soak_long", {.pictures = true});
   std::optional<DdsClient> client(std::in_place, daemon.domain());
   ASSERT_TRUE(client->wait_for_daemon(seconds(30)));
   SoakOptions opt;

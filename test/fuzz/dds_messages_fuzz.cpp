@@ -1,0 +1,159 @@
+// DDS messages as they arrive off the wire: a serialized sample (the 4-byte encapsulation header
+// and its XCDR body, either byte order) goes through Cyclone's own receive path for its type, as
+// ddsi_serdata_default.c does it (the body is checked and byte-swapped by
+// dds_stream_normalize_data, dropped when that fails, then read into the sample by
+// dds_stream_read), and on to the project's decoding: the PointCloud2, Detection and
+// DiagnosticArray that `rangefit watch` and `rangefit request` read, and the DetectRequest that
+// rangefitd reads and validates against its configuration before logging or queueing it. The
+// first input byte picks the message; the rest is the serialized sample. The seeds
+// (corpus/dds_messages) are such samples of CloudOut, RequestOut, DetectionOut and DiagnosticsOut
+// as Cyclone's dds_stream_write serializes them, in both byte orders, and the PointCloud2 of
+// width = height = 2^31 that once made `rangefit watch` exit.
+#include <dds/dds.h>
+#include <dds/ddsi/ddsi_cdrstream.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <span>
+#include <vector>
+
+#include "daemon/dds/cloud_msg_guard.hpp"
+#include "daemon/dds/messages.hpp"
+#include "daemon/service/config.hpp"
+#include "daemon/service/log_escape.hpp"
+#include "daemon/service/request_validation.hpp"
+
+namespace {
+
+using namespace rangefit::daemon;
+
+// One received sample of type T (the idlc struct of desc), or none when Cyclone would drop the
+// bytes. Owns what dds_stream_read allocated (strings, sequences).
+template <class T>
+class WireSample {
+ public:
+  WireSample(const dds_topic_descriptor_t& desc, std::span<const std::uint8_t> bytes)
+      : desc_(desc) {
+    // The encapsulation (XTypes 7.6.3.1.2): 0x00 0x00/0x01 plain CDR (XCDR1) big/little endian,
+    // 0x00 0x10/0x11 plain CDR2; the low two bits of the options count the padding at the end.
+    if (bytes.size() < 4 || bytes.size() > (1u << 24) || bytes[0] != 0) return;
+    const std::uint8_t id = bytes[1];
+    if (id != 0x00 && id != 0x01 && id != 0x10 && id != 0x11) return;
+    const std::uint32_t xcdr = (id & 0x10) != 0 ? 2 : 1;
+    const bool little = (id & 1) != 0;
+    const bool swap = little != (std::endian::native == std::endian::little);
+    const std::uint32_t pad = bytes[3] & 3u;
+    if (bytes.size() - 4 < pad) return;
+    body_.assign(bytes.begin() + 4, bytes.end() - pad);
+    body_.resize(body_.size() + 8);  // never a null buffer, even for an empty body
+    const auto size = static_cast<std::uint32_t>(body_.size() - 8);
+    std::uint32_t off = 0;
+    if (dds_stream_normalize_data(reinterpret_cast<char*>(body_.data()), &off, size, swap, xcdr,
+                                  desc_.m_ops) == nullptr) {
+      return;
+    }
+    dds_istream_t in;
+    dds_istream_init(&in, size, body_.data(), xcdr);
+    dds_stream_read(&in, reinterpret_cast<char*>(&sample_), desc_.m_ops);
+    dds_istream_fini(&in);
+    read_ = true;
+  }
+  ~WireSample() {
+    if (read_) dds_sample_free(&sample_, &desc_, DDS_FREE_CONTENTS);
+  }
+  WireSample(const WireSample&) = delete;
+  WireSample& operator=(const WireSample&) = delete;
+  const T* get() const { return read_ ? &sample_ : nullptr; }
+
+ private:
+  const dds_topic_descriptor_t& desc_;
+  std::vector<std::uint8_t> body_;
+  T sample_{};
+  bool read_ = false;
+};
+
+// What rangefitd runs with: a CSS (bore, angular sweep), a stripe (objects, linear sweep) and
+// one object model, so a request can pass validation for every kind.
+const DaemonConfig& daemon_config() {
+  static const DaemonConfig config = [] {
+    const ConfigResult r = parse_config(
+        "[service]\nbore_sensor = \"css\"\nobject_sensor = \"stripe\"\n"
+        "[[devices]]\nname = \"css\"\nkind = \"css\"\ndriver = \"replay\"\n"
+        "replay_file = \"scan.ply\"\n"
+        "[[devices]]\nname = \"stripe\"\nkind = \"stripe\"\ndriver = \"replay\"\n"
+        "replay_file = \"scan.ply\"\n"
+        "[[objects]]\nname = \"box\"\nscale_mm = [40.0, 30.0, 20.0]\nshape = [0.1, 0.1]\n",
+        "dds_messages_fuzz");
+    if (!r.config) std::abort();  // the harness's own configuration must be valid
+    return *r.config;
+  }();
+  return config;
+}
+
+void cloud(std::span<const std::uint8_t> bytes) {
+  const WireSample<sensor_msgs_msg_dds__PointCloud2_> msg(sensor_msgs_msg_dds__PointCloud2__desc,
+                                                          bytes);
+  if (msg.get() == nullptr) return;
+  const rangefit::PointCloud c = cloud_from_wire(*msg.get());
+  // Never more points than the message claims, and only finite ones.
+  if (c.size() > std::uint64_t{msg.get()->width} * msg.get()->height) std::abort();
+  for (const auto& p : c.points) {
+    if (!p.allFinite()) std::abort();
+  }
+}
+
+void detection(std::span<const std::uint8_t> bytes) {
+  const WireSample<rangefit_msgs_msg_dds__Detection_> msg(rangefit_msgs_msg_dds__Detection__desc,
+                                                          bytes);
+  if (msg.get() != nullptr) (void)from_msg(*msg.get());
+}
+
+void diagnostics(std::span<const std::uint8_t> bytes) {
+  const WireSample<diagnostic_msgs_msg_dds__DiagnosticArray_> msg(
+      diagnostic_msgs_msg_dds__DiagnosticArray__desc, bytes);
+  if (msg.get() != nullptr) (void)from_msg(*msg.get());
+}
+
+void request(std::span<const std::uint8_t> bytes) {
+  const WireSample<rangefit_msgs_msg_dds__DetectRequest_> msg(
+      rangefit_msgs_msg_dds__DetectRequest__desc, bytes);
+  if (msg.get() == nullptr) return;
+  std::string error;
+  ScanRequest req = from_msg(*msg.get(), &error);
+  if (error.empty()) error = validate_request(req, daemon_config());
+  // A rejected request's id is logged escaped: printable ASCII only may reach the log.
+  for (const char ch : log_escape(req.id)) {
+    if (static_cast<unsigned char>(ch) < 0x20 || static_cast<unsigned char>(ch) >= 0x7f) {
+      std::abort();
+    }
+  }
+  if (!error.empty()) return;
+  // What validation lets through is bounded: a printable id and a sweep within one turn / 10 m.
+  if (!check_name(req.id, "request_id", kMaxRequestIdLength).empty()) std::abort();
+  if (!(std::abs(req.sweep_start) <= 1e4 && std::abs(req.sweep_end) <= 1e4)) std::abort();
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size == 0) return 0;
+  const std::span<const std::uint8_t> sample(data + 1, size - 1);
+  switch (data[0] % 4) {
+    case 0:
+      cloud(sample);
+      break;
+    case 1:
+      request(sample);
+      break;
+    case 2:
+      detection(sample);
+      break;
+    default:
+      diagnostics(sample);
+      break;
+  }
+  return 0;
+}
