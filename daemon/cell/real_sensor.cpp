@@ -2,6 +2,8 @@
 
 #include <string_view>
 
+#include "daemon/cell/driver_configs.hpp"
+#include "drivers/can/ranger_source.hpp"
 #include "drivers/can/socketcan_transport.hpp"
 
 namespace rangefit::daemon {
@@ -49,6 +51,14 @@ std::unique_ptr<drivers::can::CanTransport> socketcan(const std::string& interfa
   c.filter = std::move(filter);
   c.fd = fd;
   return std::make_unique<drivers::can::SocketCanTransport>(c);
+}
+
+std::unique_ptr<hal::Device> ranger_driver(const DeviceConfig& d,
+                                           const hal::StripeRanger& geometry) {
+  const drivers::can::RangerConfig c = ranger_config(d, geometry);
+  // The ranger's profiles are CAN FD frames: a classic socket never sees them.
+  return std::make_unique<drivers::can::RangerCanSource>(
+      c, socketcan(d.transport, drivers::can::ranger_filter(c), true));
 }
 
 }  // namespace rangefit::daemon

@@ -15,6 +15,7 @@
 #include "daemon/service/pipeline.hpp"
 #include "drivers/can/transport.hpp"
 #include "hal/source.hpp"
+#include "hal/stripe_geometry.hpp"
 
 namespace rangefit::daemon {
 
@@ -63,10 +64,14 @@ void drop_stale(hal::SampleSource<A>& a, hal::SampleSource<B>& b) {
 
 ScanOutcome failed(const DeviceConfig& device, const std::string& why);
 
-// A SocketCAN transport on `interface` receiving what `filter` passes; fd: CAN FD frames too (the
-// ranger's profiles are FD frames, a classic socket never sees them).
+// A SocketCAN transport on `interface` receiving what `filter` passes; fd: CAN FD frames too.
 std::unique_ptr<drivers::can::CanTransport> socketcan(const std::string& interface,
                                                       drivers::can::FrameFilter filter,
                                                       bool fd = false);
+
+// The laser-stripe ranger of a stripe or pan_tilt device (node can_node on its CAN FD
+// interface), its columns on the fan rays of `geometry`: the cell's or the head's ranger.
+std::unique_ptr<hal::Device> ranger_driver(const DeviceConfig& d,
+                                           const hal::StripeRanger& geometry);
 
 }  // namespace rangefit::daemon

@@ -15,12 +15,9 @@ namespace {
 
 std::vector<NamedDriver> make_drivers(const DeviceConfig& d, const CellConfig& config,
                                       hal::Clock&) {
-  const auto ranger = ranger_config(d, config.fusion.pan_tilt.geometry.ranger);
   const auto head = pan_tilt_config(d);
   std::vector<NamedDriver> out;
-  out.push_back(
-      {d.name, std::make_unique<drivers::can::RangerCanSource>(
-                   ranger, socketcan(d.transport, drivers::can::ranger_filter(ranger), true))});
+  out.push_back({d.name, ranger_driver(d, config.fusion.pan_tilt.geometry.ranger)});
   out.push_back({pan_tilt_angles_name(d.name),
                  std::make_unique<drivers::can::Cia402PanTiltSource>(
                      head, socketcan(d.transport, drivers::can::cia402_filter(

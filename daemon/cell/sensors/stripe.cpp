@@ -1,7 +1,6 @@
 // kind = "stripe", driver = "real": the laser-stripe ranger on CAN (drivers::can::RangerCanSource,
 // node can_node, default 0x20, on a SocketCAN interface). It sweeps with its `motion` axis (or
 // the only axis) exactly like the simulated cell: to the sweep's start, then through it.
-#include "daemon/cell/driver_configs.hpp"
 #include "daemon/cell/real_devices.hpp"
 #include "daemon/cell/real_sensor.hpp"
 #include "fusion/profile_assembler.hpp"
@@ -11,10 +10,8 @@ namespace {
 
 std::vector<NamedDriver> make_drivers(const DeviceConfig& d, const CellConfig& config,
                                       hal::Clock&) {
-  const auto c = ranger_config(d, config.fusion.stripe_cell.geometry.ranger);
   std::vector<NamedDriver> out;
-  out.push_back({d.name, std::make_unique<drivers::can::RangerCanSource>(
-                             c, socketcan(d.transport, drivers::can::ranger_filter(c), true))});
+  out.push_back({d.name, ranger_driver(d, config.fusion.stripe_cell.geometry.ranger)});
   return out;
 }
 
