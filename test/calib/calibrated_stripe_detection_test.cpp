@@ -7,7 +7,6 @@
 // exactly known one, the uncalibrated one clearly worse or not at all.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -15,37 +14,22 @@
 #include "calib_fixtures.hpp"
 #include "daemon/service/scan_sensor.hpp"
 #include "detect/object_detector.hpp"
-#include "fusion/profile_assembler.hpp"
 #include "io/object_model_file.hpp"
 #include "sim/scene_loader.hpp"
-#include "sim/sim_clock.hpp"
-#include "sim/stripe_cell.hpp"
+#include "test/sim/sim_test_scans.hpp"
 
 namespace rangefit::test {
 namespace {
 
-// The axis samples and profiles of one full sweep by the true cell.
-struct RawStripeScan {
-  std::vector<hal::AxisSample> axis;
-  std::vector<hal::RangerProfile> profiles;
-};
-
-RawStripeScan scan_table_top(const sim::Scene& scene, const hal::StripeCellGeometry& truth) {
-  using std::chrono::milliseconds;
+sim::testing::RawStripeSweep scan_table_top(const sim::Scene& scene,
+                                            const hal::StripeCellGeometry& truth) {
   const sim::RayCaster caster(scene);
-  sim::SimClock clock;
   sim::StripeCellOptions o;
   o.geometry = truth;
   o.seed = 5;
   o.ranger_faults.range_noise_sigma_mm = 0.06;
-  sim::StripeCell cell(scene, caster, o, clock);
-  RawStripeScan raw;
-  EXPECT_TRUE(cell.axis().enable() && cell.axis().start() && cell.ranger().start() &&
-              cell.axis().move_to(truth.axis_travel_mm, truth.max_speed_mm_s));
-  while (!cell.axis().motion_complete()) {
-    cell.axis().read(raw.axis, milliseconds(100));
-    cell.ranger().read(raw.profiles, milliseconds(0));
-  }
+  sim::testing::RawStripeSweep raw = sim::testing::record_stripe_sweep(scene, caster, o);
+  EXPECT_TRUE(raw.started);
   return raw;
 }
 
@@ -56,16 +40,10 @@ struct ConeError {
 
 // Fuses the raw sweep with the `believed` geometry and detects the cone with that geometry's
 // sensor model. Errors against the true cone in the cell's world frame.
-ConeError detect_with(const RawStripeScan& raw, const hal::StripeCellGeometry& believed,
-                      const ObjectModel& cone, const Eigen::Vector3d& centre,
-                      const Eigen::Vector3d& axis) {
-  fusion::StripeCellFusionConfig config;
-  config.geometry = believed;
-  fusion::StripeCellAssembler assembler(config);
-  assembler.begin_scan();
-  for (const auto& s : raw.axis) assembler.add_axis(s);
-  for (const auto& p : raw.profiles) assembler.add_profile(p);
-  const fusion::FusedScan scan = assembler.finish();
+ConeError detect_with(const sim::testing::RawStripeSweep& raw,
+                      const hal::StripeCellGeometry& believed, const ObjectModel& cone,
+                      const Eigen::Vector3d& centre, const Eigen::Vector3d& axis) {
+  const fusion::FusedScan scan = sim::testing::fuse_stripe_sweep(raw, believed);
   ConeError e;
   if (scan.bad) return e;
   ObjectDetectOptions o;
@@ -96,7 +74,7 @@ TEST_P(CalibratedStripeCell, FindsTheConeAsAccuratelyAsTheExactlyKnownCell) {
   const auto cal = calibrate(stripe_cube_sweep(truth, {.sigma_mm = 0.06, .seed = 7}), configured);
   ASSERT_TRUE(cal.ok) << cal.reason;
 
-  const RawStripeScan raw = scan_table_top(scene, truth);
+  const sim::testing::RawStripeSweep raw = scan_table_top(scene, truth);
   const ConeError exact = detect_with(raw, truth, cone, centre, axis);
   const ConeError calibrated = detect_with(raw, cal.geometry, cone, centre, axis);
   const ConeError uncalibrated = detect_with(raw, configured, cone, centre, axis);

@@ -12,37 +12,54 @@
 
 namespace rangefit::sim::testing {
 
-// One full sweep of the stripe cell's linear axis through the laser plane, fused; bad with a
-// reason when a simulated device refuses to start.
-inline fusion::FusedScan stripe_cell_scan(const Scene& scene, const RayCaster& caster,
-                                          std::uint64_t seed) {
+// The axis samples and profiles of one full sweep of the stripe cell's linear axis through the
+// laser plane (the true cell: o.geometry); started false when a simulated device refused to start.
+struct RawStripeSweep {
+  bool started = false;
+  std::vector<hal::AxisSample> axis;
+  std::vector<hal::RangerProfile> profiles;
+};
+
+inline RawStripeSweep record_stripe_sweep(const Scene& scene, const RayCaster& caster,
+                                          const StripeCellOptions& o) {
   using std::chrono::milliseconds;
   SimClock clock;
-  StripeCellOptions o;
-  o.seed = seed;
   StripeCell cell(scene, caster, o, clock);
-  fusion::StripeCellFusionConfig config;
-  config.geometry = o.geometry;
-  fusion::StripeCellAssembler assembler(config);
-  assembler.begin_scan();
-  if (!cell.axis().enable() || !cell.axis().start() || !cell.ranger().start() ||
-      !cell.axis().move_to(o.geometry.axis_travel_mm, o.geometry.max_speed_mm_s)) {
+  RawStripeSweep raw;
+  raw.started = cell.axis().enable() && cell.axis().start() && cell.ranger().start() &&
+                cell.axis().move_to(o.geometry.axis_travel_mm, o.geometry.max_speed_mm_s);
+  while (raw.started && !cell.axis().motion_complete()) {
+    cell.axis().read(raw.axis, milliseconds(100));
+    cell.ranger().read(raw.profiles, milliseconds(0));
+  }
+  return raw;
+}
+
+// That sweep fused as a cell that believes its geometry is `believed`.
+inline fusion::FusedScan fuse_stripe_sweep(const RawStripeSweep& raw,
+                                           const hal::StripeCellGeometry& believed) {
+  if (!raw.started) {
     fusion::FusedScan failed;
     failed.bad = true;
     failed.reason = "simulated stripe cell did not start";
     return failed;
   }
-  std::vector<hal::RangerProfile> profiles;
-  std::vector<hal::AxisSample> axis;
-  while (!cell.axis().motion_complete()) {
-    profiles.clear();
-    axis.clear();
-    cell.axis().read(axis, milliseconds(100));
-    cell.ranger().read(profiles, milliseconds(0));
-    for (const auto& s : axis) assembler.add_axis(s);
-    for (const auto& p : profiles) assembler.add_profile(p);
-  }
+  fusion::StripeCellFusionConfig config;
+  config.geometry = believed;
+  fusion::StripeCellAssembler assembler(config);
+  assembler.begin_scan();
+  for (const auto& s : raw.axis) assembler.add_axis(s);
+  for (const auto& p : raw.profiles) assembler.add_profile(p);
   return assembler.finish();
+}
+
+// One full sweep of the stripe cell with its default geometry, fused; bad with a reason when a
+// simulated device refuses to start.
+inline fusion::FusedScan stripe_cell_scan(const Scene& scene, const RayCaster& caster,
+                                          std::uint64_t seed) {
+  StripeCellOptions o;
+  o.seed = seed;
+  return fuse_stripe_sweep(record_stripe_sweep(scene, caster, o), o.geometry);
 }
 
 // Every third point of a fused scan, moved into the scene frame by T.
