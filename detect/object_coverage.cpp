@@ -32,6 +32,10 @@ enum class Sample {
   kSeenThrough,  // measurable, and the laser went on past it to measured surface
 };
 
+bool measurable(Sample v) {
+  return v == Sample::kCovered || v == Sample::kUncovered || v == Sample::kSeenThrough;
+}
+
 // Where the ray from the part centre along d leaves the part (G = 1), part frame. G is
 // homogeneous of degree 2 without taper (G(s d) = s^2 G(d)); with taper it is still increasing
 // along the ray (the tapered part is star-shaped about its centre), so bisection finishes it.
@@ -179,7 +183,7 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
     return Sample::kUncovered;
   };
   const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
-  int facing = 0, measurable = 0, covered = 0, seen_through = 0;
+  int facing = 0, measured = 0, covered = 0, seen_through = 0;
   for (int i = 0; i < o.samples; ++i) {
     // Fibonacci sphere, stretched by the sizes: even in the normalised coordinates.
     const double z = 1.0 - (2.0 * i + 1.0) / o.samples;
@@ -188,7 +192,7 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
     const Eigen::Vector3d d(sq.a1 * r * std::cos(phi), sq.a2 * r * std::sin(phi), sq.a3 * z);
     const Sample v = judge(surface_along(m, d));
     facing += v != Sample::kNoEvidence;
-    measurable += v == Sample::kCovered || v == Sample::kUncovered || v == Sample::kSeenThrough;
+    measured += measurable(v);
     covered += v == Sample::kCovered;
     seen_through += v == Sample::kSeenThrough;
   }
@@ -210,8 +214,7 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
         for (int j = 0; j < o.end_ring_samples; ++j) {
           const double omega = 2.0 * std::numbers::pi * (j + 0.5) / o.end_ring_samples;
           const Sample v = judge(surface_point(sq, eta, omega));
-          const bool seen = v == Sample::kCovered || v == Sample::kUncovered ||
-                            v == Sample::kSeenThrough;
+          const bool seen = measurable(v);
           if (k < o.end_rings) {
             outer += seen;
             open += seen && v != Sample::kCovered;
@@ -244,10 +247,10 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
   c.max_size_mm = sq.max_size();
   c.facing = facing;
   c.open_end = open_end;
-  if (measurable == 0) return c;
-  c.measurable = measurable;
-  c.covered = static_cast<double>(covered) / measurable;
-  c.seen_through = static_cast<double>(seen_through) / measurable;
+  if (measured == 0) return c;
+  c.measurable = measured;
+  c.covered = static_cast<double>(covered) / measured;
+  c.seen_through = static_cast<double>(seen_through) / measured;
   return c;
 }
 
