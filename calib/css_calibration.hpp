@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "detect/levenberg_marquardt.hpp"
+#include "detect/common/levenberg_marquardt.hpp"
 #include "hal/css_geometry.hpp"
 
 namespace rangefit::calib {

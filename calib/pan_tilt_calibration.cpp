@@ -6,8 +6,8 @@
 #include <cmath>
 #include <limits>
 
-#include "detect/normals.hpp"
-#include "detect/point_cloud.hpp"
+#include "detect/common/normals.hpp"
+#include "detect/common/point_cloud.hpp"
 
 namespace rangefit::calib {
 namespace {

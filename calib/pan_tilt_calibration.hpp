@@ -23,7 +23,7 @@
 
 #include "calib/calibration_cube.hpp"
 #include "calib/plane_extraction.hpp"
-#include "detect/levenberg_marquardt.hpp"
+#include "detect/common/levenberg_marquardt.hpp"
 #include "hal/pan_tilt_geometry.hpp"
 #include "hal/samples.hpp"
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <random>
 
-#include "detect/pca.hpp"
+#include "detect/common/pca.hpp"
 
 namespace rangefit::calib {
 namespace {

@@ -6,8 +6,8 @@
 #include <numbers>
 
 #include "calib/stripe_refine.hpp"
-#include "detect/normals.hpp"
-#include "detect/point_cloud.hpp"
+#include "detect/common/normals.hpp"
+#include "detect/common/point_cloud.hpp"
 
 namespace rangefit::calib {
 namespace {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "calib/calibration_cube.hpp"
-#include "detect/levenberg_marquardt.hpp"
+#include "detect/common/levenberg_marquardt.hpp"
 
 namespace rangefit::calib {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "detect/point_cloud.hpp"
+#include "detect/common/point_cloud.hpp"
 #include "hal/time.hpp"
 
 namespace rangefit::fusion {

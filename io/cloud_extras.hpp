@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "detect/point_cloud.hpp"
+#include "detect/common/point_cloud.hpp"
 #include "io/cloud_precision.hpp"
 
 namespace rangefit::io::detail {

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "detect/point_cloud.hpp"
+#include "detect/common/point_cloud.hpp"
 #include "io/cloud_precision.hpp"
 #include "io/cloud_read_report.hpp"
 #include "io/io_error.hpp"

@@ -19,7 +19,7 @@
 #include <string>
 #include <string_view>
 
-#include "detect/object_model.hpp"
+#include "detect/object/object_model.hpp"
 
 namespace rangefit::io {
 

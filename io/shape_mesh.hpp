@@ -5,7 +5,7 @@
 
 #include <Eigen/Core>
 
-#include "detect/superquadric.hpp"
+#include "detect/object/superquadric.hpp"
 #include "io/triangle_mesh.hpp"
 
 namespace rangefit::io {

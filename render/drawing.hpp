@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "detect/bore_result.hpp"
-#include "detect/object_detector.hpp"
-#include "detect/object_model.hpp"
-#include "detect/superquadric.hpp"
+#include "detect/bore/bore_result.hpp"
+#include "detect/object/object_detector.hpp"
+#include "detect/object/object_model.hpp"
+#include "detect/object/superquadric.hpp"
 
 namespace rangefit::render {
 

@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "detect/bore_surface.hpp"
+#include "detect/bore/bore_surface.hpp"
 #include "render/drawing.hpp"
 
 namespace rangefit::render {

@@ -9,7 +9,7 @@
 #include <optional>
 #include <string>
 
-#include "detect/point_cloud.hpp"
+#include "detect/common/point_cloud.hpp"
 #include "render/drawing.hpp"
 #include "render/image.hpp"
 #include "render/view.hpp"

@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 #include <optional>
 
-#include "detect/sensor_view.hpp"
+#include "detect/common/sensor_view.hpp"
 
 namespace rangefit::render {
 

@@ -18,7 +18,7 @@
 #include <variant>
 #include <vector>
 
-#include "detect/superquadric.hpp"
+#include "detect/object/superquadric.hpp"
 #include "io/triangle_mesh.hpp"
 
 namespace rangefit::sim {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "detect/object_model.hpp"
+#include "detect/object/object_model.hpp"
 #include "sim/superquadric_raycast.hpp"
 
 namespace rangefit::sim {

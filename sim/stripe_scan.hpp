@@ -12,7 +12,7 @@
 #include <optional>
 #include <vector>
 
-#include "detect/point_cloud.hpp"
+#include "detect/common/point_cloud.hpp"
 #include "sim/stripe_sweep.hpp"
 #include "sim/superquadric_raycast.hpp"
 

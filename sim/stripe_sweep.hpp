@@ -10,7 +10,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "detect/sensor_view.hpp"
+#include "detect/common/sensor_view.hpp"
 
 namespace rangefit::sim {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "detect/point_cloud.hpp"
-#include "detect/superquadric.hpp"
+#include "detect/common/point_cloud.hpp"
+#include "detect/object/superquadric.hpp"
 
 namespace rangefit::sim {
 

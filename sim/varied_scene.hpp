@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "detect/object_model.hpp"
-#include "detect/point_cloud.hpp"
-#include "detect/sensor_view.hpp"
+#include "detect/object/object_model.hpp"
+#include "detect/common/point_cloud.hpp"
+#include "detect/common/sensor_view.hpp"
 #include "sim/stripe_sweep.hpp"
 #include "sim/superquadric_raycast.hpp"
 

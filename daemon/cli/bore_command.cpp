@@ -18,7 +18,7 @@
 #include "daemon/cli/png_output.hpp"
 #include "daemon/service/bore_shape_json.hpp"
 #include "daemon/service/detection_adapter.hpp"
-#include "detect/bore_detector.hpp"
+#include "detect/bore/bore_detector.hpp"
 #include "io/cloud_io.hpp"
 
 namespace rangefit::cli {

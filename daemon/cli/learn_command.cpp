@@ -15,7 +15,7 @@
 #include "daemon/cli/cli_options.hpp"
 #include "daemon/cli/commands.hpp"
 #include "daemon/service/learn_request.hpp"
-#include "detect/model_learning.hpp"
+#include "detect/learn/model_learning.hpp"
 #include "io/cloud_io.hpp"
 #include "io/object_model_file.hpp"
 

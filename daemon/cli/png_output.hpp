@@ -4,10 +4,10 @@
 
 #include <string>
 
-#include "detect/bore_options.hpp"
-#include "detect/bore_result.hpp"
-#include "detect/object_detector.hpp"
-#include "detect/point_cloud.hpp"
+#include "detect/bore/bore_options.hpp"
+#include "detect/bore/bore_result.hpp"
+#include "detect/object/object_detector.hpp"
+#include "detect/common/point_cloud.hpp"
 
 namespace rangefit::cli {
 

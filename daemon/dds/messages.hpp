@@ -10,7 +10,7 @@
 
 #include "daemon/service/lifecycle.hpp"
 #include "daemon/service/scan_types.hpp"
-#include "detect/point_cloud.hpp"
+#include "detect/common/point_cloud.hpp"
 #include "diagnostic_msgs.h"
 #include "rangefit_msgs.h"
 #include "sensor_msgs.h"

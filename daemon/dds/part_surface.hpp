@@ -11,7 +11,7 @@
 #include <string>
 
 #include "daemon/service/scan_types.hpp"
-#include "detect/object_model.hpp"
+#include "detect/object/object_model.hpp"
 #include "io/triangle_mesh.hpp"
 
 namespace rangefit::daemon {

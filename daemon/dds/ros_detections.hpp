@@ -13,7 +13,7 @@
 
 #include "daemon/dds/part_surface.hpp"
 #include "daemon/service/scan_types.hpp"
-#include "detect/object_model.hpp"
+#include "detect/object/object_model.hpp"
 #include "vision_msgs.h"
 #include "visualization_msgs.h"
 

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "detect/bore_result.hpp"
+#include "detect/bore/bore_result.hpp"
 
 namespace rangefit::daemon {
 

@@ -19,7 +19,7 @@
 #include "calib/stripe_calibration.hpp"
 #include "daemon/service/scan_sensor.hpp"
 #include "daemon/service/scan_types.hpp"
-#include "detect/point_cloud.hpp"
+#include "detect/common/point_cloud.hpp"
 #include "hal/samples.hpp"
 
 namespace rangefit::daemon {

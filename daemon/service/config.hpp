@@ -15,7 +15,7 @@
 
 #include "daemon/service/frames_config.hpp"
 #include "daemon/service/sensor_kind.hpp"
-#include "detect/object_model.hpp"
+#include "detect/object/object_model.hpp"
 #include "fusion/config.hpp"
 
 namespace rangefit::daemon {

@@ -9,8 +9,8 @@
 
 #include "daemon/service/scan_sensor.hpp"
 #include "daemon/service/scan_types.hpp"
-#include "detect/bore_options.hpp"
-#include "detect/object_detector.hpp"
+#include "detect/bore/bore_options.hpp"
+#include "detect/object/object_detector.hpp"
 
 namespace rangefit::daemon {
 

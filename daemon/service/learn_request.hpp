@@ -11,8 +11,8 @@
 #include <string>
 
 #include "daemon/service/scan_types.hpp"
-#include "detect/model_learning.hpp"
-#include "detect/point_cloud.hpp"
+#include "detect/learn/model_learning.hpp"
+#include "detect/common/point_cloud.hpp"
 
 namespace rangefit::daemon {
 

@@ -7,8 +7,8 @@
 #include "daemon/service/calibrate_request.hpp"
 #include "daemon/service/detection_adapter.hpp"
 #include "daemon/service/learn_request.hpp"
-#include "detect/bore_detector.hpp"
-#include "detect/object_detector.hpp"
+#include "detect/bore/bore_detector.hpp"
+#include "detect/object/object_detector.hpp"
 
 namespace rangefit::daemon {
 

@@ -20,7 +20,7 @@
 #include "daemon/service/scan_sensor.hpp"
 #include "daemon/service/scan_types.hpp"
 #include "daemon/service/spool.hpp"
-#include "detect/point_cloud.hpp"
+#include "detect/common/point_cloud.hpp"
 #include "hal/device.hpp"
 #include "hal/time.hpp"
 

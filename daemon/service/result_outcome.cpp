@@ -1,9 +1,9 @@
 #include "daemon/service/result_outcome.hpp"
 
 #include "daemon/service/calibrate_request.hpp"
-#include "detect/bore_result.hpp"
-#include "detect/model_learning.hpp"
-#include "detect/object_detector.hpp"
+#include "detect/bore/bore_result.hpp"
+#include "detect/learn/model_learning.hpp"
+#include "detect/object/object_detector.hpp"
 
 namespace rangefit::daemon {
 

@@ -9,8 +9,8 @@
 #include <string>
 
 #include "daemon/service/scan_types.hpp"
-#include "detect/object_model.hpp"
-#include "detect/point_cloud.hpp"
+#include "detect/object/object_model.hpp"
+#include "detect/common/point_cloud.hpp"
 #include "render/drawing.hpp"
 
 namespace rangefit::daemon {

@@ -7,7 +7,7 @@
 #include <Eigen/Geometry>
 #include <optional>
 
-#include "detect/sensor_view.hpp"
+#include "detect/common/sensor_view.hpp"
 #include "hal/css_geometry.hpp"
 #include "hal/pan_tilt_geometry.hpp"
 #include "hal/stripe_geometry.hpp"

@@ -15,7 +15,7 @@
 
 #include "daemon/service/config.hpp"
 #include "daemon/service/scan_types.hpp"
-#include "detect/point_cloud.hpp"
+#include "detect/common/point_cloud.hpp"
 
 namespace rangefit::daemon {
 

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "detect/bore_detector.hpp"
+#include "detect/bore/bore_detector.hpp"
 #include "test/support/synthetic_bore.hpp"
 
 namespace rangefit::bench {

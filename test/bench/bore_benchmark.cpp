@@ -35,11 +35,11 @@
 #include <ctime>
 #include <numbers>
 
-#include "detect/bore_detector.hpp"
-#include "detect/cylinder_lsf.hpp"
-#include "detect/cylinder_rsf.hpp"
-#include "detect/kdtree.hpp"
-#include "detect/normals.hpp"
+#include "detect/bore/bore_detector.hpp"
+#include "detect/bore/cylinder_lsf.hpp"
+#include "detect/bore/cylinder_rsf.hpp"
+#include "detect/common/kdtree.hpp"
+#include "detect/common/normals.hpp"
 #include "test/bench/bore_bench_scan.hpp"
 #include "test/bench/bore_shape_bench.hpp"
 #include "test/bench/bore_thesis_tables.hpp"

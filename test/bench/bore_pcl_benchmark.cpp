@@ -16,8 +16,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "detect/bore_detector.hpp"
-#include "detect/normals.hpp"
+#include "detect/bore/bore_detector.hpp"
+#include "detect/common/normals.hpp"
 #include "test/bench/bore_bench_scan.hpp"
 #include "test/support/synthetic_bore.hpp"
 

@@ -13,8 +13,8 @@
 #include <span>
 #include <vector>
 
-#include "detect/bore_detector.hpp"
-#include "detect/cylinder_rsf.hpp"
+#include "detect/bore/bore_detector.hpp"
+#include "detect/bore/cylinder_rsf.hpp"
 #include "test/support/synthetic_bore.hpp"
 
 namespace rangefit::bench {

@@ -9,9 +9,9 @@
 #include <numeric>
 #include <vector>
 
-#include "detect/learn_segment.hpp"
-#include "detect/model_learning.hpp"
-#include "detect/pose_fit.hpp"
+#include "detect/learn/learn_segment.hpp"
+#include "detect/learn/model_learning.hpp"
+#include "detect/object/pose_fit.hpp"
 #include "sim/scene_objects.hpp"
 #include "test/detect/learn_scenes.hpp"
 

@@ -32,8 +32,8 @@
 #include <string>
 #include <vector>
 
-#include "detect/object_detector.hpp"
-#include "detect/pose_fit.hpp"
+#include "detect/object/object_detector.hpp"
+#include "detect/object/pose_fit.hpp"
 #include "test/bench/object_varied_report.hpp"
 #include "test/detect/object_scenes.hpp"
 

@@ -11,7 +11,7 @@
 #include <cstdio>
 
 #include "css_fixtures.hpp"
-#include "detect/bore_detector.hpp"
+#include "detect/bore/bore_detector.hpp"
 #include "fusion/css_assembler.hpp"
 #include "sim/css_simulator.hpp"
 #include "sim/sim_clock.hpp"

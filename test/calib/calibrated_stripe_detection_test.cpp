@@ -13,7 +13,7 @@
 
 #include "calib_fixtures.hpp"
 #include "daemon/service/scan_sensor.hpp"
-#include "detect/object_detector.hpp"
+#include "detect/object/object_detector.hpp"
 #include "io/object_model_file.hpp"
 #include "sim/scene_loader.hpp"
 #include "test/sim/sim_test_scans.hpp"

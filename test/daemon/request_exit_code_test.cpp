@@ -12,8 +12,8 @@
 
 #include "daemon/rangefitd/service.hpp"
 #include "daemon/service/result_outcome.hpp"
-#include "detect/bore_result.hpp"
-#include "detect/object_detector.hpp"
+#include "detect/bore/bore_result.hpp"
+#include "detect/object/object_detector.hpp"
 #include "io/ply.hpp"
 #include "test/daemon/replay_service.hpp"
 #include "test/support/synthetic_bore.hpp"

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "daemon/dds/dds_service.hpp"
-#include "detect/superquadric.hpp"
+#include "detect/object/superquadric.hpp"
 #include "test/daemon/dds_test_env.hpp"
 #include "test/daemon/xcdr_reader.hpp"
 

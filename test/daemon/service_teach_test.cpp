@@ -15,7 +15,7 @@
 #include <sstream>
 
 #include "daemon/rangefitd/service.hpp"
-#include "detect/model_learning.hpp"
+#include "detect/learn/model_learning.hpp"
 #include "io/object_model_file.hpp"
 #include "sim/scene_objects.hpp"
 #include "test/daemon/replay_service.hpp"

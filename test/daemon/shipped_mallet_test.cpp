@@ -6,7 +6,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "detect/object_detector.hpp"
+#include "detect/object/object_detector.hpp"
 #include "io/object_model_file.hpp"
 #include "sim/scene_loader.hpp"
 

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <numbers>
 
-#include "detect/bore_detector.hpp"
+#include "detect/bore/bore_detector.hpp"
 #include "test/detect/bore_test_cases.hpp"
 
 namespace rangefit {

@@ -1,4 +1,4 @@
-#include "detect/bore_detector.hpp"
+#include "detect/bore/bore_detector.hpp"
 
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <numbers>
 
-#include "detect/bore_detector.hpp"
+#include "detect/bore/bore_detector.hpp"
 #include "io/cloud_io.hpp"
 #include "test/support/synthetic_bore.hpp"
 

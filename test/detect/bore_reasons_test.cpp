@@ -2,7 +2,7 @@
 
 #include <limits>
 
-#include "detect/bore_detector.hpp"
+#include "detect/bore/bore_detector.hpp"
 #include "test/support/synthetic_bore.hpp"
 
 namespace rangefit {

@@ -9,7 +9,7 @@
 #include <numbers>
 #include <vector>
 
-#include "detect/bore_detector.hpp"
+#include "detect/bore/bore_detector.hpp"
 #include "test/detect/bore_test_cases.hpp"
 
 namespace rangefit {

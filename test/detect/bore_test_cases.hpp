@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "detect/bore_detector.hpp"
+#include "detect/bore/bore_detector.hpp"
 #include "test/support/synthetic_bore.hpp"
 
 namespace rangefit::test {

@@ -6,8 +6,8 @@
 #include <random>
 #include <vector>
 
-#include "detect/cylinder_lsf.hpp"
-#include "detect/cylinder_rsf.hpp"
+#include "detect/bore/cylinder_lsf.hpp"
+#include "detect/bore/cylinder_rsf.hpp"
 
 namespace rangefit {
 namespace {

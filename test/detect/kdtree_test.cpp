@@ -1,4 +1,4 @@
-#include "detect/kdtree.hpp"
+#include "detect/common/kdtree.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "detect/lanes.hpp"
+#include "detect/common/lanes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,8 +6,8 @@
 #include <random>
 #include <vector>
 
-#include "detect/superquadric.hpp"
-#include "detect/superquadric_eval.hpp"
+#include "detect/object/superquadric.hpp"
+#include "detect/object/superquadric_eval.hpp"
 #include "test/detect/object_scenes.hpp"
 
 namespace rangefit {

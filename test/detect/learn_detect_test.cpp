@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <string>
 
-#include "detect/model_learning.hpp"
-#include "detect/object_detector.hpp"
+#include "detect/learn/model_learning.hpp"
+#include "detect/object/object_detector.hpp"
 #include "io/object_model_file.hpp"
 #include "sim/varied_scene.hpp"
 #include "test/detect/learn_scenes.hpp"

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "detect/point_cloud.hpp"
+#include "detect/common/point_cloud.hpp"
 #include "sim/scene_objects.hpp"
 #include "sim/superquadric_raycast.hpp"
 

@@ -1,4 +1,4 @@
-#include "detect/normals.hpp"
+#include "detect/common/normals.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "detect/normals_grid.hpp"
+#include "detect/common/normals_grid.hpp"
 #include "test/support/synthetic_bore.hpp"
 
 namespace rangefit {

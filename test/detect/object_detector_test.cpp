@@ -1,4 +1,4 @@
-#include "detect/object_detector.hpp"
+#include "detect/object/object_detector.hpp"
 
 #include <gtest/gtest.h>
 

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "detect/object_continuation.hpp"
-#include "detect/object_detector.hpp"
+#include "detect/object/object_continuation.hpp"
+#include "detect/object/object_detector.hpp"
 #include "sim/scene_objects.hpp"
 #include "sim/varied_scene.hpp"
 #include "test/detect/object_scenes.hpp"

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "detect/object_model.hpp"
+#include "detect/object/object_model.hpp"
 #include "sim/scene_objects.hpp"
 #include "sim/superquadric_raycast.hpp"
 

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "detect/object_detector.hpp"
+#include "detect/object/object_detector.hpp"
 #include "sim/varied_scene.hpp"
 #include "test/detect/object_scenes.hpp"
 

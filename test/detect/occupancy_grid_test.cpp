@@ -1,12 +1,12 @@
-#include "detect/occupancy_grid.hpp"
+#include "detect/common/occupancy_grid.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
-#include "detect/kdtree.hpp"
-#include "detect/object_coverage.hpp"
+#include "detect/common/kdtree.hpp"
+#include "detect/object/object_coverage.hpp"
 #include "test/detect/object_scenes.hpp"
 
 namespace rangefit {

@@ -1,4 +1,4 @@
-#include "detect/pca.hpp"
+#include "detect/common/pca.hpp"
 
 #include <gtest/gtest.h>
 

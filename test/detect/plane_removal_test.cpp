@@ -1,4 +1,4 @@
-#include "detect/plane_removal.hpp"
+#include "detect/common/plane_removal.hpp"
 
 #include <gtest/gtest.h>
 

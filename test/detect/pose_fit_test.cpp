@@ -1,4 +1,4 @@
-#include "detect/pose_fit.hpp"
+#include "detect/object/pose_fit.hpp"
 
 #include <gtest/gtest.h>
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "detect/object_detector.hpp"
+#include "detect/object/object_detector.hpp"
 #include "sim/varied_scene.hpp"
 
 namespace rangefit::test {

@@ -1,4 +1,4 @@
-#include "detect/superquadric.hpp"
+#include "detect/object/superquadric.hpp"
 
 #include <gtest/gtest.h>
 

@@ -5,7 +5,7 @@
 #include <cstring>
 #include <string>
 
-#include "detect/point_cloud.hpp"
+#include "detect/common/point_cloud.hpp"
 
 namespace rangefit::io::test {
 

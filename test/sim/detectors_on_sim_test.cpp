@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "detect/bore_detector.hpp"
-#include "detect/object_detector.hpp"
+#include "detect/bore/bore_detector.hpp"
+#include "detect/object/object_detector.hpp"
 #include "fusion/css_assembler.hpp"
 #include "fusion/profile_assembler.hpp"
 #include "sim/css_simulator.hpp"

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "detect/superquadric.hpp"
+#include "detect/object/superquadric.hpp"
 #include "sim/css_simulator.hpp"
 #include "sim/scene_loader.hpp"
 #include "sim/sim_clock.hpp"

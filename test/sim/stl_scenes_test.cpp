@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <string>
 
-#include "detect/bore_detector.hpp"
-#include "detect/object_detector.hpp"
+#include "detect/bore/bore_detector.hpp"
+#include "detect/object/object_detector.hpp"
 #include "fusion/css_assembler.hpp"
 #include "fusion/profile_assembler.hpp"
 #include "sim/analytic_shapes.hpp"

@@ -11,7 +11,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 
-#include "detect/point_cloud.hpp"
+#include "detect/common/point_cloud.hpp"
 
 namespace rangefit::sim {
 

@@ -8,7 +8,7 @@
 #include "daemon/service/config.hpp"
 #include "daemon/rangefitd/http_backend.hpp"
 #include "daemon/rangefitd/result_board.hpp"
-#include "detect/bore_result.hpp"
+#include "detect/bore/bore_result.hpp"
 
 namespace rangefit::daemon {
 namespace {

@@ -1,0 +1,16 @@
+#pragma once
+// Bore-hole detection from a range scan and a CAD prior (thesis chapter 4): region of interest,
+// PCA normals, Gaussian-image segmentation, sequential cylinder fit with the notch re-fit,
+// entrance as the axis meeting the plane, and an optional least-squares refinement.
+// Pure: no I/O, no exceptions for bad data (see BoreResult::reason); deterministic per seed.
+
+#include "detect/bore/bore_options.hpp"
+#include "detect/bore/bore_result.hpp"
+#include "detect/common/point_cloud.hpp"
+
+namespace rangefit {
+
+BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior,
+                       const BoreOptions& options = {});
+
+}  // namespace rangefit

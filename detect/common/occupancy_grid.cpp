@@ -1,0 +1,92 @@
+#include "detect/common/occupancy_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace rangefit {
+
+OccupancyGrid::OccupancyGrid(std::span<const Eigen::Vector3d> points, double cell_mm,
+                             std::size_t max_cells) {
+  if (!(cell_mm > 0.0) || !std::isfinite(cell_mm)) return;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
+  Eigen::Vector3d hi = -lo;
+  std::size_t n = 0;
+  for (const Eigen::Vector3d& p : points) {
+    if (!p.allFinite()) continue;
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+    ++n;
+  }
+  if (n == 0) return;
+  const Eigen::Vector3d extent = hi - lo;
+  if (!extent.allFinite()) return;
+  // Grow the cell until the grid fits the budget (one bit per cell).
+  double cell = cell_mm;
+  const auto cells = [&](double c) {
+    return (std::floor(extent.x() / c) + 1.0) * (std::floor(extent.y() / c) + 1.0) *
+           (std::floor(extent.z() / c) + 1.0);
+  };
+  while (cells(cell) > static_cast<double>(max_cells)) cell *= 1.25;
+  cell_ = cell;
+  lo_ = lo;
+  nx_ = static_cast<std::size_t>(std::floor(extent.x() / cell)) + 1;
+  ny_ = static_cast<std::size_t>(std::floor(extent.y() / cell)) + 1;
+  nz_ = static_cast<std::size_t>(std::floor(extent.z() / cell)) + 1;
+  bits_.assign((nx_ * ny_ * nz_ + 63) / 64, 0);
+  for (const Eigen::Vector3d& p : points) {
+    if (!p.allFinite()) continue;
+    const Eigen::Vector3d q = (p - lo_) / cell_;
+    const std::size_t i = std::min(nx_ - 1, static_cast<std::size_t>(q.x()));
+    const std::size_t j = std::min(ny_ - 1, static_cast<std::size_t>(q.y()));
+    const std::size_t k = std::min(nz_ - 1, static_cast<std::size_t>(q.z()));
+    const std::size_t b = index(static_cast<std::int64_t>(i), static_cast<std::int64_t>(j),
+                                static_cast<std::int64_t>(k));
+    bits_[b >> 6] |= std::uint64_t{1} << (b & 63);
+  }
+}
+
+bool OccupancyGrid::occupied(const Eigen::Vector3d& p) const {
+  if (bits_.empty() || !p.allFinite()) return false;
+  const Eigen::Vector3d q = (p - lo_) / cell_;
+  if (q.x() < 0.0 || q.y() < 0.0 || q.z() < 0.0) return false;
+  const double fx = std::floor(q.x()), fy = std::floor(q.y()), fz = std::floor(q.z());
+  if (fx >= static_cast<double>(nx_) || fy >= static_cast<double>(ny_) ||
+      fz >= static_cast<double>(nz_)) {
+    return false;
+  }
+  const std::size_t b = index(static_cast<std::int64_t>(fx), static_cast<std::int64_t>(fy),
+                              static_cast<std::int64_t>(fz));
+  return (bits_[b >> 6] >> (b & 63)) & 1u;
+}
+
+double OccupancyGrid::first_hit(const Eigen::Vector3d& from, const Eigen::Vector3d& to,
+                                double skip_mm) const {
+  if (bits_.empty()) return -1.0;
+  const Eigen::Vector3d d = to - from;
+  const double length = d.norm();
+  if (!(length > 0.0) || !std::isfinite(length)) return -1.0;
+  const Eigen::Vector3d u = d / length;
+  // Clip the walk to the box: outside it there are no points.
+  const Eigen::Vector3d hi =
+      lo_ + cell_ * Eigen::Vector3d(static_cast<double>(nx_), static_cast<double>(ny_),
+                                    static_cast<double>(nz_));
+  double t0 = std::max(0.0, skip_mm), t1 = length;
+  for (int a = 0; a < 3; ++a) {
+    if (std::abs(u[a]) < 1e-12) {
+      if (from[a] < lo_[a] || from[a] > hi[a]) return -1.0;
+      continue;
+    }
+    double ta = (lo_[a] - from[a]) / u[a], tb = (hi[a] - from[a]) / u[a];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  const double step = 0.5 * cell_;
+  for (double t = t0; t <= t1; t += step) {
+    if (occupied(from + t * u)) return t;
+  }
+  return -1.0;
+}
+
+}  // namespace rangefit

@@ -1,0 +1,228 @@
+#include "detect/learn/learn_fit.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <vector>
+
+#include "detect/common/levenberg_marquardt.hpp"
+
+namespace rangefit {
+namespace {
+
+constexpr int kN = 13;  // [dt (world, mm), w (part frame, rad), log a1..a3, eps1, eps2, kx, ky]
+constexpr int kModel = 7;
+using Vector = Eigen::Matrix<double, kN, 1>;
+using Lin = LmLinearisation<kN>;
+
+// Model parameter j of the part (log sizes, then eps and taper).
+double get(const Superquadric& s, int j) {
+  switch (j) {
+    case 0:
+      return std::log(s.a1);
+    case 1:
+      return std::log(s.a2);
+    case 2:
+      return std::log(s.a3);
+    case 3:
+      return s.eps1;
+    case 4:
+      return s.eps2;
+    case 5:
+      return s.kx;
+    default:
+      return s.ky;
+  }
+}
+
+Superquadric clamp(Superquadric s, const ShapeFitOptions& o) {
+  s.a1 = std::max(s.a1, o.min_size_mm);
+  s.a2 = std::max(s.a2, o.min_size_mm);
+  s.a3 = std::max(s.a3, o.min_size_mm);
+  s.eps1 = std::clamp(s.eps1, o.min_eps, o.max_eps);
+  s.eps2 = std::clamp(s.eps2, o.min_eps, o.max_eps);
+  s.kx = std::clamp(s.kx, -o.max_taper, o.max_taper);
+  s.ky = std::clamp(s.ky, -o.max_taper, o.max_taper);
+  return s;
+}
+
+Superquadric set(Superquadric s, int j, double v, const ShapeFitOptions& o) {
+  switch (j) {
+    case 0:
+      s.a1 = std::exp(v);
+      break;
+    case 1:
+      s.a2 = std::exp(v);
+      break;
+    case 2:
+      s.a3 = std::exp(v);
+      break;
+    case 3:
+      s.eps1 = v;
+      break;
+    case 4:
+      s.eps2 = v;
+      break;
+    case 5:
+      s.kx = v;
+      break;
+    default:
+      s.ky = v;
+      break;
+  }
+  return clamp(s, o);
+}
+
+double volume_factor(const Superquadric& s, const ShapeFitOptions& o) {
+  return std::sqrt(1.0 + o.volume_weight * s.a1 * s.a2 * s.a3 / o.reference_volume);
+}
+
+// The residual of one point from |q| and G(q): the radial distance (mm, positive outside) or
+// the metric F^eps1 - 1.
+double residual(double g, double q_norm, bool radial) {
+  if (!radial) return g - 1.0;
+  constexpr double kTinyG =
+      1e-12;  // the centre itself: inside by about its distance to the surface
+  return q_norm * (1.0 - 1.0 / std::sqrt(std::max(g, kTinyG)));
+}
+
+struct Problem {
+  std::span<const Eigen::Vector3d> points;
+  std::vector<std::uint32_t> all;  // 0..n-1 for SuperquadricMetric::values
+  ShapeFitOptions o;
+  int model_params() const { return o.fit_taper ? kModel : kModel - 2; }
+
+  Lin linearise(const PosedSuperquadric& x) const {
+    const std::size_t n = points.size();
+    const SuperquadricMetric m(x.shape);
+    const double w = volume_factor(x.shape, o);
+    const Eigen::Isometry3d T_part_world = x.T_world_part.inverse();
+    const Eigen::Matrix3d R = x.T_world_part.linear();
+    // Model columns by forward differences: G at every point for each nudged parameter (the
+    // vectorised metric), stepping away from a bound the parameter sits on.
+    std::array<std::vector<double>, kModel> g_nudged;
+    std::array<double, kModel> step{}, w_nudged{};
+    for (int j = 0; j < model_params(); ++j) {
+      const double v = get(x.shape, j);
+      double h = j < 3 ? 1e-5 : 1e-5 * std::max(1.0, std::abs(v));
+      const bool at_top = (j == 3 || j == 4) ? v + h > o.max_eps : (j >= 5 && v + h > o.max_taper);
+      if (at_top) h = -h;
+      const Superquadric s = set(x.shape, j, v + h, o);
+      step[j] = get(s, j) - v;
+      w_nudged[j] = volume_factor(s, o);
+      g_nudged[j].resize(n);
+      SuperquadricMetric(s).values(T_part_world, points, all, g_nudged[j]);
+    }
+    Lin lin;
+    Eigen::Matrix<double, kN, 1> jrow;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Eigen::Vector3d q = T_part_world * points[i];
+      Eigen::Vector3d grad;
+      const double g = m.value_and_gradient(q, grad);
+      const double qn = q.norm();
+      const double r = w * residual(g, qn, o.radial);
+      // dr/dq: grad for the metric; for the radial distance d = |q| - |q| G^-1/2,
+      // dd/dq = (1 - G^-1/2) q / |q| + |q| G^-3/2 grad / 2.
+      Eigen::Vector3d dq = grad;
+      if (o.radial) {
+        const double gs = std::max(g, 1e-12), inv_sqrt = 1.0 / std::sqrt(gs);
+        dq = 0.5 * qn * inv_sqrt / gs * grad;
+        if (qn > 0.0) dq += (1.0 - inv_sqrt) / qn * q;
+      }
+      jrow.head<3>() = -w * (R * dq);
+      jrow.segment<3>(3) = w * dq.cross(q);
+      jrow.tail<kModel>().setZero();
+      for (int j = 0; j < model_params(); ++j) {
+        jrow[6 + j] = step[j] != 0.0
+                          ? (w_nudged[j] * residual(g_nudged[j][i], qn, o.radial) - r) / step[j]
+                          : 0.0;
+      }
+      lin.cost += 0.5 * r * r;
+      lin.jtj.selfadjointView<Eigen::Upper>().rankUpdate(jrow);
+      lin.g += jrow * r;
+    }
+    lin.jtj.triangularView<Eigen::StrictlyLower>() = lin.jtj.transpose();
+    add_support(x, n, lin);
+    return lin;
+  }
+
+  // The end of the part along -z (or +z when z points down) on the support plane.
+  void add_support(const PosedSuperquadric& x, std::size_t n, Lin& lin) const {
+    if (!o.support_plane) return;
+    const Eigen::Vector3d nrm = o.support_plane->head<3>();
+    const Eigen::Matrix3d R = x.T_world_part.linear();
+    const double up = nrm.dot(R.col(2));
+    constexpr double kCosAlong = 0.9986;  // 3 deg
+    if (std::abs(up) < kCosAlong) return;
+    const double s = up > 0.0 ? 1.0 : -1.0, a3 = x.shape.a3;
+    const double k = std::sqrt(o.support_weight * static_cast<double>(n));
+    const double r =
+        k * (nrm.dot(x.T_world_part.translation()) - s * a3 * up - (*o.support_plane)[3]);
+    Eigen::Matrix<double, kN, 1> j = Eigen::Matrix<double, kN, 1>::Zero();
+    j.head<3>() = k * nrm;
+    // z = R e_z, R <- R exp([w]x): d(n . z) / dw = (e_z x R^T n) . w.
+    j.segment<3>(3) = -k * s * a3 * Eigen::Vector3d::UnitZ().cross(R.transpose() * nrm);
+    j[6 + 2] = -k * s * a3 * up;  // d / d log a3
+    lin.cost += 0.5 * r * r;
+    lin.jtj.noalias() += j * j.transpose();
+    lin.g.noalias() += j * r;
+  }
+
+  PosedSuperquadric step(const PosedSuperquadric& x, const Vector& h) const {
+    PosedSuperquadric out = x;
+    out.T_world_part.translation() += h.head<3>();
+    const Eigen::Vector3d w = h.segment<3>(3);
+    const double angle = w.norm();
+    if (angle > 0.0) {
+      out.T_world_part.linear() =
+          x.T_world_part.linear() * Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
+    }
+    for (int j = 0; j < model_params(); ++j) {
+      out.shape = set(out.shape, j, get(x.shape, j) + h[6 + j], o);
+    }
+    return out;
+  }
+};
+
+}  // namespace
+
+ShapeFitResult fit_superquadric(std::span<const Eigen::Vector3d> points,
+                                const PosedSuperquadric& initial, const ShapeFitOptions& options) {
+  ShapeFitResult result;
+  result.part = initial;
+  const bool finite = std::all_of(points.begin(), points.end(),
+                                  [](const Eigen::Vector3d& p) { return p.allFinite(); });
+  if (points.size() < kN || !finite || !initial.shape.valid() ||
+      !initial.T_world_part.matrix().allFinite() || !(options.reference_volume > 0.0)) {
+    return result;
+  }
+  Problem problem{points, std::vector<std::uint32_t>(points.size()), options};
+  std::iota(problem.all.begin(), problem.all.end(), 0u);
+  PosedSuperquadric start = initial;
+  start.shape = clamp(start.shape, options);
+  LmOptions lm;
+  lm.max_iterations = options.max_iterations;
+  lm.gradient_tolerance = 1e-12;
+  lm.step_tolerance = options.step_tolerance;
+  const auto out = levenberg_marquardt<kN>(
+      start, lm, [&](const PosedSuperquadric& x) { return problem.linearise(x); },
+      [&](const PosedSuperquadric& x, const Vector& h) { return problem.step(x, h); },
+      [](const PosedSuperquadric& x) { return x.T_world_part.translation().norm(); });
+  result.part = out.x;
+  result.cost = out.lin.cost;
+  result.iterations = out.iterations;
+  const SuperquadricMetric m(out.x.shape);
+  const Eigen::Isometry3d inv = out.x.T_world_part.inverse();
+  double sum = 0.0;
+  for (const Eigen::Vector3d& p : points) {
+    const double r = m.value(inv * p) - 1.0;
+    sum += r * r;
+  }
+  result.measure = std::sqrt(sum / static_cast<double>(points.size()));
+  result.ok = true;
+  return result;
+}
+
+}  // namespace rangefit

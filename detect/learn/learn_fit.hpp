@@ -1,0 +1,69 @@
+#pragma once
+// The full superquadric fit of model learning (thesis 2.1.3, 2.2): size a1..a3, shape eps1 eps2,
+// taper kx ky and the pose, thirteen parameters, by Levenberg-Marquardt
+// (detect/levenberg_marquardt.hpp, the loop the pose fit runs) on the residuals
+//
+//   r_i = sqrt(1 + lambda a1 a2 a3 / V0) d_i,   d_i = |q_i| (1 - G(q_i)^-1/2)
+//
+// d_i is the radial distance of the point q_i (part frame) from the surface, from the metric
+// G = F^eps1 of eq. 5.1 (thesis 2.2.1: the radial Euclidean distance fits better than the
+// algebraic one). The volume term after Solina and Bajcsy [116] (the note under eq. 5.1) prefers
+// the smaller of the superquadrics that explain the points equally, which keeps a single-view
+// fit from growing into the unseen side. It is 1 + lambda V / V0 rather than Solina's V / V0
+// because with a true distance that factor alone would let a part shrink to nothing (V -> 0
+// drives every residual to 0). V0 is common to all starts, so their costs compare. Sizes move
+// in log steps, shape and taper additively, clamped to their valid ranges; the pose by
+// R <- R exp([w]x) as in the pose fit. The pose columns of the Jacobian are analytic (the
+// metric's gradient), the seven model columns forward differences through the vectorised
+// metric (SuperquadricMetric::values).
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <span>
+
+#include "detect/object/superquadric.hpp"
+
+namespace rangefit {
+
+struct PosedSuperquadric {
+  Superquadric shape;
+  Eigen::Isometry3d T_world_part = Eigen::Isometry3d::Identity();
+};
+
+struct ShapeFitOptions {
+  int max_iterations = 100;
+  double step_tolerance = 1e-6;   // eq. 2.64, relative to the centre's distance from the origin
+  double reference_volume = 1.0;  // V0 of the residual, mm^3 (> 0)
+  double volume_weight = 0.05;    // lambda: r_i x sqrt(1 + lambda a1 a2 a3 / V0); 0: no volume term
+  bool fit_taper = true;          // false: kx, ky stay as given
+  // Residual: the radial distance |q| (1 - G^-1/2) (mm; exact for untapered parts) instead of
+  // F^eps1 - 1. The metric shrinks with the distance of a point from the centre, so from one
+  // view it prefers parts whose centre lies far behind the seen surface (a sphere's cap is fitted
+  // by an elongated egg with a smaller M); the radial distance does not.
+  bool radial = true;
+  double min_eps = 0.1, max_eps = 2.0;
+  double max_taper = 1.0;  // |kx|, |ky| at most this
+  double min_size_mm = 0.5;
+  // The table the part stands on, n . x = offset with unit n towards the part: while the part's
+  // z-axis is within ~3 deg of n, its end -a3 along z (its lowest point, whatever its shape and
+  // taper) is held on the table by one residual weighted like support_weight x the points. A
+  // single view never sees that end, and without it a3, the taper and the centre trade off (a
+  // cone's base floated 0.3 mm above the table and its size was 2 % off).
+  std::optional<Eigen::Vector4d> support_plane;  // (n, offset)
+  double support_weight = 0.1;
+};
+
+struct ShapeFitResult {
+  PosedSuperquadric part;
+  double cost = 0.0;     // 0.5 sum r^2 at the result (comparable between starts)
+  double measure = 0.0;  // M of eq. 5.2 (rms of F^eps1 - 1, no volume factor)
+  int iterations = 0;
+  bool ok = false;  // false: fewer than 13 points or invalid input
+};
+
+// Fits the part to the points (world frame, mm) from `initial`.
+ShapeFitResult fit_superquadric(std::span<const Eigen::Vector3d> points,
+                                const PosedSuperquadric& initial,
+                                const ShapeFitOptions& options = {});
+
+}  // namespace rangefit

@@ -1,0 +1,105 @@
+#include "detect/learn/learn_start.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace rangefit {
+namespace {
+
+// Horizontal extents closer than this ratio count as equal (see the turned starts below).
+constexpr double kSimilarMoments = 1.25;
+
+// Half ranges and centre of the points along the three (unit, orthogonal) columns of `axes`.
+void extents(std::span<const Eigen::Vector3d> points, const Eigen::Matrix3d& axes,
+             Eigen::Vector3d& lo, Eigen::Vector3d& hi) {
+  lo.setConstant(std::numeric_limits<double>::infinity());
+  hi = -lo;
+  for (const Eigen::Vector3d& p : points) {
+    const Eigen::Vector3d u = axes.transpose() * p;
+    lo = lo.cwiseMin(u);
+    hi = hi.cwiseMax(u);
+  }
+}
+
+// The frame `axes` (columns) with z along column zi, right-handed.
+Eigen::Matrix3d z_along(const Eigen::Matrix3d& axes, int zi) {
+  Eigen::Matrix3d R;
+  R.col(2) = axes.col(zi);
+  R.col(0) = axes.col((zi + 1) % 3);
+  R.col(1) = R.col(2).cross(R.col(0));
+  return R;
+}
+
+}  // namespace
+
+std::vector<PosedSuperquadric> learn_starts(std::span<const Eigen::Vector3d> points,
+                                            const std::optional<pca::Plane>& plane,
+                                            std::span<const StartShape> shapes) {
+  std::vector<PosedSuperquadric> out;
+  if (points.size() < 3) return out;
+  const Eigen::Vector3d c = pca::centroid(points);
+  Eigen::Matrix3d axes;
+  Eigen::Vector3d lo, hi;
+  if (plane && plane->valid) {
+    // Normal towards the object; horizontal axes from the moments of the projected points.
+    Eigen::Vector3d n = plane->normal.normalized();
+    if (n.dot(c - plane->point) < 0.0) n = -n;
+    Eigen::Matrix3d cov = pca::covariance(points, c);
+    const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - n * n.transpose();
+    const pca::Eigen3 e = pca::eigen_symmetric(P * cov * P);
+    axes.col(0) = e.vectors.col(2);  // largest horizontal moment
+    axes.col(1) = n.cross(axes.col(0)).normalized();
+    axes.col(2) = n;
+    extents(points, axes, lo, hi);
+    lo.z() = n.dot(plane->point);  // the part reaches down to the plane
+  } else {
+    const pca::Eigen3 e = pca::eigen_symmetric(pca::covariance(points, c));
+    axes = e.vectors;
+    if (axes.determinant() < 0.0) axes.col(0) = -axes.col(0);
+    extents(points, axes, lo, hi);
+  }
+  const bool on_plane = plane && plane->valid;
+  // The starts of one frame; turned: z along the plane normal only, round sections untapered
+  // (from there the fit finds the section's shape and taper as well as from any other).
+  auto add_frame = [&](const Eigen::Matrix3d& frame, Eigen::Vector3d f_lo, Eigen::Vector3d f_hi,
+                       bool turned) {
+    const Eigen::Vector3d centre = frame * (0.5 * (f_lo + f_hi));
+    const Eigen::Vector3d half =
+        (0.5 * (f_hi - f_lo)).cwiseMax(1e-3 * (f_hi - f_lo).maxCoeff()).cwiseMax(0.5);
+    for (int zi = turned ? 2 : 0; zi < 3; ++zi) {
+      const Eigen::Matrix3d R = z_along(frame, zi);
+      const double a[3] = {half[(zi + 1) % 3], half[(zi + 2) % 3], half[zi]};
+      for (const StartShape& s : shapes) {
+        if (s.taper != 0.0 && !(on_plane && zi == 2)) continue;
+        if (turned && (s.taper != 0.0 || s.eps2 != 1.0)) continue;
+        // A tapered part is widest at one end, 1 + |k| times its mid-height size: that end,
+        // not the middle, spans the points.
+        const double w = 1.0 / (1.0 + std::abs(s.taper));
+        PosedSuperquadric p;
+        p.shape = Superquadric{w * a[0], w * a[1], a[2], s.eps1, s.eps2, s.taper, s.taper};
+        p.T_world_part.linear() = R;
+        p.T_world_part.translation() = centre;
+        out.push_back(p);
+      }
+    }
+  };
+  add_frame(axes, lo, hi, false);
+  // When the object's two horizontal moments are about equal, their axes say little about how
+  // its cross-section is turned, and a square-ish section (eps2 away from 1) started 45 deg off
+  // ends in a local minimum. Try the frame turned by 45 deg about the normal too.
+  const double h0 = hi.x() - lo.x(), h1 = hi.y() - lo.y();
+  if (on_plane && std::max(h0, h1) < kSimilarMoments * std::min(h0, h1)) {
+    const Eigen::Matrix3d turned =
+        Eigen::AngleAxisd(0.25 * std::numbers::pi, axes.col(2)).toRotationMatrix() * axes;
+    Eigen::Vector3d t_lo, t_hi;
+    extents(points, turned, t_lo, t_hi);
+    t_lo.z() = lo.z();
+    add_frame(turned, t_lo, t_hi, true);
+  }
+  return out;
+}
+
+}  // namespace rangefit

@@ -1,0 +1,311 @@
+#include "detect/learn/model_learning.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "detect/learn/learn_split.hpp"
+#include "detect/learn/learn_start.hpp"
+#include "detect/learn/learn_surface.hpp"
+#include "detect/object/pose_fit.hpp"
+#include "detect/common/spread_subset.hpp"
+
+namespace rangefit {
+namespace {
+
+constexpr double kMinRetryResidualMm = 0.1;  // below this a fit is never retried
+// A second cluster is a part of its own when it has at least 1/20 of the first one's points.
+constexpr std::size_t kMinSecondCluster = 20;
+
+// At most `target` points spread evenly over the surface the points cover.
+std::vector<Eigen::Vector3d> spread(std::span<const Eigen::Vector3d> points, std::size_t target) {
+  std::vector<std::uint32_t> all(points.size());
+  std::iota(all.begin(), all.end(), 0u);
+  Eigen::AlignedBox3d box;
+  for (const Eigen::Vector3d& p : points) box.extend(p);
+  const double half = 0.5 * box.sizes().maxCoeff() * 1.01 + 1e-6;
+  const SpreadSubset s = spread_subset(points, all, box.center(), half, target);
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(s.indices.size());
+  for (std::uint32_t i : s.indices) out.push_back(points[i]);
+  return out;
+}
+
+std::vector<Eigen::Vector3d> gather(std::span<const Eigen::Vector3d> points,
+                                    std::span<const std::uint32_t> indices) {
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(indices.size());
+  for (std::uint32_t i : indices) out.push_back(points[i]);
+  return out;
+}
+
+ShapeFitOptions fit_options(const LearnOptions& o, double reference_volume, int iterations,
+                            const std::optional<Eigen::Vector4d>& support = std::nullopt) {
+  ShapeFitOptions f;
+  f.support_plane = support;
+  f.support_weight = o.support_weight;
+  f.max_iterations = iterations;
+  f.reference_volume = reference_volume;
+  f.volume_weight = o.volume_weight;
+  f.fit_taper = o.fit_taper;
+  f.radial = o.radial;
+  f.max_taper = o.max_taper;
+  return f;
+}
+
+// Radial distance of a world point from a posed part (as in learn_surface.hpp).
+double radial_distance(const SuperquadricMetric& m, const Eigen::Isometry3d& inv,
+                       const Eigen::Vector3d& p) {
+  const Eigen::Vector3d q = inv * p;
+  const double g = m.value(q);
+  return g > 0.0 ? q.norm() * std::abs(1.0 - 1.0 / std::sqrt(g)) : q.norm();
+}
+
+LearntPart describe(const std::string& name, const ShapeFitResult& fit,
+                    std::span<const Eigen::Vector3d> points, const LearnOptions& o, double gap) {
+  LearntPart p;
+  p.name = name;
+  p.shape = fit.part.shape;
+  p.T_world_part = fit.part.T_world_part;
+  p.points = points.size();
+  p.iterations = fit.iterations;
+  p.measure = measure_of_fit(p.shape, p.T_world_part, points);
+  p.residual_mm = radial_rms_mm(p.shape, p.T_world_part, points);
+  const double tol =
+      o.visible_tolerance_mm > 0.0 ? o.visible_tolerance_mm : 2.0 * p.residual_mm + 0.5 * gap;
+  p.visible_share = visible_share(p.shape, p.T_world_part, points, std::max(tol, 0.5));
+  return p;
+}
+
+}  // namespace
+
+const char* to_string(LearnReason reason) {
+  switch (reason) {
+    case LearnReason::kLearnt:
+      return "learnt";
+    case LearnReason::kEmptyCloud:
+      return "empty cloud";
+    case LearnReason::kNoObject:
+      return "no object left after removing the plane";
+    case LearnReason::kTooFewPoints:
+      return "too few object points to fit";
+    case LearnReason::kInvalidOptions:
+      return "invalid options";
+    case LearnReason::kNonFinitePoints:
+      return "the cloud holds NaN or infinite coordinates";
+    case LearnReason::kAllAtOnePoint:
+      return "all points are at the same place: nothing to fit";
+    case LearnReason::kCollinear:
+      return "the points lie on a line: no surface to fit";
+  }
+  return "unknown";
+}
+
+LearnReason check_learn_points(std::span<const Eigen::Vector3d> points) {
+  for (const Eigen::Vector3d& p : points) {
+    if (!p.allFinite()) return LearnReason::kNonFinitePoints;
+  }
+  if (points.size() < kMinLearnPoints) return LearnReason::kTooFewPoints;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : points) mean += p;
+  mean /= static_cast<double>(points.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const Eigen::Vector3d& p : points) cov += (p - mean) * (p - mean).transpose();
+  cov /= static_cast<double>(points.size());
+  // Spreads (1 sigma) along the principal axes, ascending. A part is mm across at the least,
+  // so a spread of a micrometre is none; a line is a second spread 1e-4 of the first or less.
+  const Eigen::Vector3d sd =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov, Eigen::EigenvaluesOnly)
+          .eigenvalues()
+          .cwiseMax(0.0)
+          .cwiseSqrt();
+  constexpr double kNoSpreadMm = 1e-3;
+  if (!(sd[2] > kNoSpreadMm)) return LearnReason::kAllAtOnePoint;
+  if (!(sd[1] > std::max(kNoSpreadMm, 1e-4 * sd[2]))) return LearnReason::kCollinear;
+  return LearnReason::kLearnt;
+}
+
+PartFit learn_part(std::span<const Eigen::Vector3d> object_points,
+                   const std::optional<pca::Plane>& plane, const LearnOptions& options) {
+  PartFit out;
+  if (check_learn_points(object_points) != LearnReason::kLearnt) return out;
+  const std::vector<Eigen::Vector3d> coarse = spread(object_points, options.start_points);
+  const std::vector<Eigen::Vector3d> fine = spread(object_points, options.fit_points);
+  // Ellipsoid, cylinder-like, box-like and pinched (eps > 1) starts; tapered ones standing.
+  static constexpr StartShape kShapes[] = {{1.0, 1.0}, {0.3, 1.0},       {0.3, 0.3},
+                                           {1.6, 1.6}, {0.3, 1.0, -0.6}, {1.0, 1.0, -0.6}};
+  std::vector<PosedSuperquadric> starts = learn_starts(coarse, plane, kShapes);
+  // A single part stands on the table (its normal turned towards it); a part of a compound
+  // object need not reach it.
+  std::optional<Eigen::Vector4d> support;
+  if (plane && plane->valid && options.parts == 1 && options.support_weight > 0.0) {
+    Eigen::Vector3d n = plane->normal.normalized();
+    if (n.dot(pca::centroid(object_points) - plane->point) < 0.0) n = -n;
+    support = Eigen::Vector4d(n.x(), n.y(), n.z(), n.dot(plane->point));
+  }
+  if (options.parts > 1 && plane) {
+    // A part of a compound object need not reach down to the table (a mallet's shaft).
+    const std::vector<PosedSuperquadric> free = learn_starts(coarse, std::nullopt, kShapes);
+    starts.insert(starts.end(), free.begin(), free.end());
+  }
+  if (starts.empty()) return out;
+  // One reference volume for every start, so their costs compare.
+  const Superquadric& s0 = starts.front().shape;
+  const double v0 = s0.a1 * s0.a2 * s0.a3;
+  std::vector<ShapeFitResult> short_fits;
+  for (const PosedSuperquadric& s : starts) {
+    short_fits.push_back(
+        fit_superquadric(coarse, s, fit_options(options, v0, options.start_iterations)));
+  }
+  out.starts = static_cast<int>(starts.size());
+  std::sort(short_fits.begin(), short_fits.end(),
+            [](const ShapeFitResult& a, const ShapeFitResult& b) {
+              return a.ok != b.ok ? a.ok : a.cost < b.cost;
+            });
+  const int n = static_cast<int>(short_fits.size());
+  auto finish = [&](int from, int to) {
+    for (int k = from; k < to; ++k) {
+      if (!short_fits[k].ok) continue;
+      ShapeFitResult f = fit_superquadric(fine, short_fits[k].part,
+                                          fit_options(options, v0, options.iterations, support));
+      if (f.ok && (!out.fit.ok || f.cost < out.fit.cost)) out.fit = f;
+    }
+  };
+  const int kept = std::min(options.kept_starts, n);
+  finish(0, kept);
+  // A short fit's cost can rank a start that leads into a local minimum first. When the best
+  // fit leaves its points farther off the surface than the scan's noise explains, every other
+  // start is fitted to convergence as well.
+  if (out.fit.ok && options.retry_residual_mm > 0.0 &&
+      radial_rms_mm(out.fit.part.shape, out.fit.part.T_world_part, fine) >
+          options.retry_residual_mm) {
+    finish(kept, n);
+  }
+  return out;
+}
+
+LearnResult learn_model(std::span<const Eigen::Vector3d> points, const LearnOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  LearnResult r;
+  r.model.name = options.name;
+  if (options.parts < 1 || options.parts > 2 || options.fit_points < 20 ||
+      options.start_points < 20 || options.start_iterations < 1 || options.iterations < 1 ||
+      options.kept_starts < 1) {
+    r.reason = LearnReason::kInvalidOptions;
+    return r;
+  }
+  if (points.empty()) return r;  // kEmptyCloud
+  // Nothing below can make sense of these; say so rather than return a fit.
+  if (const LearnReason why = check_learn_points(points); why != LearnReason::kLearnt) {
+    r.reason = why;
+    return r;
+  }
+  SegmentOptions seg = options.segment;
+  seg.plane.seed = options.seed;
+  seg.keep = options.parts;
+  r.segment = segment_object(points, seg);
+  if (r.segment.object.empty()) {
+    r.reason = LearnReason::kNoObject;
+    return r;
+  }
+  const std::vector<Eigen::Vector3d> object = gather(points, r.segment.object);
+  // A wire (or a line of noise) left beside the table.
+  if (const LearnReason why = check_learn_points(object); why != LearnReason::kLearnt) {
+    r.reason = why;
+    return r;
+  }
+  std::optional<pca::Plane> plane;
+  if (r.segment.plane.removed()) plane = r.segment.plane.plane;
+  LearnOptions o = options;
+  if (o.retry_residual_mm == 0.0) {
+    // The table's spread about its plane is the scan's noise.
+    const double noise = plane ? plane->rms : 0.0;
+    o.retry_residual_mm = std::max(options.retry_noise_factor * noise, kMinRetryResidualMm);
+  }
+  const double gap = r.segment.gap_mm;
+
+  if (options.parts == 1) {
+    const PartFit f = learn_part(object, plane, o);
+    r.starts = f.starts;
+    if (!f.fit.ok) {
+      r.reason = LearnReason::kTooFewPoints;
+      return r;
+    }
+    r.parts.push_back(describe("body", f.fit, object, options, gap));
+  } else {
+    std::array<std::vector<Eigen::Vector3d>, 2> side;
+    if (r.segment.kept.size() == 2 &&
+        r.segment.kept[1].size() * kMinSecondCluster >= r.segment.kept[0].size()) {
+      // Two separate clusters: the parts do not touch in the scan.
+      side = {gather(points, r.segment.kept[0]), gather(points, r.segment.kept[1])};
+    } else {
+      // One cluster (the largest, when the second is only a fragment): cut it in two.
+      const std::vector<Eigen::Vector3d> largest = gather(points, r.segment.kept[0]);
+      const TwoPartSplit split = split_two_parts(largest, 20);
+      if (!split.ok) {
+        r.reason = LearnReason::kTooFewPoints;
+        return r;
+      }
+      side = {gather(largest, split.parts[0]), gather(largest, split.parts[1])};
+    }
+    std::array<ShapeFitResult, 2> fits;
+    for (int k = 0; k < 2; ++k) {
+      const PartFit f = learn_part(side[k], plane, o);
+      r.starts += f.starts;
+      if (!f.fit.ok) {
+        r.reason = LearnReason::kTooFewPoints;
+        return r;
+      }
+      fits[k] = f.fit;
+    }
+    // Points near the cut belong to whichever part explains them: reassign by radial distance
+    // and refit each part from where it is.
+    const SuperquadricMetric m0(fits[0].part.shape), m1(fits[1].part.shape);
+    const Eigen::Isometry3d inv0 = fits[0].part.T_world_part.inverse();
+    const Eigen::Isometry3d inv1 = fits[1].part.T_world_part.inverse();
+    side[0].clear();
+    side[1].clear();
+    for (const Eigen::Vector3d& p : object) {
+      side[radial_distance(m0, inv0, p) <= radial_distance(m1, inv1, p) ? 0 : 1].push_back(p);
+    }
+    for (int k = 0; k < 2; ++k) {
+      if (side[k].size() < 20) {
+        r.reason = LearnReason::kTooFewPoints;
+        return r;
+      }
+      const Superquadric& s = fits[k].part.shape;
+      const std::vector<Eigen::Vector3d> fine = spread(side[k], options.fit_points);
+      const ShapeFitResult f = fit_superquadric(
+          fine, fits[k].part, fit_options(options, s.a1 * s.a2 * s.a3, options.iterations));
+      if (f.ok) fits[k] = f;
+    }
+    // The larger part first, so the order does not depend on the direction of the moments.
+    auto volume = [](const Superquadric& s) { return s.a1 * s.a2 * s.a3; };
+    if (volume(fits[1].part.shape) > volume(fits[0].part.shape)) {
+      std::swap(fits[0], fits[1]);
+      std::swap(side[0], side[1]);
+    }
+    for (int k = 0; k < 2; ++k) {
+      r.parts.push_back(describe(k == 0 ? "part0" : "part1", fits[k], side[k], options, gap));
+    }
+    const Eigen::Isometry3d& a = r.parts[0].T_world_part;
+    const Eigen::Isometry3d& b = r.parts[1].T_world_part;
+    PartLink link;
+    link.first = 0;
+    link.second = 1;
+    link.angle_rad =
+        std::acos(std::clamp(std::abs(a.linear().col(2).dot(b.linear().col(2))), 0.0, 1.0));
+    link.distance_mm = (a.translation() - b.translation()).norm();
+    r.model.links.push_back(link);
+  }
+  for (const LearntPart& p : r.parts) r.model.parts.push_back({p.name, p.shape});
+  r.reason = LearnReason::kLearnt;
+  r.total_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace rangefit

@@ -1,0 +1,106 @@
+#pragma once
+// Learning an object model from a scan of the object alone (thesis ch. 6, "show the object
+// once"; ch. 7): the dominant plane is removed, the object segmented (detect/learn_segment), and
+// one tapered superquadric fitted to it (size, shape, taper and pose, detect/learn_fit: LM on
+// the radial distance with a volume term against the single view's ambiguity, thesis 2.2) from
+// several starts built from the moments (detect/learn_start); the best fit is kept. With two
+// parts the two largest clusters are the parts when they do not touch; otherwise the object is
+// cut across its main axis where its width steps (detect/learn_split). Each side is fitted as
+// one part, points reassigned to the nearer part and refitted, and the link between them (eq.
+// 5.5-5.6: angle between the z-axes, centre distance) measured.
+//
+// Several views of the object (already in one world frame) are fused by passing all their
+// points: the fit's point budget is spread over the surface area (detect/spread_subset), so a
+// surface seen twice weighs no more than one seen once, and the hidden side of one view is
+// constrained by the other.
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "detect/learn/learn_fit.hpp"
+#include "detect/learn/learn_segment.hpp"
+#include "detect/object/object_model.hpp"
+
+namespace rangefit {
+
+struct LearnOptions {
+  int parts = 1;           // 1 or 2
+  std::uint64_t seed = 1;  // of the plane removal's seed spread (the only sampled step)
+  std::string name = "learnt";
+  SegmentOptions segment;
+  std::size_t fit_points = 1500;   // the final fits run on this many spread points at most
+  std::size_t start_points = 400;  // the short fits of the starts on this many
+  int start_iterations = 30;       // LM iterations of each start
+  int iterations = 150;            // LM iterations of the final fits
+  int kept_starts = 2;             // the best starts fitted to convergence
+  // When the best of them leaves a radial rms above this (mm), all starts are fitted to
+  // convergence; 0: retry_noise_factor x the removed plane's rms (the scan's noise), at least
+  // 0.1 mm; negative: never.
+  double retry_residual_mm = 0.0;
+  double retry_noise_factor = 3.0;
+  double volume_weight = 0.05;  // the fit's volume term (ShapeFitOptions; 0: none)
+  // One part only: its end along the table normal held on the table (ShapeFitOptions; 0: off).
+  double support_weight = 0.1;
+  bool radial = true;  // radial distance residual (ShapeFitOptions::radial)
+  bool fit_taper = true;
+  double max_taper = 1.0;
+  double visible_tolerance_mm = 0;  // 0: 2 x the fit's radial rms + the segmentation gap / 2
+};
+
+enum class LearnReason {
+  kLearnt,
+  kEmptyCloud,       // no points
+  kNoObject,         // nothing left after the plane removal, or only clusters below min_points
+  kTooFewPoints,     // the object (or a part of it) has too few points to fit
+  kInvalidOptions,   // parts not 1 or 2, non-positive counts
+  kNonFinitePoints,  // a NaN or infinite coordinate in the input
+  kAllAtOnePoint,    // the points (or the object's) span no extent: all the same point
+  kCollinear,        // the points (or the object's) lie on a line: no surface to fit
+};
+const char* to_string(LearnReason reason);
+
+struct LearntPart {
+  std::string name;
+  Superquadric shape;
+  Eigen::Isometry3d T_world_part = Eigen::Isometry3d::Identity();  // in the scan
+  std::size_t points = 0;      // object points assigned to this part
+  double measure = 0.0;        // M, eq. 5.2, on those points
+  double residual_mm = 0.0;    // rms radial distance of those points from the surface
+  double visible_share = 0.0;  // share of the surface area with points near it
+  int iterations = 0;          // of the final fit
+};
+
+struct LearnResult {
+  LearnReason reason = LearnReason::kEmptyCloud;
+  ObjectModel model;              // what the detectors read (io/object_model_file)
+  std::vector<LearntPart> parts;  // in model order
+  SegmentResult segment;          // the plane and the object's points
+  int starts = 0;                 // fits started over all parts
+  double total_ms = 0.0;
+  bool learnt() const { return reason == LearnReason::kLearnt; }
+};
+
+// Fewer points than this (in the input, the object or a part) are too few to fit 13 parameters.
+inline constexpr std::size_t kMinLearnPoints = 20;
+
+LearnResult learn_model(std::span<const Eigen::Vector3d> points, const LearnOptions& options = {});
+
+// Why these points cannot be fitted before any fit is tried: non-finite, fewer than
+// kMinLearnPoints, all at one point or on a line (from the spread along their principal axes);
+// kLearnt when they can.
+LearnReason check_learn_points(std::span<const Eigen::Vector3d> points);
+
+// One part fitted to given object points (no segmentation): the starts, the best kept_starts
+// fitted to convergence, the best of those. `plane` closes the underside when given.
+struct PartFit {
+  ShapeFitResult fit;
+  int starts = 0;
+};
+PartFit learn_part(std::span<const Eigen::Vector3d> object_points,
+                   const std::optional<pca::Plane>& plane, const LearnOptions& options);
+
+}  // namespace rangefit

@@ -1,0 +1,134 @@
+#include "detect/object/object_continuation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace rangefit {
+namespace {
+
+// Points of a sibling part with G below this are its own (the refinement's trim band).
+constexpr double kSiblingGate = 1.6;
+// Faces are straight along a direction when their exponent is at most this (a cylinder's side
+// wall along its axis: eps1; a box's sides across it: eps2).
+constexpr double kFlatExponent = 0.5;
+
+// Distance from the surface to first order, (G - 1) / |grad G| (mm); accurate near it.
+double surface_distance(const SuperquadricMetric& m, const Eigen::Vector3d& q) {
+  Eigen::Vector3d grad;
+  const double g = m.value_and_gradient(q, grad);
+  const double norm = grad.norm();
+  return norm > 0.0 ? (g - 1.0) / norm : q.norm();
+}
+
+// One way of extending the part: its sizes stretched by `stretch`, and how far out along the
+// stretch a part-frame point is, in units of the part's size there (1: on the face being
+// extended past).
+struct Extension {
+  Eigen::Vector3d stretch;
+  enum Along { kZ, kX, kY, kRadial } along;
+};
+
+double outwards(const Superquadric& sq, const Eigen::Vector3d& q, Extension::Along along) {
+  switch (along) {
+    case Extension::kZ:
+      return std::abs(q.z()) / sq.a3;
+    case Extension::kX:
+      return std::abs(q.x()) / sq.a1;
+    case Extension::kY:
+      return std::abs(q.y()) / sq.a2;
+    case Extension::kRadial:
+      return std::pow(std::pow(std::abs(q.x()) / sq.a1, 2.0 / sq.eps2) +
+                          std::pow(std::abs(q.y()) / sq.a2, 2.0 / sq.eps2),
+                      0.5 * sq.eps2);
+  }
+  return 0.0;
+}
+
+double size_along(const Superquadric& sq, Extension::Along along) {
+  switch (along) {
+    case Extension::kZ:
+      return sq.a3;
+    case Extension::kX:
+      return sq.a1;
+    case Extension::kY:
+      return sq.a2;
+    case Extension::kRadial:
+      return std::min(sq.a1, sq.a2);
+  }
+  return 0.0;
+}
+
+}  // namespace
+
+Continuation surface_continuation(const Superquadric& sq, const Eigen::Isometry3d& T,
+                                  std::span<const Eigen::Vector3d> points, const KdTree& tree,
+                                  const ContinuationOptions& o,
+                                  std::span<const PlacedShape> explained) {
+  Continuation c;
+  if (!sq.valid() || points.empty() || sq.kx != 0.0 || sq.ky != 0.0) return c;
+  std::vector<Extension> ext;
+  const double r = 1.0 + o.reach;
+  if (sq.eps1 <= kFlatExponent) {
+    ext.push_back({{1.0, 1.0, r}, Extension::kZ});  // the side wall past the caps
+    if (sq.eps2 <= kFlatExponent) {
+      ext.push_back({{r, 1.0, 1.0}, Extension::kX});  // caps and sides past the side walls
+      ext.push_back({{1.0, r, 1.0}, Extension::kY});
+    } else {
+      ext.push_back({{r, r, 1.0}, Extension::kRadial});  // the caps past the rim
+    }
+  }
+  if (ext.empty()) return c;
+  const SuperquadricMetric model(sq);
+  std::vector<SuperquadricMetric> stretched;
+  for (const Extension& e : ext) {
+    Superquadric s = sq;
+    s.a1 *= e.stretch.x(), s.a2 *= e.stretch.y(), s.a3 *= e.stretch.z();
+    stretched.emplace_back(s);
+  }
+  std::vector<SuperquadricMetric> sib;
+  std::vector<Eigen::Isometry3d> sib_inv;
+  for (const PlacedShape& p : explained) {
+    sib.emplace_back(p.shape);
+    sib_inv.push_back(p.T_world_part.inverse());
+  }
+  std::vector<std::uint32_t> nbr;
+  const double radius = r * Eigen::Vector3d(sq.a1, sq.a2, sq.a3).norm() + o.band_mm;
+  tree.radius_search(T.translation(), radius, nbr);
+  const double stride =
+      std::max(1.0, static_cast<double>(nbr.size()) / static_cast<double>(o.max_points));
+  const Eigen::Isometry3d inv = T.inverse();
+  for (double f = 0.0; f < static_cast<double>(nbr.size()); f += stride) {
+    const Eigen::Vector3d& p = points[nbr[static_cast<std::size_t>(f)]];
+    if (o.table && o.table->normal.dot(p - o.table->point) < o.table_margin_mm) continue;
+    bool sibling = false;
+    for (std::size_t k = 0; k < sib.size() && !sibling; ++k) {
+      sibling = sib[k].value(sib_inv[k] * p) < kSiblingGate;
+    }
+    if (sibling) continue;
+    const Eigen::Vector3d q = inv * p;
+    const double d = surface_distance(model, q);
+    if (std::abs(d) <= o.band_mm) {
+      ++c.surface;
+      continue;
+    }
+    if (d < 0.0) continue;  // inside
+    for (std::size_t k = 0; k < ext.size(); ++k) {
+      const double u = outwards(sq, q, ext[k].along);
+      const double size = size_along(sq, ext[k].along);
+      // Past the face by more than twice the band and 2 % of the size (a noisy point by an edge,
+      // or the edge of a part posed a millimetre off, is not past it), short of the stretched
+      // part's own end, on its extended surface.
+      const double past = 2.0 * o.band_mm + 0.02 * size;
+      if (u * size <= size + past || u * size > r * size - 2.0 * o.band_mm) continue;
+      if (std::abs(surface_distance(stretched[k], q)) <= o.band_mm) {
+        ++c.continuing;
+        break;
+      }
+    }
+  }
+  if (c.surface > 0) c.share = static_cast<double>(c.continuing) / c.surface;
+  return c;
+}
+
+}  // namespace rangefit

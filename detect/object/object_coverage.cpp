@@ -1,0 +1,257 @@
+#include "detect/object/object_coverage.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+namespace rangefit {
+namespace {
+
+// Surface seen more obliquely than ~75 degrees is no evidence either way: a scan samples it
+// sparsely (or not at all), and its lines of sight graze the part's own measured surface.
+constexpr double kMinIncidenceCosine = 0.25;
+
+// Exponents up to this make flat faces with rounded edges; the rest-on-table check takes those
+// edges as sharp (this exponent).
+constexpr double kFlatEdgeExponent = 0.5;
+constexpr double kSharpExponent = 0.02;
+
+// Eyes of an unknown sensor are this far away along their direction (mm): beyond any scene.
+constexpr double kFarEye = 1e4;
+
+// The inner rings by a flat end must show this share of their samples for the end to be judged.
+constexpr double kEndReference = 0.8;
+
+// What the scan says of one surface sample.
+enum class Sample {
+  kNoEvidence,   // by the table, outside the sweep, or not facing the sensor's eyes
+  kHidden,       // facing them, but measured surface lies between
+  kCovered,      // measurable, and a scan point lies near it
+  kUncovered,    // measurable, no scan point near it
+  kSeenThrough,  // measurable, and the laser went on past it to measured surface
+};
+
+bool measurable(Sample v) {
+  return v == Sample::kCovered || v == Sample::kUncovered || v == Sample::kSeenThrough;
+}
+
+// Where the ray from the part centre along d leaves the part (G = 1), part frame. G is
+// homogeneous of degree 2 without taper (G(s d) = s^2 G(d)); with taper it is still increasing
+// along the ray (the tapered part is star-shaped about its centre), so bisection finishes it.
+Eigen::Vector3d surface_along(const SuperquadricMetric& m, const Eigen::Vector3d& d) {
+  const double g = m.value(d);
+  if (!(g > 0.0)) return Eigen::Vector3d::Zero();
+  double s = 1.0 / std::sqrt(g);
+  if (m.model().kx == 0.0 && m.model().ky == 0.0) return s * d;
+  double lo = 0.0, hi = s;
+  while (m.value(hi * d) < 1.0 && hi < 1e6) hi *= 2.0;
+  for (int i = 0; i < 40; ++i) {
+    s = 0.5 * (lo + hi);
+    (m.value(s * d) < 1.0 ? lo : hi) = s;
+  }
+  return 0.5 * (lo + hi) * d;
+}
+
+// Directions an unknown sensor is taken to look from: towards the points near the part's
+// surface (they were seen, so the sensor is on their side) and up from the removed plane.
+struct FarEyes {
+  int count = 0;
+  std::array<Eigen::Vector3d, 2> dir;
+};
+
+FarEyes far_eyes(const SuperquadricMetric& m, const Eigen::Isometry3d& T, double radius,
+                 std::span<const Eigen::Vector3d> points, const KdTree& tree,
+                 const std::optional<pca::Plane>& plane) {
+  FarEyes e;
+  std::vector<std::uint32_t> nbr;
+  tree.radius_search(T.translation(), radius, nbr);
+  const Eigen::Isometry3d inv = T.inverse();
+  Eigen::Vector3d towards = Eigen::Vector3d::Zero();
+  for (std::uint32_t i : nbr) {
+    if (std::abs(m.value(inv * points[i]) - 1.0) < 0.2) towards += points[i] - T.translation();
+  }
+  if (towards.norm() < 1e-9) return e;
+  towards.normalize();
+  if (plane && plane->valid) e.dir[e.count++] = plane->normal.normalized();
+  e.dir[e.count++] = towards;
+  return e;
+}
+
+// Height of the posed part's lowest point above the plane (along its normal): the minimum over a
+// coarse grid of the surface's parametrisation, then over finer grids around it. The coverage's
+// samples alone leave a rounded bottom up to a few tenths of a millimetre above its lowest point,
+// as much as the rest-on-table check must tell apart. `at`: the lowest point, part frame.
+double lowest_height(const Superquadric& sq, const Eigen::Isometry3d& T, const pca::Plane& plane,
+                     Eigen::Vector3d* at = nullptr) {
+  constexpr int kEta = 16, kOmega = 32, kRefinements = 4;
+  const Eigen::Vector3d n = T.linear().transpose() * plane.normal;  // part frame
+  const double base = plane.normal.dot(T.translation() - plane.point);
+  const auto height = [&](double eta, double omega) {
+    eta = std::clamp(eta, -0.5 * std::numbers::pi, 0.5 * std::numbers::pi);
+    return base + n.dot(surface_point(sq, eta, omega));
+  };
+  double d_eta = std::numbers::pi / kEta, d_omega = 2.0 * std::numbers::pi / kOmega;
+  double best_eta = 0.0, best_omega = 0.0, best = INFINITY;
+  for (int i = 0; i <= kEta; ++i) {
+    for (int j = 0; j < kOmega; ++j) {
+      const double eta = -0.5 * std::numbers::pi + i * d_eta,
+                   omega = -std::numbers::pi + j * d_omega;
+      const double h = height(eta, omega);
+      if (h < best) best = h, best_eta = eta, best_omega = omega;
+    }
+  }
+  for (int r = 0; r < kRefinements; ++r) {
+    d_eta *= 0.4, d_omega *= 0.4;
+    const double e0 = best_eta, o0 = best_omega;
+    for (int i = -2; i <= 2; ++i) {
+      for (int j = -2; j <= 2; ++j) {
+        const double h = height(e0 + i * d_eta, o0 + j * d_omega);
+        if (h < best) best = h, best_eta = e0 + i * d_eta, best_omega = o0 + j * d_omega;
+      }
+    }
+  }
+  if (at) {
+    *at = surface_point(sq, std::clamp(best_eta, -0.5 * std::numbers::pi, 0.5 * std::numbers::pi),
+                        best_omega);
+  }
+  return best;
+}
+
+}  // namespace
+
+SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d& T,
+                                 std::span<const Eigen::Vector3d> points, const KdTree& tree,
+                                 const CoverageOptions& o) {
+  if (!sq.valid() || points.empty() || o.samples < 1) return {};
+  const SuperquadricMetric m(sq);
+  const double tol = std::max(o.tolerance_mm, o.tolerance_of_min_size * sq.min_size());
+  const bool known = o.sensor.kind != SensorView::Kind::kUnknown;
+  const FarEyes far =
+      known ? FarEyes{} : far_eyes(m, T, 1.2 * sq.max_size(), points, tree, o.removed_plane);
+  if (!known && far.count == 0) return {};
+  // Lines of sight start this far from the surface: its own points and its pose error stay out
+  // (along an oblique line of sight, farther from the sample).
+  const double clearance = o.occupancy ? tol + o.occupancy->cell_mm() : tol;
+  std::vector<std::uint32_t> nbr;
+  double below = 0.0, lowest = INFINITY;
+  // What the scan says of the surface point q (part frame).
+  const auto judge = [&](const Eigen::Vector3d& q) {
+    Eigen::Vector3d grad;
+    m.value_and_gradient(q, grad);
+    if (grad.squaredNorm() == 0.0) return Sample::kNoEvidence;
+    const Eigen::Vector3d p = T * q;
+    const Eigen::Vector3d n = T.linear() * grad;
+    if (o.removed_plane && o.removed_plane->valid) {
+      const double h = o.removed_plane->normal.dot(p - o.removed_plane->point);
+      below = std::max(below, -h);
+      lowest = std::min(lowest, h);
+      if (std::abs(h) < o.plane_margin_mm + tol) return Sample::kNoEvidence;
+    }
+    Eyes eyes;
+    if (known) {
+      eyes = sensor_eyes(o.sensor, p);
+    } else {
+      eyes.count = far.count;
+      for (int k = 0; k < far.count; ++k) eyes.at[k] = p + kFarEye * far.dir[k];
+    }
+    if (eyes.count == 0) return Sample::kNoEvidence;  // outside the sweep
+    bool faces = true, hidden = false;
+    const Eigen::Vector3d un = n.normalized();
+    std::array<double, 2> skip{clearance, clearance};
+    for (int k = 0; k < eyes.count; ++k) {
+      const double incidence = un.dot((eyes.at[k] - p).normalized());
+      faces = faces && incidence > kMinIncidenceCosine;
+      skip[k] = clearance / std::max(incidence, kMinIncidenceCosine);
+    }
+    // In the part's own shadow, or seen too obliquely to judge.
+    if (!faces) return Sample::kNoEvidence;
+    for (int k = 0; k < eyes.count && o.occupancy && !hidden; ++k) {
+      hidden = o.occupancy->first_hit(p, eyes.at[k], skip[k]) >= 0.0;
+    }
+    if (hidden) return Sample::kHidden;
+    tree.knn_search(p, 1, nbr);
+    const double nearest = nbr.empty() ? INFINITY : (points[nbr[0]] - p).norm();
+    if (nearest <= tol) return Sample::kCovered;
+    // The first eye (the laser, or the only one) lit everything along its ray until the first
+    // surface: a measured cell beyond the sample means the light went through it. A sample
+    // between scan lines (grazing surface, coarse step) is not: it has points within a cell.
+    if (o.occupancy && nearest > tol + o.occupancy->cell_mm()) {
+      const Eigen::Vector3d beyond = p + kFarEye * (p - eyes.at[0]).normalized();
+      if (o.occupancy->first_hit(p, beyond, skip[0]) >= 0.0) return Sample::kSeenThrough;
+    }
+    return Sample::kUncovered;
+  };
+  const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+  int facing = 0, measured = 0, covered = 0, seen_through = 0;
+  for (int i = 0; i < o.samples; ++i) {
+    // Fibonacci sphere, stretched by the sizes: even in the normalised coordinates.
+    const double z = 1.0 - (2.0 * i + 1.0) / o.samples;
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const double phi = golden * i;
+    const Eigen::Vector3d d(sq.a1 * r * std::cos(phi), sq.a2 * r * std::sin(phi), sq.a3 * z);
+    const Sample v = judge(surface_along(m, d));
+    facing += v != Sample::kNoEvidence;
+    measured += measurable(v);
+    covered += v == Sample::kCovered;
+    seen_through += v == Sample::kSeenThrough;
+  }
+  // The side wall by each flat end, densely: end_rings rings at even steps over end_strip of the
+  // half-length from the cap, and as many farther in. An end is judged when the inner rings show
+  // the side wall (at least kEndReference of their measurable samples covered): then the scan
+  // would have shown it on to the cap, and the share of the outer rings' measurable samples with
+  // no scan points near them is how much of the end is missing. A true part whose end the scan
+  // does not show for another reason (grazed, behind a wall) shows little of the inner rings
+  // either.
+  double open_end = 0.0;
+  if (sq.eps1 <= kFlatEdgeExponent && sq.kx == 0.0 && sq.ky == 0.0 && o.end_rings > 0) {
+    const double step = o.end_strip / o.end_rings;  // of the half-length
+    for (double side : {-1.0, 1.0}) {
+      int outer = 0, open = 0, inner = 0, inner_covered = 0;
+      for (int k = 0; k < 2 * o.end_rings; ++k) {
+        const double u = 1.0 - (k + 0.5) * step;  // z / a3
+        const double eta = side * std::asin(std::pow(u, 1.0 / sq.eps1));
+        for (int j = 0; j < o.end_ring_samples; ++j) {
+          const double omega = 2.0 * std::numbers::pi * (j + 0.5) / o.end_ring_samples;
+          const Sample v = judge(surface_point(sq, eta, omega));
+          const bool seen = measurable(v);
+          if (k < o.end_rings) {
+            outer += seen;
+            open += seen && v != Sample::kCovered;
+          } else {
+            inner += seen;
+            inner_covered += v == Sample::kCovered;
+          }
+        }
+      }
+      if (outer >= o.min_end_samples && inner >= o.min_end_samples &&
+          inner_covered >= kEndReference * inner) {
+        open_end = std::max(open_end, static_cast<double>(open) / outer);
+      }
+    }
+  }
+  SurfaceCoverage c;
+  if (o.removed_plane && o.removed_plane->valid) {
+    // Sinking is judged on the model itself and standing above the table on its sharp hull: a
+    // flat-faced part's rounded edges (eps 0.1) lie a few per cent inside the real object's
+    // edges, so a box tilted onto an edge rests on the table while its model stands ~3 mm above.
+    below = std::max(0.0, -lowest_height(sq, T, *o.removed_plane, &c.deepest_part));
+    Superquadric sharp = sq;
+    if (sharp.eps1 <= kFlatEdgeExponent) sharp.eps1 = kSharpExponent;
+    if (sharp.eps2 <= kFlatEdgeExponent) sharp.eps2 = kSharpExponent;
+    lowest = lowest_height(sharp, T, *o.removed_plane);
+  }
+  c.below_plane_mm = below;
+  c.lowest_mm = std::isfinite(lowest) ? lowest : 0.0;
+  c.min_size_mm = sq.min_size();
+  c.max_size_mm = sq.max_size();
+  c.facing = facing;
+  c.open_end = open_end;
+  if (measured == 0) return c;
+  c.measurable = measured;
+  c.covered = static_cast<double>(covered) / measured;
+  c.seen_through = static_cast<double>(seen_through) / measured;
+  return c;
+}
+
+}  // namespace rangefit

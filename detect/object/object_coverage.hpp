@@ -1,0 +1,78 @@
+#pragma once
+// Surface evidence for a posed part: of the surface this scan could have measured, how much it
+// did measure, and how much of it lies where the sensor saw past it. Beyond the thesis: M, I and
+// S (eq. 5.2-5.4) only look at the points near a hypothesis, so a part posed against a fragment
+// of another object (a flat box on a cylinder's cap, a shaft along an edge) fits well and is
+// empty inside, yet claims surface the sensor would have seen. Used to confirm a detection.
+//
+// "Could have measured" is decided per surface sample by the sensor's own visibility: the sample
+// faces every eye the sensor needed for it (a stripe ranger needs its laser apex and its camera,
+// detect/sensor_view.hpp) and no measured surface lies between it and them. Surface in a laser
+// or camera shadow, hidden behind another object or outside the sweep is then no evidence
+// either way, whatever the triangulation angle, camera side or stand-off.
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <span>
+
+#include "detect/common/kdtree.hpp"
+#include "detect/common/occupancy_grid.hpp"
+#include "detect/common/pca.hpp"
+#include "detect/common/sensor_view.hpp"
+#include "detect/object/superquadric.hpp"
+
+namespace rangefit {
+
+struct CoverageOptions {
+  int samples = 200;                   // surface samples (about half of them visible)
+  double tolerance_mm = 3.0;           // a sample is covered by a point this close
+  double tolerance_of_min_size = 0.1;  // ... or this share of the smallest size, if larger
+  // How the scan was taken. Unknown: the part is judged as seen from far away along the side the
+  // points near it lie on, and, with a removed plane, from above that plane.
+  SensorView sensor;
+  // Samples this close to the removed plane are not checked (their points went with it). Its
+  // normal points to the side the scan's objects are on.
+  std::optional<pca::Plane> removed_plane;
+  double plane_margin_mm = 5.0;
+  // The side wall by each flat end of a part with flat caps (eps1 <= 0.5, no taper): end_rings
+  // rings of end_ring_samples samples spread over end_strip of its half-length from the cap, and
+  // as many farther in (object_coverage.cpp). A
+  // part fitted to a shorter look-alike lying along the sweep (its caps face along the sweep and
+  // show no points) reaches past the look-alike's end, where the sensor saw no surface; the few
+  // of the 200 samples there are lost among the rest.
+  double end_strip = 0.2;
+  int end_rings = 4;
+  int end_ring_samples = 16;
+  int min_end_samples = 8;  // an end with fewer measurable samples is not judged
+  // The whole scan (plane included) as occupied cells: lines of sight blocked by it are
+  // occluded, and a line of sight that runs on past a sample to a measured cell saw past it.
+  // Without it nothing counts as occluded or seen past.
+  const OccupancyGrid* occupancy = nullptr;
+};
+
+struct SurfaceCoverage {
+  int facing = 0;               // samples facing every eye (the rest are in the part's own shadow)
+  int measurable = 0;           // of them, the ones no measured surface hides: the sensor could
+                                // have measured them
+  double covered = 0.0;         // share of them with a scan point near them
+  double seen_through = 0.0;    // share of them the sensor saw past: free space
+  double open_end = 0.0;        // of the measurable samples by a flat end whose side wall the
+                                // scan shows farther in, the largest share (of the two ends)
+                                // with no scan points near them
+  double below_plane_mm = 0.0;  // how far the part (as modelled) reaches through the removed plane
+  double lowest_mm = 0.0;       // height of its lowest point above the removed plane, its flat
+                                // faces' rounded edges taken as sharp (refined on the surface's
+                                // parametrisation, to ~0.01 mm)
+  Eigen::Vector3d deepest_part = Eigen::Vector3d::Zero();  // the model's lowest point, part
+                                                           // frame (below_plane_mm is its depth)
+  double min_size_mm = 0.0;     // the part's smallest size parameter
+  double max_size_mm = 0.0;     // and its largest
+};
+
+// Samples are spread over the surface evenly in the part's normalised coordinates (exactly even
+// for a sphere). Shares are 0 when no sample was measurable.
+SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d& T_world_part,
+                                 std::span<const Eigen::Vector3d> points, const KdTree& tree,
+                                 const CoverageOptions& options = {});
+
+}  // namespace rangefit

@@ -1,0 +1,845 @@
+#include "detect/object/object_detector.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <thread>
+
+#include "detect/object/object_continuation.hpp"
+#include "detect/object/object_coverage.hpp"
+#include "detect/object/object_hypotheses.hpp"
+#include "detect/object/object_vote.hpp"
+#include "detect/common/occupancy_grid.hpp"
+
+namespace rangefit {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The early stop trusts a leader only when almost no points lie inside it: a part fitted into
+// a larger object (a cone into a cylinder) is found again and again, with ~10% of its points
+// inside, and would otherwise stop the search before the real one turns up. Stricter than
+// max_interior_ratio, which has to allow for noise; a noisy leader only costs the early stop.
+constexpr double kCleanInteriorRatio = 0.02;
+
+// After the joint refinement a compound object's links hold to this angle and this share of
+// the link distance (plus the noise): the true mallets of the tuning scenes to 0.004 rad and 1.5
+// mm of 170, a drum taken for the head 29 mm off.
+constexpr double kRefinedLinkAngleRad = 0.1;
+constexpr double kRefinedLinkShare = 0.04;
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+bool model_ok(const ObjectModel& model) {
+  if (model.parts.empty()) return false;
+  for (const ModelPart& p : model.parts) {
+    if (!p.shape.valid()) return false;
+  }
+  for (const PartLink& l : model.links) {
+    if (l.first >= model.parts.size() || l.second >= model.parts.size() || l.first == l.second ||
+        !std::isfinite(l.angle_rad) || !std::isfinite(l.distance_mm)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool options_ok(const ObjectDetectOptions& o) {
+  return o.hypotheses >= 1 && o.compound_hypotheses >= 1 && o.trials >= 1 && o.sample_points >= 6 &&
+         o.iterations >= 1 && o.init_iterations >= 1 && o.refine_rounds >= 0 && o.gamma > 0.0 &&
+         o.gamma < 1.0 && o.neighbourhood_factor > 0.0 && o.instances >= 1 && o.batch >= 1 &&
+         o.confirmations >= 1 && o.refine_trim >= 0.0 && o.max_measure > 0.0 &&
+         o.max_interior_ratio >= 0.0 && o.min_coverage >= 0.0 &&
+         o.min_coverage_unknown_sensor >= 0.0 && o.max_seen_through >= 0.0 &&
+         o.max_open_end >= 0.0 &&
+         o.max_size_deviation > 0.0 && o.max_candidates >= 1 && o.min_measurable_samples >= 0 &&
+         o.min_measurable_share >= 0.0 && o.max_continuation >= 0.0 && o.plane_margin_mm >= 0.0 &&
+         o.rest_noise_factor >= 0.0 && o.rest_size_share >= 0.0 && o.sink_floor_mm >= 0.0 &&
+         o.sink_noise_factor >= 0.0 && o.sink_sigma_factor >= 0.0 && valid(o.sensor);
+}
+
+// The check of eq. 5.2-5.4 that a hypothesis fails (see ObjectDetectOptions::max_measure).
+std::optional<Rejection> implausible(const PartHypothesis& h, const ObjectDetectOptions& o) {
+  const double in = static_cast<double>(h.scores.interior);
+  const double on = static_cast<double>(h.scores.surface);
+  const Eigen::Vector3d c = h.T_world_part.translation();
+  if (!(h.scores.measure <= o.max_measure)) {
+    return Rejection{0, Check::kMeasure, h.scores.measure, o.max_measure, c};
+  }
+  if (h.scores.surface < o.min_surface_points) {
+    return Rejection{0, Check::kSurfacePoints, on, static_cast<double>(o.min_surface_points), c};
+  }
+  if (in > o.max_interior_ratio * (in + on)) {
+    return Rejection{0, Check::kInterior, in / (in + on), o.max_interior_ratio, c};
+  }
+  return std::nullopt;
+}
+
+bool plausible(const PartHypothesis& h, const ObjectDetectOptions& o) {
+  return h.valid && !implausible(h, o);
+}
+
+// Confirmation by the surface evidence (see ObjectDetectOptions::min_coverage).
+// For a part of a compound object the measurable share is judged over the whole object (its
+// siblings hide some of it: the head hides the end of the shaft), and its open ends not at all.
+std::optional<Rejection> unconfirmed(const SurfaceCoverage& c, const ObjectDetectOptions& o,
+                                     bool sensor_known, bool judge_share, double noise_mm) {
+  const double min_cover = sensor_known ? o.min_coverage : o.min_coverage_unknown_sensor;
+  if (c.measurable < o.min_measurable_samples) {
+    return Rejection{0, Check::kHidden, static_cast<double>(c.measurable),
+                     static_cast<double>(o.min_measurable_samples), Eigen::Vector3d::Zero()};
+  }
+  const double share = c.facing > 0 ? static_cast<double>(c.measurable) / c.facing : 0.0;
+  if (judge_share && share < o.min_measurable_share) {
+    return Rejection{0, Check::kHidden, share, o.min_measurable_share, Eigen::Vector3d::Zero()};
+  }
+  const double sink_limit = table_margin_mm(o, c.min_size_mm, noise_mm);
+  if (c.below_plane_mm > sink_limit) {
+    return Rejection{0, Check::kBelowPlane, c.below_plane_mm, sink_limit, Eigen::Vector3d::Zero()};
+  }
+  if (c.seen_through > o.max_seen_through) {
+    return Rejection{0, Check::kSeenThrough, c.seen_through, o.max_seen_through,
+                     Eigen::Vector3d::Zero()};
+  }
+  if (!(c.covered >= min_cover))
+    return Rejection{0, Check::kCoverage, c.covered, min_cover, Eigen::Vector3d::Zero()};
+  // Single parts only: a compound object's parts end by their siblings (a mallet's shaft by its
+  // head), and on the tuning scenes the check cost two true mallets.
+  if (judge_share && c.open_end > o.max_open_end)
+    return Rejection{0, Check::kOpenEnd, c.open_end, o.max_open_end, Eigen::Vector3d::Zero()};
+  return std::nullopt;
+}
+
+// Cells of the occupancy grid: about twice the scan's point spacing (so a measured surface has
+// no holes for a line of sight to slip through), from the nearest neighbours of a spread sample.
+double occupancy_cell_mm(std::span<const Eigen::Vector3d> points, const KdTree& tree) {
+  constexpr std::size_t kSample = 256;
+  if (points.size() < 2) return 2.0;
+  std::vector<std::uint32_t> nbr;
+  std::vector<double> d;
+  const std::size_t stride = std::max<std::size_t>(1, points.size() / kSample);
+  for (std::size_t i = 0; i < points.size(); i += stride) {
+    const Eigen::Vector3d& p = points[i];
+    tree.knn_search(p, 2, nbr);
+    if (nbr.size() == 2) d.push_back((points[nbr[1]] - p).norm());
+  }
+  if (d.empty()) return 2.0;
+  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+  return std::clamp(2.0 * d[d.size() / 2], 1.5, 6.0);
+}
+
+// Same physical pose: the centres agree to 5% of the smallest size.
+bool same_place(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, const Superquadric& sq) {
+  return (a.translation() - b.translation()).norm() < 0.05 * sq.min_size();
+}
+
+// Single-part vote over the evaluated hypotheses: index of the lowest rank sum (or smallest M).
+std::vector<int> part_rank_sums(const std::vector<PartHypothesis>& hyps, Selection selection) {
+  std::vector<double> m, in, s;
+  for (const PartHypothesis& h : hyps) {
+    m.push_back(h.scores.measure);
+    in.push_back(static_cast<double>(h.scores.interior));
+    s.push_back(static_cast<double>(h.scores.surface));
+  }
+  const std::vector<int> rm = ranks(m), ri = ranks(in), rs = ranks(s, true);
+  std::vector<int> sum(hyps.size());
+  for (std::size_t i = 0; i < hyps.size(); ++i) {
+    sum[i] = selection == Selection::kMeasure ? rm[i] : rm[i] + ri[i] + rs[i];
+  }
+  return sum;
+}
+
+// Runs hypotheses [begin, end) of one part on the worker threads; results by index.
+void run_batch(const HypothesisContext& ctx, const Superquadric& part, std::size_t part_index,
+               std::size_t begin, std::size_t end, int threads, std::vector<PartHypothesis>& out) {
+  const auto work = [&](std::size_t first, std::size_t step) {
+    for (std::size_t h = first; h < end; h += step) {
+      out[h] = generate_hypothesis(ctx, part, mix_seed(ctx.options->seed, part_index, h));
+    }
+  };
+  const std::size_t n = end - begin;
+  const std::size_t workers = std::min<std::size_t>(n, static_cast<std::size_t>(threads));
+  if (workers <= 1) {
+    work(begin, 1);
+    return;
+  }
+  std::vector<std::thread> pool;
+  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(work, begin + w, workers);
+  work(begin, workers);
+  for (std::thread& t : pool) t.join();
+}
+
+// The rest_on_plane check for a part, or the lowest part of an object (see
+// ObjectDetectOptions::rest_on_plane); noise_mm is the table's noise.
+std::optional<Rejection> floating(double lowest_mm, double max_size_mm, bool plane_removed,
+                                  double noise_mm, const ObjectDetectOptions& o) {
+  if (!o.rest_on_plane || !plane_removed) return std::nullopt;
+  const double limit = rest_tolerance_mm(o, max_size_mm, noise_mm);
+  if (lowest_mm > limit) {
+    return Rejection{0, Check::kFloating, lowest_mm, limit, Eigen::Vector3d::Zero()};
+  }
+  return std::nullopt;
+}
+
+// The fit-quality checks in mm (see ObjectDetectOptions::max_size_deviation and
+// residual_noise_factor), and, with `judge_sink`, the part's sink into the table judged by how
+// well its points place it (sink_floor_mm); noise_mm is the scan's range noise (the removed
+// plane's rms). A compound object's parts are held to the table margin only: a mallet's shaft
+// touches the table at its far end, 120 mm from its centre, and a true shaft of the tuning
+// scenes was fitted 3.3 mm into the table there against a standard deviation of 0.28 mm.
+std::optional<Rejection> misfit(const HypothesisContext& ctx, const Superquadric& part,
+                                const Eigen::Isometry3d& T, std::span<const PlacedPart> others,
+                                double noise_mm, const SurfaceCoverage& seen, bool judge_sink,
+                                PartScores* scores = nullptr) {
+  const ObjectDetectOptions& o = *ctx.options;
+  const SizeEvidence e = size_evidence(ctx, part, T, others);
+  // Unknown when the fit had too few points: then only the table margin of unconfirmed() holds.
+  double sigma = INFINITY;
+  if (ctx.table && !e.pose_covariance.isZero()) {
+    sigma = height_sigma_mm(T, seen.deepest_part, ctx.table->normal, e.pose_covariance);
+  }
+  if (scores) {
+    scores->size_determined = e.determined;
+    scores->size_scale = e.scale;
+    scores->residual_mm = e.residual_mm;
+    scores->below_plane_mm = seen.below_plane_mm;
+    scores->height_sigma_mm = sigma;
+  }
+  const double max_residual = o.residual_noise_factor * noise_mm + o.max_residual_floor_mm;
+  if (e.residual_mm > max_residual) {
+    return Rejection{0, Check::kResidual, e.residual_mm, max_residual, T.translation()};
+  }
+  if (e.determined && std::abs(e.scale - 1.0) > o.max_size_deviation) {
+    return Rejection{0, Check::kSize, e.scale - 1.0, o.max_size_deviation, T.translation()};
+  }
+  const double sink_limit =
+      o.sink_floor_mm + o.sink_noise_factor * noise_mm + o.sink_sigma_factor * sigma;
+  if (judge_sink && ctx.table && seen.below_plane_mm > sink_limit) {
+    return Rejection{0, Check::kBelowPlane, seen.below_plane_mm, sink_limit, T.translation()};
+  }
+  return std::nullopt;
+}
+
+// The continuation check (see ObjectDetectOptions::max_continuation): the band is the scan's
+// noise (three sigma, at least 1 mm), and the table is the one margin of the other table checks.
+std::optional<Rejection> continues(const HypothesisContext& ctx, const Superquadric& part,
+                                   const Eigen::Isometry3d& T, std::span<const PlacedPart> others,
+                                   double noise_mm, PartScores* scores = nullptr) {
+  const ObjectDetectOptions& o = *ctx.options;
+  ContinuationOptions co;
+  co.band_mm = std::max(1.0, 3.0 * noise_mm);
+  co.table = ctx.table;
+  co.table_margin_mm = table_margin_mm(o, part.min_size(), noise_mm);
+  std::vector<PlacedShape> explained;
+  for (const PlacedPart& p : others) explained.push_back({p.shape, p.T_world_part});
+  const Continuation c = surface_continuation(part, T, ctx.points, *ctx.tree, co, explained);
+  if (scores) scores->continuation = c.share;
+  if (c.share > o.max_continuation) {
+    return Rejection{0, Check::kContinues, c.share, o.max_continuation, T.translation()};
+  }
+  return std::nullopt;
+}
+
+// Every check a posed part must pass beyond eq. 5.2-5.4, in one place for the search's early
+// stop and for the final candidates. `alone`: a part of a single-part model, whose measurable
+// share and rest on the table are judged here; a part of a compound object is judged on those
+// together with its siblings (detect_object). The coverage and fit scores go into `scores` and
+// the coverage into `seen` when given.
+std::optional<Rejection> judge_part(const HypothesisContext& ctx, const Superquadric& part,
+                                    const Eigen::Isometry3d& T, std::span<const PlacedPart> others,
+                                    const CoverageOptions& cover, double noise_mm, bool alone,
+                                    PartScores* scores = nullptr, SurfaceCoverage* seen = nullptr) {
+  const ObjectDetectOptions& o = *ctx.options;
+  const SurfaceCoverage c = surface_coverage(part, T, ctx.points, *ctx.tree, cover);
+  if (seen) *seen = c;
+  if (scores) {
+    scores->facing = c.facing;
+    scores->measurable = c.measurable;
+    scores->coverage = c.covered;
+    scores->seen_through = c.seen_through;
+    scores->open_end = c.open_end;
+    scores->lowest_mm = c.lowest_mm;
+  }
+  std::optional<Rejection> why =
+      unconfirmed(c, o, cover.sensor.kind != SensorView::Kind::kUnknown, alone, noise_mm);
+  if (!why && alone) {
+    why = floating(c.lowest_mm, part.max_size(), cover.removed_plane.has_value(), noise_mm, o);
+  }
+  if (!why) why = misfit(ctx, part, T, others, noise_mm, c, alone, scores);
+  if (!why) why = continues(ctx, part, T, others, noise_mm, scores);
+  if (why) why->centre = T.translation();
+  return why;
+}
+
+// Hypotheses of one part. After each batch the vote leader among the places not yet set aside
+// is judged; a leader that fails a check is set aside, and so is one that passes and has been
+// found again by `confirmations` hypotheses, for a compound model (its hypotheses stay in the
+// vote, but a look-alike of the part is not fitted again and again while the real part waits;
+// and for a single-part model asked for K instances, each of the first K - 1 established).
+// A set-aside place's points are no longer drawn as RANSAC seeds. A single-part model stops
+// once K leaders have passed and been found again by `confirmations` hypotheses each. Batches are
+// fixed, so the stop and the set-aside points are deterministic.
+// A place judged during the search: its pose, scores and verdict, so that the final candidates
+// do not judge it again.
+struct Judged {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  PartScores scores;
+  std::optional<Rejection> why;
+};
+
+std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Superquadric& part,
+                                        std::size_t part_index, bool compound,
+                                        const CoverageOptions& cover, double noise_mm,
+                                        std::vector<Judged>& judged) {
+  const ObjectDetectOptions& o = *base.options;
+  const int threads = o.threads > 0
+                          ? o.threads
+                          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const std::size_t m = static_cast<std::size_t>(compound ? o.compound_hypotheses : o.hypotheses);
+  std::vector<PartHypothesis> all(m);
+  std::vector<PlacedPart> set_aside;
+  std::size_t established = 0;
+  HypothesisContext ctx = base;
+  std::size_t done = 0;
+  while (done < m) {
+    const std::size_t end = std::min(m, done + static_cast<std::size_t>(o.batch));
+    ctx.seed_excluded = set_aside;
+    run_batch(ctx, part, part_index, done, end, threads, all);
+    done = end;
+    if (!o.early_stop || done >= m) continue;
+    std::vector<PartHypothesis> valid;
+    for (std::size_t i = 0; i < done; ++i) {
+      const bool aside = std::any_of(set_aside.begin(), set_aside.end(), [&](const PlacedPart& r) {
+        return same_place(all[i].T_world_part, r.T_world_part, part);
+      });
+      if (plausible(all[i], o) && !aside) valid.push_back(all[i]);
+    }
+    if (valid.empty()) continue;
+    const std::vector<int> sums = part_rank_sums(valid, o.selection);
+    const std::size_t lead =
+        static_cast<std::size_t>(std::min_element(sums.begin(), sums.end()) - sums.begin());
+    const Eigen::Isometry3d& T = valid[lead].T_world_part;
+    Judged j{T, valid[lead].scores, std::nullopt};
+    j.why = judge_part(ctx, part, T, {}, cover, noise_mm, !compound, &j.scores);
+    const bool rejected = j.why.has_value();
+    judged.push_back(std::move(j));
+    if (rejected) {
+      set_aside.push_back({part, T});
+      continue;
+    }
+    int agree = 0;
+    for (const PartHypothesis& h : valid) {
+      if (same_place(h.T_world_part, T, part)) ++agree;
+    }
+    const PartScores& ls = valid[lead].scores;
+    const bool clean = static_cast<double>(ls.interior) <=
+                       kCleanInteriorRatio * static_cast<double>(ls.interior + ls.surface);
+    if (agree < o.confirmations || !clean) continue;
+    // One more place established: a single-part model stops once it has its K instances.
+    if (!compound && ++established >= static_cast<std::size_t>(o.instances)) break;
+    set_aside.push_back({part, T});
+  }
+  all.resize(done);
+  return all;
+}
+
+// Compound models: a part hypothesis is only combined with others when the scan shows the
+// surface it claims (the coverage checks of judge_part, which do not depend on its siblings): a
+// head posed in an overhanging plate or on a wall, seen through by the laser, otherwise fills
+// the vote's best combinations and uses up the candidates before the real head is reached.
+// Judged once per place; the failures' rejections (best hypothesis first, one per place) go to
+// `why`.
+std::vector<PartHypothesis> seen_as_claimed(const HypothesisContext& ctx, const Superquadric& part,
+                                            std::size_t part_index,
+                                            std::vector<PartHypothesis> hyps,
+                                            const CoverageOptions& cover, double noise_mm,
+                                            std::vector<Rejection>& why) {
+  const ObjectDetectOptions& o = *ctx.options;
+  const std::vector<int> sums = part_rank_sums(hyps, o.selection);
+  std::vector<std::size_t> order(hyps.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return sums[a] < sums[b]; });
+  std::vector<std::pair<Eigen::Isometry3d, bool>> places;
+  std::vector<bool> keep(hyps.size(), false);
+  for (std::size_t i : order) {
+    const Eigen::Isometry3d& T = hyps[i].T_world_part;
+    const auto it = std::find_if(places.begin(), places.end(),
+                                 [&](const auto& pl) { return same_place(pl.first, T, part); });
+    if (it != places.end()) {
+      keep[i] = it->second;
+      continue;
+    }
+    const SurfaceCoverage c = surface_coverage(part, T, ctx.points, *ctx.tree, cover);
+    std::optional<Rejection> r =
+        unconfirmed(c, o, cover.sensor.kind != SensorView::Kind::kUnknown, false, noise_mm);
+    keep[i] = !r;
+    places.emplace_back(T, keep[i]);
+    if (r) {
+      r->part = part_index;
+      r->centre = T.translation();
+      why.push_back(*r);
+    }
+  }
+  std::vector<PartHypothesis> out;
+  for (std::size_t i = 0; i < hyps.size(); ++i) {
+    if (keep[i]) out.push_back(std::move(hyps[i]));
+  }
+  return out;
+}
+
+// Angle between two z-axes, folded to [0, pi/2]: symmetric parts have no preferred axis sign.
+double axis_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::acos(std::clamp(std::abs(a.normalized().dot(b.normalized())), 0.0, 1.0));
+}
+
+double folded(double angle) {
+  const double a = std::fmod(std::abs(angle), std::numbers::pi);
+  return std::min(a, std::numbers::pi - a);
+}
+
+// A and D of one link for two posed parts (eq. 5.5-5.6).
+std::pair<double, double> link_errors(const PartLink& l, const Eigen::Isometry3d& ti,
+                                      const Eigen::Isometry3d& tj) {
+  return {std::abs(folded(l.angle_rad) - axis_angle(ti.linear().col(2), tj.linear().col(2))),
+          std::abs(l.distance_mm - (ti.translation() - tj.translation()).norm())};
+}
+
+struct Combination {
+  std::vector<std::size_t> pick;  // per part, index into its valid hypotheses
+  std::vector<double> a, d;       // per link, eq. 5.5 and 5.6
+  int rank_sum = 0;
+};
+
+// All combinations of one valid hypothesis per part (the compound vote of 5.1.3). The parts'
+// criteria and the links' A and D are all ranked over the combinations.
+std::vector<Combination> vote(const ObjectModel& model,
+                              const std::vector<std::vector<PartHypothesis>>& hyps,
+                              const ObjectDetectOptions& options) {
+  const Selection selection = options.selection;
+  std::vector<Combination> combos;
+  std::vector<std::size_t> pick(hyps.size(), 0);
+  for (const auto& h : hyps) {
+    if (h.empty()) return combos;
+  }
+  while (true) {
+    Combination c;
+    c.pick = pick;
+    for (const PartLink& l : model.links) {
+      const Eigen::Isometry3d& ti = hyps[l.first][pick[l.first]].T_world_part;
+      const Eigen::Isometry3d& tj = hyps[l.second][pick[l.second]].T_world_part;
+      const auto [a, d] = link_errors(l, ti, tj);
+      c.a.push_back(a);
+      c.d.push_back(d);
+    }
+    combos.push_back(std::move(c));
+    std::size_t p = 0;
+    while (p < pick.size() && ++pick[p] == hyps[p].size()) pick[p++] = 0;
+    if (p == pick.size()) break;
+  }
+  // Link gate: vote among the consistently linked combinations when there are any.
+  std::vector<Combination> linked;
+  for (const Combination& c : combos) {
+    bool ok = true;
+    for (std::size_t l = 0; l < model.links.size(); ++l) {
+      ok = ok && c.a[l] <= options.link_angle_tolerance_rad &&
+           c.d[l] <= options.link_distance_tolerance * model.links[l].distance_mm + 5.0;
+    }
+    if (ok) linked.push_back(c);
+  }
+  combos = std::move(linked);
+  const auto add_ranks = [&](const std::vector<double>& v, bool larger_better) {
+    const std::vector<int> r = ranks(v, larger_better);
+    for (std::size_t i = 0; i < combos.size(); ++i) combos[i].rank_sum += r[i];
+  };
+  for (std::size_t p = 0; p < hyps.size(); ++p) {
+    std::vector<double> m, in, s;
+    for (const Combination& c : combos) {
+      const PartScores& sc = hyps[p][c.pick[p]].scores;
+      m.push_back(sc.measure);
+      in.push_back(static_cast<double>(sc.interior));
+      s.push_back(static_cast<double>(sc.surface));
+    }
+    add_ranks(m, false);
+    if (selection == Selection::kRankedVote) {
+      add_ranks(in, false);
+      add_ranks(s, true);
+    }
+  }
+  for (std::size_t l = 0; l < model.links.size(); ++l) {
+    std::vector<double> a, d;
+    for (const Combination& c : combos) a.push_back(c.a[l]), d.push_back(c.d[l]);
+    add_ranks(a, false);
+    add_ranks(d, false);
+  }
+  std::stable_sort(combos.begin(), combos.end(), [](const Combination& x, const Combination& y) {
+    return x.rank_sum < y.rank_sum;
+  });
+  return combos;
+}
+
+// Keeps at most `per_part` hypotheses of each part (best own rank sum first) so that the
+// combinations of a compound model stay bounded.
+std::vector<PartHypothesis> best_of(std::vector<PartHypothesis> valid, Selection selection,
+                                    std::size_t per_part) {
+  if (valid.size() <= per_part) return valid;
+  const std::vector<int> sums = part_rank_sums(valid, selection);
+  std::vector<std::size_t> order(valid.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return sums[a] < sums[b]; });
+  std::vector<PartHypothesis> out;
+  for (std::size_t i = 0; i < per_part; ++i) out.push_back(valid[order[i]]);
+  return out;
+}
+
+// Compound models: each part of the chosen combination is refined once more with the points its
+// sibling parts explain left out, best-fitting part first. Each part's hypotheses were refined
+// alone, so points of the head leak into the shaft's trimmed least squares and pull its centre
+// along its axis (the thesis's "false negative along the axis"); explained away, they cannot.
+void refine_jointly(const HypothesisContext& ctx, const ObjectModel& model,
+                    DetectedInstance& inst) {
+  const std::size_t n = model.parts.size();
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return inst.parts[a].scores.measure < inst.parts[b].scores.measure;
+  });
+  const auto siblings = [&](std::size_t p) {
+    std::vector<PlacedPart> out;
+    for (std::size_t q = 0; q < n; ++q) {
+      if (q != p) out.push_back({model.parts[q].shape, inst.parts[q].T_world_part});
+    }
+    return out;
+  };
+  for (std::size_t p : order) {
+    inst.parts[p].T_world_part =
+        refine_pose(ctx, model.parts[p].shape, inst.parts[p].T_world_part, siblings(p));
+  }
+  for (std::size_t p = 0; p < n; ++p) {
+    const int rank_sum = inst.parts[p].scores.rank_sum;
+    inst.parts[p].scores =
+        verify_pose(ctx, model.parts[p].shape, inst.parts[p].T_world_part, siblings(p));
+    inst.parts[p].scores.rank_sum = rank_sum;
+  }
+  for (std::size_t l = 0; l < model.links.size(); ++l) {
+    const PartLink& link = model.links[l];
+    const auto [a, d] = link_errors(link, inst.parts[link.first].T_world_part,
+                                    inst.parts[link.second].T_world_part);
+    inst.link_angle_error_rad[l] = a;
+    inst.link_distance_error_mm[l] = d;
+  }
+}
+
+}  // namespace
+
+const char* to_string(Check check) {
+  switch (check) {
+    case Check::kMeasure:
+      return "measure";
+    case Check::kInterior:
+      return "interior";
+    case Check::kSurfacePoints:
+      return "surface points";
+    case Check::kCoverage:
+      return "coverage";
+    case Check::kSeenThrough:
+      return "seen through";
+    case Check::kOpenEnd:
+      return "open end";
+    case Check::kSize:
+      return "size";
+    case Check::kResidual:
+      return "residual";
+    case Check::kHidden:
+      return "hidden";
+    case Check::kBelowPlane:
+      return "below plane";
+    case Check::kFloating:
+      return "floating";
+    case Check::kContinues:
+      return "continues";
+    case Check::kLink:
+      return "link";
+  }
+  return "unknown";
+}
+
+const char* to_string(DetectReason reason) {
+  switch (reason) {
+    case DetectReason::kFound:
+      return "found";
+    case DetectReason::kEmptyCloud:
+      return "empty cloud";
+    case DetectReason::kInvalidModel:
+      return "invalid model";
+    case DetectReason::kInvalidOptions:
+      return "invalid options";
+    case DetectReason::kNoHypothesis:
+      return "no hypothesis";
+    case DetectReason::kNotConfirmed:
+      return "not confirmed";
+    case DetectReason::kNotLinked:
+      return "parts not linked";
+  }
+  return "unknown";
+}
+
+ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen::Vector3d> points,
+                                 const ObjectDetectOptions& options) {
+  const Clock::time_point t_start = Clock::now();
+  ObjectDetectResult result;
+  if (!model_ok(model)) {
+    result.reason = DetectReason::kInvalidModel;
+    return result;
+  }
+  if (!options_ok(options)) {
+    result.reason = DetectReason::kInvalidOptions;
+    return result;
+  }
+  // Non-finite points cannot be fitted; drop them rather than fail.
+  std::vector<Eigen::Vector3d> finite;
+  finite.reserve(points.size());
+  for (const Eigen::Vector3d& p : points) {
+    if (p.allFinite()) finite.push_back(p);
+  }
+  if (finite.empty()) {
+    result.reason = DetectReason::kEmptyCloud;
+    return result;
+  }
+  // 5.1.1: dominant plane removal.
+  Clock::time_point t0 = Clock::now();
+  std::vector<Eigen::Vector3d> cloud;
+  if (options.remove_plane) {
+    result.plane = remove_dominant_plane(finite, options.plane);
+    cloud.reserve(result.plane.remaining.size());
+    for (std::uint32_t i : result.plane.remaining) cloud.push_back(finite[i]);
+  } else {
+    cloud = std::move(finite);
+  }
+  result.time.plane_ms = ms_since(t0);
+  if (cloud.empty()) {
+    result.reason = DetectReason::kEmptyCloud;
+    result.time.total_ms = ms_since(t_start);
+    return result;
+  }
+  t0 = Clock::now();
+  const KdTree tree(cloud);
+  // The whole scan, plane included: lines of sight that pass a claimed surface mostly end on the
+  // table.
+  const OccupancyGrid occupancy(options.remove_plane ? std::span<const Eigen::Vector3d>(finite)
+                                                     : std::span<const Eigen::Vector3d>(cloud),
+                                occupancy_cell_mm(cloud, tree));
+  result.time.search_index_ms = ms_since(t0);
+
+  CoverageOptions cover;
+  cover.sensor = options.sensor;
+  if (cover.sensor.kind == SensorView::Kind::kUnknown && options.viewpoint) {
+    cover.sensor.kind = SensorView::Kind::kPoint;
+    cover.sensor.origin = *options.viewpoint;
+  }
+  cover.occupancy = &occupancy;
+  if (result.plane.removed()) {
+    // Oriented towards the objects: they rest on the plane, the sensor looks from their side.
+    pca::Plane up = result.plane.plane;
+    up.normal.normalize();
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d& p : cloud) mean += p;
+    mean /= static_cast<double>(cloud.size());
+    if (up.normal.dot(mean - up.point) < 0.0) up.normal = -up.normal;
+    cover.removed_plane = up;
+  }
+  cover.plane_margin_mm = options.plane_margin_mm;
+  // The scan's range noise, as the table shows it (0 without a plane: the floor alone).
+  const double noise_mm = result.plane.removed() ? result.plane.plane.rms : 0.0;
+
+  // 5.1.2: m hypotheses per part.
+  t0 = Clock::now();
+  HypothesisContext ctx{cloud, &tree, &options, {}, std::nullopt, 0.0};
+  if (options.rest_on_plane && cover.removed_plane) {
+    ctx.table = cover.removed_plane;
+    ctx.table_noise_mm = noise_mm;
+  }
+  const bool single = model.parts.size() == 1;
+  std::vector<std::vector<PartHypothesis>> hyps(model.parts.size()), unfit(model.parts.size());
+  bool any_valid = false, all_confirmed = true;
+  std::vector<Judged> judged;  // single-part models: places the search judged
+  std::vector<Rejection> prefiltered;
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    std::vector<Judged> judged_here;
+    std::vector<PartHypothesis> all =
+        search_part(ctx, model.parts[p].shape, p, !single, cover, noise_mm, judged_here);
+    if (single) judged = std::move(judged_here);
+    result.hypotheses_evaluated += static_cast<int>(all.size());
+    for (PartHypothesis& h : all) {
+      any_valid = any_valid || h.valid;
+      if (plausible(h, options)) {
+        hyps[p].push_back(std::move(h));
+      } else if (h.valid) {
+        unfit[p].push_back(std::move(h));
+      }
+    }
+    if (!single) {
+      hyps[p] = seen_as_claimed(ctx, model.parts[p].shape, p, std::move(hyps[p]), cover, noise_mm,
+                                prefiltered);
+      hyps[p] = best_of(std::move(hyps[p]), options.selection, 40);
+    }
+    all_confirmed = all_confirmed && !hyps[p].empty();
+  }
+  result.time.hypotheses_ms = ms_since(t0);
+
+  // Selection: ranked vote (5.1.2) extended by the links (5.1.3), then K distinct instances.
+  t0 = Clock::now();
+  const std::vector<Combination> combos = vote(model, hyps, options);
+  // Candidates already checked, by part centres: a rejected place is not checked again, and no
+  // part of a new instance may sit where a part of an accepted one does.
+  std::vector<std::vector<Eigen::Vector3d>> rejected, accepted;
+  const auto overlaps = [&](const std::vector<Eigen::Vector3d>& a,
+                            const std::vector<Eigen::Vector3d>& b, bool any) {
+    bool all_same = true, any_same = false;
+    for (std::size_t p = 0; p < a.size(); ++p) {
+      const double r = 0.5 * model.parts[p].shape.min_size();
+      all_same = all_same && (a[p] - b[p]).norm() < r;
+      for (const Eigen::Vector3d& q : b) any_same = any_same || (a[p] - q).norm() < r;
+    }
+    return any ? any_same : all_same;
+  };
+  for (const Combination& c : combos) {
+    if (static_cast<int>(result.instances.size()) >= options.instances) break;
+    std::vector<Eigen::Vector3d> centres;
+    for (std::size_t p = 0; p < model.parts.size(); ++p) {
+      centres.push_back(hyps[p][c.pick[p]].T_world_part.translation());
+    }
+    const auto same = [&](const std::vector<Eigen::Vector3d>& x) {
+      return overlaps(centres, x, false);
+    };
+    const auto clash = [&](const std::vector<Eigen::Vector3d>& x) {
+      return overlaps(centres, x, true);
+    };
+    if (std::any_of(accepted.begin(), accepted.end(), clash) ||
+        std::any_of(rejected.begin(), rejected.end(), same)) {
+      continue;
+    }
+    if (static_cast<int>(rejected.size() + accepted.size()) >= options.max_candidates) break;
+    DetectedInstance inst;
+    inst.rank_sum = c.rank_sum;
+    inst.link_angle_error_rad = c.a;
+    inst.link_distance_error_mm = c.d;
+    for (std::size_t p = 0; p < model.parts.size(); ++p) {
+      const PartHypothesis& h = hyps[p][c.pick[p]];
+      DetectedPart part;
+      part.name = model.parts[p].name;
+      part.T_world_part = h.T_world_part;
+      part.scores = h.scores;
+      part.scores.rank_sum = c.rank_sum;
+      inst.parts.push_back(std::move(part));
+    }
+    if (!single) refine_jointly(ctx, model, inst);
+    std::optional<Rejection> why;
+    // A single part's place judged by the search already: the same verdict, not judged again.
+    const Judged* before = nullptr;
+    if (single) {
+      for (const Judged& j : judged) {
+        const Eigen::Isometry3d& T = inst.parts[0].T_world_part;
+        const bool here =
+            j.why ? same_place(j.T, T, model.parts[0].shape) : j.T.matrix() == T.matrix();
+        if (here) before = &j;
+        if (here) break;
+      }
+    }
+    if (before && before->why) {
+      result.rejections.push_back(*before->why);
+      rejected.push_back(std::move(centres));
+      continue;
+    }
+    // The links once more after the joint refinement, tighter than the vote's gate: parts that
+    // only roughly fit the link (a head-sized drum 30 mm off the shaft's end) drift apart when
+    // each is refined on its own points, a mallet's parts stay within a few millimetres.
+    for (std::size_t l = 0; l < model.links.size() && !why; ++l) {
+      const double limit = kRefinedLinkShare * model.links[l].distance_mm + 3.0 * noise_mm + 1.0;
+      const double a = inst.link_angle_error_rad[l], d = inst.link_distance_error_mm[l];
+      if (a > kRefinedLinkAngleRad) {
+        why = Rejection{model.links[l].first, Check::kLink, a, kRefinedLinkAngleRad,
+                        inst.parts[model.links[l].first].center()};
+      } else if (d > limit) {
+        why = Rejection{model.links[l].first, Check::kLink, d, limit,
+                        inst.parts[model.links[l].first].center()};
+      }
+    }
+    double lowest = INFINITY, lowest_size = 0.0;
+    std::size_t lowest_part = 0;
+    int facing = 0, measurable = 0;
+    for (std::size_t p = 0; p < model.parts.size() && !why; ++p) {
+      DetectedPart& part = inst.parts[p];
+      std::vector<PlacedPart> others;
+      for (std::size_t q = 0; q < model.parts.size(); ++q) {
+        if (q != p) others.push_back({model.parts[q].shape, inst.parts[q].T_world_part});
+      }
+      SurfaceCoverage seen;
+      if (before) {
+        part.scores = before->scores;
+        part.scores.rank_sum = c.rank_sum;
+        continue;
+      }
+      why = judge_part(ctx, model.parts[p].shape, part.T_world_part, others, cover, noise_mm,
+                       single, &part.scores, &seen);
+      if (why) why->part = p;
+      if (seen.lowest_mm < lowest) {
+        lowest = seen.lowest_mm, lowest_size = model.parts[p].shape.max_size(), lowest_part = p;
+      }
+      facing += seen.facing, measurable += seen.measurable;
+    }
+    // A compound object's measurable share and rest on the table, over all its parts.
+    if (!why && !single && measurable < options.min_measurable_share * facing) {
+      why =
+          Rejection{0, Check::kHidden, facing > 0 ? static_cast<double>(measurable) / facing : 0.0,
+                    options.min_measurable_share, inst.parts[0].center()};
+    }
+    if (!why && !single) {
+      why = floating(lowest, lowest_size, cover.removed_plane.has_value(), noise_mm, options);
+      if (why) why->part = lowest_part, why->centre = inst.parts[lowest_part].center();
+    }
+    if (why) {
+      result.rejections.push_back(*why);
+      rejected.push_back(std::move(centres));
+      continue;
+    }
+    for (std::size_t p = 0; p < model.parts.size(); ++p) centres.push_back(inst.parts[p].center());
+    accepted.push_back(std::move(centres));
+    result.instances.push_back(std::move(inst));
+  }
+  result.time.vote_ms = ms_since(t0);
+  if (!result.instances.empty()) {
+    result.reason = DetectReason::kFound;
+  } else if (!any_valid) {
+    result.reason = DetectReason::kNoHypothesis;
+  } else if (all_confirmed && !single && result.rejections.empty()) {
+    result.reason = DetectReason::kNotLinked;  // plausible parts, but no linked combination
+  } else {
+    result.reason = DetectReason::kNotConfirmed;
+    if (result.rejections.empty()) result.rejections = std::move(prefiltered);
+    if (result.rejections.empty()) {
+      // No hypothesis passed eq. 5.2-5.4: say which check the best-fitting ones failed.
+      for (std::size_t p = 0; p < model.parts.size(); ++p) {
+        if (!hyps[p].empty()) continue;
+        const PartHypothesis* best = nullptr;
+        for (const PartHypothesis& h : unfit[p]) {
+          if (!best || h.scores.measure < best->scores.measure) best = &h;
+        }
+        if (!best) continue;
+        if (std::optional<Rejection> r = implausible(*best, options)) {
+          r->part = p;
+          result.rejections.push_back(*r);
+        }
+      }
+    }
+  }
+  result.time.total_ms = ms_since(t_start);
+  return result;
+}
+
+}  // namespace rangefit

@@ -1,0 +1,240 @@
+#pragma once
+// Superquadric object detection in a single-view scan (thesis ch. 5): dominant plane removal,
+// m pose hypotheses per part, each the best of n RANSAC trials refined on the full-resolution
+// neighbourhood, verified by a ranked vote over M, I and S (eq. 5.2-5.4) and, for compound
+// models, over the link deviations A and D (eq. 5.5-5.6).
+//
+// Beyond the thesis: hypotheses run on all cores in fixed batches, each with its own seed, so
+// the result depends only on options.seed and not on thread timing; the search stops early once
+// the leading hypothesis has been found again by independent hypotheses; several instances of
+// the object can be returned without duplicates; and a part is only confirmed when the scan
+// covers the surface this sensor could have measured of it, it claims no surface where the
+// sensor saw past it (free space, detect/object_coverage.hpp), and its points want the model's
+// size (so a look-alike a few per cent larger or smaller is not taken for it).
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "detect/object/object_model.hpp"
+#include "detect/common/plane_removal.hpp"
+#include "detect/common/sensor_view.hpp"
+
+namespace rangefit {
+
+// How the final pose is chosen from the hypotheses (thesis 5.2.2, table 5.5).
+enum class Selection {
+  kMeasure,     // smallest M only (methods A and B)
+  kRankedVote,  // lowest rank sum over M, I and S (methods C and D, and ours)
+};
+
+struct ObjectDetectOptions {
+  int hypotheses = 32;           // m, at most: single-part models stop early once confirmed
+  int compound_hypotheses = 24;  // m per part of compound models (always all of them)
+  int trials = 10;               // n RANSAC trials per hypothesis
+  int sample_points = 30;        // points of each RANSAC sample (thesis: 20-50)
+  int iterations = 20;           // LM iterations of each fit
+  int init_iterations = 10;      // LM iterations of each of the moment-direction fits (5.1.2)
+  int refine_rounds = 5;         // at most this many refinements "until M stops improving"
+  std::size_t max_refine_points = 1500;  // even subsample of the neighbourhood per refinement
+  bool refine_each_trial = false;        // method B/D: refine every trial, not only the best
+  // Refinement uses only neighbourhood points with G < 1 + refine_trim (clutter and the remains of
+  // other objects stay out of the least squares); 0 uses all of them as the thesis does.
+  double refine_trim = 0.6;
+  double gamma = 0.2;  // surface band of eq. 5.3-5.4
+  // Confirmation (beyond the thesis, whose vote always returns its best hypothesis): a part is
+  // only reported when it fits its points (M <= max_measure) and is not full of points (a
+  // single-view scan sees surfaces, so I <= max_interior_ratio (I + S)). A scene without the
+  // object then gives found() == false instead of the least bad misfit.
+  double max_measure = 0.25;
+  double max_interior_ratio = 0.2;
+  std::size_t min_surface_points = 20;
+  // And the scan holds points on this share of the surface the sensor could have measured of
+  // the part (object_coverage.hpp: shadows, occlusion and the sweep's ends excluded); checked on
+  // the vote's best candidates. With an unknown sensor the measurable surface is a guess that
+  // includes shadows, so a lower share is asked for.
+  double min_coverage = 0.6;
+  double min_coverage_unknown_sensor = 0.4;
+  // And at most this share of it lies where the sensor saw past it (free space). Rejects a part
+  // posed on a fragment of a larger object.
+  double max_seen_through = 0.05;
+  // And by each of its flat ends (a box, a can) whose side wall the scan shows farther in, at
+  // most this share of the side wall it could have measured there has no scan points near it
+  // (object_coverage.hpp open_end): a part fitted to a shorter look-alike lying along the sweep
+  // reaches past its end. The true single parts confirmed on the varied tuning scenes had 0; a can
+  // 7 % shorter lying along the sweep, fitted by the model, had 0.4.
+  double max_open_end = 0.3;
+  // And it shows the sensor at least this many of the coverage's surface samples, and this share
+  // of those facing it (a part hidden behind others, under the table or inside a measured
+  // object leaves too little to judge it by), and it does not reach farther than the table
+  // margin through the removed plane (parts rest on the table, they do not sink into it).
+  int min_measurable_samples = 10;
+  // Parts rest on the removed plane (the table): the lowest point of a single part, or of a
+  // compound object's parts together, is within the table margin of it. Off for scenes of
+  // stacked parts.
+  bool rest_on_plane = true;
+  double min_measurable_share = 0.4;
+  // The table margin of the RANSAC trials (a start on a small patch may sink into the table by
+  // this much) and of the points the continuation leaves to the table: max(plane_margin, 10 % of
+  // the part's smallest size) plus three times the table's noise (object_hypotheses.hpp
+  // table_margin_mm).
+  double plane_margin_mm = 5.0;
+  // The table margin is also how far a confirmed part may sink into the table (the scenes of
+  // the detector tests have parts a few millimetres into it). But it stands on the table: its
+  // lowest point (or a compound object's; flat faces' rounded edges taken as sharp) is no higher
+  // above it than rest_noise_factor x the table's noise plus rest_size_share of its largest size
+  // (rest_tolerance_mm). The true parts of the varied tuning scenes rest to within 0.25 mm, but
+  // the fig. 5.18 box (table 5.3 pose) is fitted up to 2.5 mm above the table; look-alikes 4-6 %
+  // taller fitted to the model by their tops stood 4.3-5.8 mm off at 0.6-0.8 mm noise.
+  double rest_noise_factor = 2.0;
+  double rest_size_share = 0.06;
+  // And a confirmed part sinks into the table by no more than its own points allow: sink_floor_mm
+  // plus sink_noise_factor x the table's noise plus sink_sigma_factor x the standard deviation of
+  // its lowest point's height under the pose covariance of its fit (the LM's s^2 (J^T J)^-1). A
+  // part whose top and sides are seen is placed to a few hundredths of a millimetre, so a
+  // look-alike a few per cent shorter, fitted by its top, sinks deeper than that; a part whose
+  // points leave its height open (only its side seen) is held only to the table margin.
+  double sink_floor_mm = 1.0;
+  double sink_noise_factor = 2.0;
+  double sink_sigma_factor = 3.0;
+  // And, where its points determine it, the size the points want is the model's within this
+  // share (object_hypotheses.hpp size_evidence): a sphere 4 % larger or smaller is not it; a box
+  // or a cone seen from one side places its size to about 2 %.
+  double max_size_deviation = 0.03;
+  // And its points lie on its surface as closely as the scan's noise allows: the robust spread
+  // of their distances from it (mm) is at most residual_noise_factor x the noise of the removed
+  // plane plus max_residual_floor_mm (a part fitted across fragments of other objects is not).
+  double residual_noise_factor = 2.0;
+  double max_residual_floor_mm = 0.3;
+  // And little of the scan carries on past its flat faces (object_continuation.hpp): the points
+  // outside it on one of its faces extended by up to 25 %, as a share of its surface points (at
+  // most 0.003 on the true objects of the tuning scenes, 0.013-0.16 on longer look-alikes).
+  // Rejects a part posed on one end of a longer or wider look-alike.
+  double max_continuation = 0.01;
+  int max_candidates = 20;            // candidates checked for coverage before giving up
+  double neighbourhood_factor = 1.2;  // r = factor * max(a) for refinement and verification
+  Selection selection = Selection::kRankedVote;
+  // Compound models: only combinations whose links deviate less than this (A of eq. 5.5, and D
+  // of eq. 5.6 relative to d_k, plus 5 mm) are voted on; none: not found (kNotLinked). Keeps
+  // perfect fits of look-alike parts from outvoting a correctly linked object.
+  double link_angle_tolerance_rad = 0.26;
+  double link_distance_tolerance = 0.15;
+  int instances = 1;  // K instances wanted, best first, no two sharing a part position
+  bool early_stop = true;
+  int confirmations = 3;  // early stop: hypotheses agreeing with the leader (single-part models)
+  int batch = 4;          // hypotheses per parallel batch (fixed: results do not depend on threads)
+  int threads = 0;        // 0: all cores
+  bool remove_plane = true;
+  PlaneRemovalOptions plane;
+  std::optional<Eigen::Vector3d> viewpoint;  // sensor position, when known (speeds up 5.1.2)
+  // How the scan was taken (stripe sweep, pan-tilt, one viewpoint), when known: the coverage and
+  // free-space checks then judge a part only by the surface this sensor could have measured.
+  SensorView sensor;
+  std::uint64_t seed = 1;
+};
+
+enum class DetectReason {
+  kFound,
+  kEmptyCloud,      // no points (or none left after the plane removal)
+  kInvalidModel,    // no parts, invalid part parameters or links to missing parts
+  kInvalidOptions,  // non-positive counts or tolerances
+  kNoHypothesis,    // no RANSAC sample had enough neighbours to fit
+  kNotConfirmed,    // hypotheses were fitted, but none passed the checks (see rejections)
+  kNotLinked,       // compound model: confirmed parts, but no combination matches the links
+};
+
+const char* to_string(DetectReason reason);
+
+// The checks a candidate part must pass to be confirmed (ObjectDetectOptions).
+enum class Check {
+  kMeasure,        // M > max_measure
+  kInterior,       // I > max_interior_ratio (I + S)
+  kSurfacePoints,  // S < min_surface_points
+  kCoverage,       // coverage < min_coverage (or min_coverage_unknown_sensor)
+  kSeenThrough,    // seen_through > max_seen_through
+  kOpenEnd,        // open_end > max_open_end: no surface by one of its flat ends
+  kSize,           // |size the points want - 1| > max_size_deviation
+  kResidual,       // the points' spread about the surface (mm) above the scan's noise allows
+  kHidden,         // fewer measurable samples than min_measurable_samples (value: the count),
+                   // or less than min_measurable_share of the facing ones (value: the share)
+  kBelowPlane,     // reaches through the removed plane by more than the table margin, or than
+                   // its points' uncertainty allows (sink_floor_mm; mm)
+  kFloating,       // rest_on_plane: its lowest point is higher above the plane than the rest
+                   // tolerance (mm)
+  kContinues,      // the scan carries on past its flat faces (share of its surface points)
+  kLink,           // compound: after the joint refinement a link's A (rad) or D (mm) is off
+};
+
+const char* to_string(Check check);
+
+struct PartScores {
+  double measure = 0.0;          // M, eq. 5.2
+  std::size_t interior = 0;      // I, eq. 5.3
+  std::size_t surface = 0;       // S, eq. 5.4
+  int rank_sum = 0;              // sum of this part's ranks in the vote
+  int facing = 0;                // surface samples facing the sensor (object_coverage)
+  int measurable = 0;            // of them, the ones not hidden behind measured surface
+  double coverage = 0.0;         // share of them with scan points
+  double seen_through = 0.0;     // share of them the sensor saw past
+  double open_end = 0.0;         // share of the side wall by a flat end with no scan points
+  double lowest_mm = 0.0;        // height of its lowest point above the removed plane
+  double below_plane_mm = 0.0;   // how far the model reaches through it (0: not at all)
+  double height_sigma_mm = 0.0;  // standard deviation of its lowest point's height (pose fit)
+  bool size_determined = false;  // the points determine the part's size (size_evidence)
+  double size_scale = 1.0;       // the scale of the model they want
+  double residual_mm = 0.0;      // robust spread of their distances from the surface
+  double continuation = 0.0;     // share of them the scan carries on past (object_continuation)
+};
+
+// Why a candidate was not confirmed: the first check it failed, its value and the limit.
+struct Rejection {
+  std::size_t part = 0;  // index into ObjectModel::parts
+  Check check = Check::kMeasure;
+  double value = 0.0;
+  double limit = 0.0;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // where the candidate part was
+};
+
+struct DetectedPart {
+  std::string name;
+  Eigen::Isometry3d T_world_part = Eigen::Isometry3d::Identity();
+  PartScores scores;
+  Eigen::Vector3d center() const { return T_world_part.translation(); }
+  Eigen::Vector3d z_axis() const { return T_world_part.linear().col(2); }
+  Eigen::Quaterniond rotation() const { return Eigen::Quaterniond(T_world_part.linear()); }
+};
+
+struct DetectedInstance {
+  std::vector<DetectedPart> parts;             // in model order
+  int rank_sum = 0;                            // total of the vote (lower is better)
+  std::vector<double> link_angle_error_rad;    // A per link, eq. 5.5
+  std::vector<double> link_distance_error_mm;  // D per link, eq. 5.6
+};
+
+struct StageTimes {
+  double plane_ms = 0.0;
+  double search_index_ms = 0.0;
+  double hypotheses_ms = 0.0;
+  double vote_ms = 0.0;
+  double total_ms = 0.0;
+};
+
+struct ObjectDetectResult {
+  DetectReason reason = DetectReason::kEmptyCloud;
+  std::vector<DetectedInstance> instances;  // best first; empty unless found()
+  PlaneRemovalResult plane;                 // the dominant plane (removed() tells if it was)
+  // Not found: the candidates checked and why each failed, best first (for a hypothesis that
+  // never reached the coverage checks, the check of eq. 5.2-5.4 it failed).
+  std::vector<Rejection> rejections;
+  int hypotheses_evaluated = 0;  // over all parts
+  StageTimes time;
+  bool found() const { return reason == DetectReason::kFound && !instances.empty(); }
+};
+
+ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen::Vector3d> points,
+                                 const ObjectDetectOptions& options = {});
+
+}  // namespace rangefit

@@ -1,0 +1,99 @@
+#pragma once
+// One pose hypothesis of one superquadric part (thesis 5.1.2, "Hypotheses"): n RANSAC trials
+// on small random patches, the best (smallest M) refined on the full-resolution neighbourhood,
+// then scored for the verification (I and S, eq. 5.3-5.4). Used by detect_object().
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include "detect/common/kdtree.hpp"
+#include "detect/object/object_detector.hpp"
+#include "detect/common/pca.hpp"
+#include "detect/object/superquadric.hpp"
+
+namespace rangefit {
+
+struct PartHypothesis {
+  bool valid = false;  // false: no trial found enough neighbours
+  Eigen::Isometry3d T_world_part = Eigen::Isometry3d::Identity();
+  PartScores scores;  // M, I, S (rank_sum filled by the vote)
+};
+
+struct PlacedPart;
+
+// Everything a hypothesis needs to read; shared, read-only, by all worker threads.
+struct HypothesisContext {
+  std::span<const Eigen::Vector3d> points;  // the cloud after plane removal
+  const KdTree* tree = nullptr;             // over `points`
+  const ObjectDetectOptions* options = nullptr;
+  // Candidates already judged and set aside: RANSAC seeds are not drawn among the points they
+  // explain (G < 1 + refine_trim), so new hypotheses go elsewhere.
+  std::span<const PlacedPart> seed_excluded;
+  // The removed table plane, its normal towards the objects (rest_on_plane): RANSAC trials whose
+  // part sinks into it by more than table_margin_mm() are not taken.
+  std::optional<pca::Plane> table;
+  double table_noise_mm = 0.0;  // the scan's range noise, as the table shows it
+};
+
+// How far a part of this smallest size may reach through the table, or stand above it, and still
+// rest on it: max(plane_margin, 10 % of the size) plus three times the table's noise. One margin
+// for the RANSAC trials, the below-plane check and the rest-on-plane check.
+double table_margin_mm(const ObjectDetectOptions& options, double min_size_mm, double noise_mm);
+
+// How far a confirmed part's lowest point may be from the table (ObjectDetectOptions::
+// rest_noise_factor): the scan's noise and a small share of the part's largest size (its tilt).
+double rest_tolerance_mm(const ObjectDetectOptions& options, double max_size_mm, double noise_mm);
+
+// Standard deviation (mm) of the height along `normal` of the posed part's point `q_part` (part
+// frame) under the pose covariance `cov` (increments [dt world, w part frame], pose_fit.hpp):
+// how well the points place the part's lowest point above the table.
+double height_sigma_mm(const Eigen::Isometry3d& T_world_part, const Eigen::Vector3d& q_part,
+                       const Eigen::Vector3d& normal, const Eigen::Matrix<double, 6, 6>& cov);
+
+// A part already placed (another part of the same compound object): the points it explains
+// (G < 1 + refine_trim of its own, or 1 + gamma without trimming) stay out of the refinement
+// and scores of the part being fitted, so a head does not drag its shaft towards itself.
+struct PlacedPart {
+  Superquadric shape;
+  Eigen::Isometry3d T_world_part = Eigen::Isometry3d::Identity();
+};
+
+// Deterministic: the same context, part and seed give the same hypothesis.
+PartHypothesis generate_hypothesis(const HypothesisContext& ctx, const Superquadric& part,
+                                   std::uint64_t seed);
+
+// Iterative refinement on the full-resolution neighbourhood until M stops improving (5.1.2).
+Eigen::Isometry3d refine_pose(const HypothesisContext& ctx, const Superquadric& part,
+                              const Eigen::Isometry3d& T_world_part,
+                              std::span<const PlacedPart> explained = {});
+
+// M over the refinement selection, I and S over the neighbourhood within the verification radius.
+PartScores verify_pose(const HypothesisContext& ctx, const Superquadric& part,
+                       const Eigen::Isometry3d& T_world_part,
+                       std::span<const PlacedPart> explained = {});
+
+// How well the part's own size explains its points: the pose is re-fitted with the part a little
+// smaller and a little larger (G scaled by 1 + du and 1 - du), and a parabola through the three
+// mean squares of G - 1 gives the scale the points want: all over, across the axis and along it.
+// A look-alike 4 % larger than the model wants ~1.04 whatever its point count; a part seen only
+// on a plane face gives a flat parabola and no verdict.
+struct SizeEvidence {
+  bool determined = false;  // at least one parabola is curved enough to place its vertex
+  double scale = 1.0;       // the scale the points want farthest from 1 (vertex of a parabola)
+  // Robust spread of the distances from the surface of the points near it at the given pose,
+  // mm (1.4826 median |d|: the sigma of the range noise for a part that is really there).
+  double residual_mm = 0.0;
+  // The pose's covariance as the points determine it (PoseFitResult::covariance of the fit at the
+  // model's size); zero when there were too few points.
+  Eigen::Matrix<double, 6, 6> pose_covariance = Eigen::Matrix<double, 6, 6>::Zero();
+};
+SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& part,
+                           const Eigen::Isometry3d& T_world_part,
+                           std::span<const PlacedPart> explained = {}, double du = 0.08);
+
+// splitmix64: seeds per hypothesis from (seed, part, index), and the samplers' generator.
+std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t a, std::uint64_t b);
+
+}  // namespace rangefit
