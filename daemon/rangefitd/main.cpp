@@ -12,6 +12,7 @@
 #include <cstring>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "daemon/rangefitd/interfaces.hpp"
@@ -117,6 +118,66 @@ bool reload(daemon::Service& service, const std::string& config_path, daemon::No
   return false;
 }
 
+// The configuration rangefitd starts with, or nothing after saying why (log, systemd status).
+std::optional<daemon::DaemonConfig> startup_config(const std::string& config_path,
+                                                   daemon::Notifier& notifier) {
+  auto loaded = daemon::load_config(config_path);
+  if (!loaded.config) {
+    setup_logging("info");
+    spdlog::critical("{}", loaded.error);
+    notifier.notify("STATUS=config error: " + loaded.error);
+    return std::nullopt;
+  }
+  setup_logging(loaded.config->service.log_level);
+  // The unit drops every peer outside its IPAddressAllow=: a socket there would never be reached.
+  if (const std::string why = allowed_addresses_error(*loaded.config); !why.empty()) {
+    spdlog::critical("{}: {}", config_path, why);
+    notifier.notify("STATUS=config error: " + why);
+    return std::nullopt;
+  }
+  return std::move(loaded.config);
+}
+
+// Steps the service, feeds the watchdog, keeps systemd's status line current and reloads on
+// SIGHUP, until SIGTERM or SIGINT, which it returns.
+int serve(daemon::Service& service, const hal::Clock& clock, const sigset_t& signals,
+          const std::string& config_path, daemon::Notifier& notifier) {
+  auto stall_limit = [&] {
+    return std::chrono::duration_cast<hal::Duration>(
+        std::chrono::duration<double>(service.config().service.stall_timeout_s));
+  };
+  daemon::WatchdogFeeder watchdog(notifier, stall_limit());
+  const hal::Duration watchdog_period = daemon::watchdog_interval() / 2;
+  hal::Timestamp next_feed{0};
+  std::string last_status;
+  for (;;) {
+    service.step(std::chrono::milliseconds(100));
+
+    const hal::Timestamp now = clock.now();
+    if (watchdog_period > hal::Duration::zero() && now >= next_feed) {
+      std::string why;
+      watchdog.tick(now, service.last_progress(), &why);
+      if (!why.empty()) spdlog::error("{}", why);
+      next_feed = now + watchdog_period;
+    }
+    std::string status = service.status_line();
+    if (service.stalled()) status = "STALLED; " + status;
+    if (status != last_status) {
+      notifier.notify("STATUS=" + status);
+      last_status = status;
+    }
+
+    timespec zero{};
+    siginfo_t info{};
+    const int sig = sigtimedwait(&signals, &info, &zero);
+    if (sig == SIGHUP) {
+      if (reload(service, config_path, notifier)) watchdog.set_stall_limit(stall_limit());
+    } else if (sig == SIGTERM || sig == SIGINT) {
+      return sig;
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -131,28 +192,16 @@ int main(int argc, char** argv) {
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
   daemon::SdNotifier notifier;
-  auto loaded = daemon::load_config(config_path);
-  if (!loaded.config) {
-    setup_logging("info");
-    spdlog::critical("{}", loaded.error);
-    notifier.notify("STATUS=config error: " + loaded.error);
-    return 1;
-  }
-  setup_logging(loaded.config->service.log_level);
-  // The unit drops every peer outside its IPAddressAllow=: a socket there would never be reached.
-  if (const std::string why = allowed_addresses_error(*loaded.config); !why.empty()) {
-    spdlog::critical("{}: {}", config_path, why);
-    notifier.notify("STATUS=config error: " + why);
-    return 1;
-  }
+  const std::optional<daemon::DaemonConfig> config = startup_config(config_path, notifier);
+  if (!config) return 1;
   notifier.notify("STATUS=starting");
 
   hal::MonotonicClock clock;
   std::unique_ptr<daemon::Service> service;
   std::unique_ptr<daemon::Interfaces> interfaces;  // [http], [tcp]
   try {
-    service = std::make_unique<daemon::Service>(*loaded.config, clock);
-    interfaces = std::make_unique<daemon::Interfaces>(*service, *loaded.config);
+    service = std::make_unique<daemon::Service>(*config, clock);
+    interfaces = std::make_unique<daemon::Interfaces>(*service, *config);
     std::string why;
     if (!interfaces->start(&why)) throw std::runtime_error(why);
   } catch (const std::exception& e) {
@@ -161,48 +210,15 @@ int main(int argc, char** argv) {
     return 1;
   }
   spdlog::info("rangefitd up: config {}, DDS domain {}, spool {}", config_path,
-               loaded.config->dds.domain_id, loaded.config->spool.directory.string());
+               config->dds.domain_id, config->spool.directory.string());
   notifier.notify("READY=1");
 
-  auto stall_limit = [&] {
-    return std::chrono::duration_cast<hal::Duration>(
-        std::chrono::duration<double>(service->config().service.stall_timeout_s));
-  };
-  daemon::WatchdogFeeder watchdog(notifier, stall_limit());
-  const hal::Duration watchdog_period = daemon::watchdog_interval() / 2;
-  hal::Timestamp next_feed{0};
-  std::string last_status;
-
-  for (;;) {
-    service->step(std::chrono::milliseconds(100));
-
-    const hal::Timestamp now = clock.now();
-    if (watchdog_period > hal::Duration::zero() && now >= next_feed) {
-      std::string why;
-      watchdog.tick(now, service->last_progress(), &why);
-      if (!why.empty()) spdlog::error("{}", why);
-      next_feed = now + watchdog_period;
-    }
-    std::string status = service->status_line();
-    if (service->stalled()) status = "STALLED; " + status;
-    if (status != last_status) {
-      notifier.notify("STATUS=" + status);
-      last_status = status;
-    }
-
-    timespec zero{};
-    siginfo_t info{};
-    const int sig = sigtimedwait(&signals, &info, &zero);
-    if (sig == SIGHUP) {
-      if (reload(*service, config_path, notifier)) watchdog.set_stall_limit(stall_limit());
-    } else if (sig == SIGTERM || sig == SIGINT) {
-      notifier.notify("STOPPING=1\nSTATUS=stopping");
-      spdlog::info("{}: stopping (aborting the running scan)", strsignal(sig));
-      service->stop(true);  // answers what the interfaces wait for, then they stop
-      interfaces.reset();
-      service.reset();
-      spdlog::info("stopped");
-      return 0;
-    }
-  }
+  const int sig = serve(*service, clock, signals, config_path, notifier);
+  notifier.notify("STOPPING=1\nSTATUS=stopping");
+  spdlog::info("{}: stopping (aborting the running scan)", strsignal(sig));
+  service->stop(true);  // answers what the interfaces wait for, then they stop
+  interfaces.reset();
+  service.reset();
+  spdlog::info("stopped");
+  return 0;
 }

@@ -335,60 +335,18 @@ struct FusionTableError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-DaemonConfig read_root(const toml::table& root, std::string_view source_name,
-                       const std::filesystem::path& base_dir) {
-  DaemonConfig c;
-  FieldReader r(&root, std::string(source_name));
-  if (const auto* t = r.sub_table("fusion")) {
-    auto fusion = fusion::parse_fusion_config(*t, source_name);
-    if (!fusion.config) throw FusionTableError(fusion.error);
-    c.fusion = *fusion.config;
+// Reads [name] with `read` when the file has the table.
+template <typename Read>
+void optional_table(FieldReader& r, const char* name, Read read) {
+  if (r.sub_table(name) != nullptr) {
+    FieldReader sub = r.sub(name);
+    read(sub);
   }
-  if (r.sub_table("sim") != nullptr) {
-    FieldReader sub = r.sub("sim");
-    read_sim(sub, c.sim);
-  }
-  c.sim.scene = resolve(c.sim.scene, base_dir);
-  if (r.sub_table("service") != nullptr) {
-    FieldReader sub = r.sub("service");
-    read_service(sub, c.service);
-  }
-  for (const char* name : {"http", "tcp"}) {
-    if (r.sub_table(name) != nullptr) {
-      FieldReader sub = r.sub(name);
-      read_interface(sub, std::string_view(name) == "http" ? c.http : c.tcp);
-    }
-  }
-  if (!c.http.listen.empty() && c.http.listen == c.tcp.listen) {
-    throw io::TomlError(source_name, 0, "tcp.listen: the same address as http.listen");
-  }
-  if (r.sub_table("dds") != nullptr) {
-    FieldReader sub = r.sub("dds");
-    read_dds(sub, c.dds);
-  }
-  if (r.sub_table("ros") != nullptr) {
-    FieldReader sub = r.sub("ros");
-    read_ros(sub, c.dds);
-  }
-  const toml::table* dds = root["dds"].as_table();
-  if (dds == nullptr || !dds->contains("domain_id")) {
-    try {
-      c.dds.domain_id = ros_domain_id().value_or(c.dds.domain_id);  // as a ROS 2 node would
-    } catch (const std::invalid_argument& e) {
-      throw io::TomlError(source_name, 0, std::string("dds.domain_id (not set): ") + e.what());
-    }
-  }
-  for (const auto& [key, path] : DdsSecurityConfig::documents(c.dds.security)) {
-    *path = resolve(*path, base_dir);
-  }
-  if (r.sub_table("spool") != nullptr) {
-    FieldReader sub = r.sub("spool");
-    read_spool(sub, c.spool);
-  }
-  if (r.sub_table("detection") != nullptr) {
-    FieldReader sub = r.sub("detection");
-    read_detection(sub, c.detection);
-  }
+}
+
+// [[devices]]: unique names, CAN nodes not shared, scenes resolved, motion devices that exist.
+void read_devices(FieldReader& r, DaemonConfig& c, std::string_view source_name,
+                  const std::filesystem::path& base_dir) {
   std::set<std::string> names;
   if (const auto* arr = r.table_array("devices")) {
     for (std::size_t i = 0; i < arr->size(); ++i) {
@@ -413,11 +371,11 @@ DaemonConfig read_root(const toml::table& root, std::string_view source_name,
           "devices[" + std::to_string(i) + "].motion: no device named \"" + m + "\"");
     }
   }
-  if (const auto* t = r.sub_table("frames")) {
-    FieldReader sub = r.sub("frames");
-    read_frames(sub, *t, c);
-  }
-  names.clear();
+}
+
+// [[objects]]: unique names.
+void read_objects(FieldReader& r, DaemonConfig& c, const std::filesystem::path& base_dir) {
+  std::set<std::string> names;
   if (const auto* arr = r.table_array("objects")) {
     for (std::size_t i = 0; i < arr->size(); ++i) {
       FieldReader sub = r.element("objects", *arr, i);
@@ -425,6 +383,50 @@ DaemonConfig read_root(const toml::table& root, std::string_view source_name,
       if (!names.insert(c.objects.back().name).second) sub.fail("name", "duplicate object name");
     }
   }
+}
+
+// The DDS domain: dds.domain_id when set, else ROS_DOMAIN_ID as a ROS 2 node would.
+void resolve_domain(const toml::table& root, std::string_view source_name, DdsConfig& dds) {
+  const toml::table* t = root["dds"].as_table();
+  if (t != nullptr && t->contains("domain_id")) return;
+  try {
+    dds.domain_id = ros_domain_id().value_or(dds.domain_id);
+  } catch (const std::invalid_argument& e) {
+    throw io::TomlError(source_name, 0, std::string("dds.domain_id (not set): ") + e.what());
+  }
+}
+
+DaemonConfig read_root(const toml::table& root, std::string_view source_name,
+                       const std::filesystem::path& base_dir) {
+  DaemonConfig c;
+  FieldReader r(&root, std::string(source_name));
+  if (const auto* t = r.sub_table("fusion")) {
+    auto fusion = fusion::parse_fusion_config(*t, source_name);
+    if (!fusion.config) throw FusionTableError(fusion.error);
+    c.fusion = *fusion.config;
+  }
+  optional_table(r, "sim", [&](FieldReader& sub) { read_sim(sub, c.sim); });
+  c.sim.scene = resolve(c.sim.scene, base_dir);
+  optional_table(r, "service", [&](FieldReader& sub) { read_service(sub, c.service); });
+  optional_table(r, "http", [&](FieldReader& sub) { read_interface(sub, c.http); });
+  optional_table(r, "tcp", [&](FieldReader& sub) { read_interface(sub, c.tcp); });
+  if (!c.http.listen.empty() && c.http.listen == c.tcp.listen) {
+    throw io::TomlError(source_name, 0, "tcp.listen: the same address as http.listen");
+  }
+  optional_table(r, "dds", [&](FieldReader& sub) { read_dds(sub, c.dds); });
+  optional_table(r, "ros", [&](FieldReader& sub) { read_ros(sub, c.dds); });
+  resolve_domain(root, source_name, c.dds);
+  for (const auto& [key, path] : DdsSecurityConfig::documents(c.dds.security)) {
+    *path = resolve(*path, base_dir);
+  }
+  optional_table(r, "spool", [&](FieldReader& sub) { read_spool(sub, c.spool); });
+  optional_table(r, "detection", [&](FieldReader& sub) { read_detection(sub, c.detection); });
+  read_devices(r, c, source_name, base_dir);
+  if (const auto* t = r.sub_table("frames")) {
+    FieldReader sub = r.sub("frames");
+    read_frames(sub, *t, c);
+  }
+  read_objects(r, c, base_dir);
   r.reject_unknown();
   for (const auto* key : {"bore_sensor", "object_sensor"}) {
     const std::string& sensor =

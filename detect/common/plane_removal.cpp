@@ -13,35 +13,31 @@ std::vector<std::uint32_t> all_indices(std::size_t n) {
   return idx;
 }
 
-}  // namespace
-
-PlaneRemovalResult remove_dominant_plane(std::span<const Eigen::Vector3d> points,
-                                         const PlaneRemovalOptions& options) {
-  PlaneRemovalResult result;
+// Radically reduced resolution: an even spread of the cloud, with a seeded offset.
+std::vector<Eigen::Vector3d> even_spread(std::span<const Eigen::Vector3d> points,
+                                         std::size_t sub_n, std::uint64_t seed) {
   const std::size_t n = points.size();
-  const std::size_t k = static_cast<std::size_t>(std::max(options.patch_points, 3));
-  if (n < k || options.seeds < 1) {
-    result.remaining = all_indices(n);
-    return result;
-  }
-  // Radically reduced resolution: an even spread of the cloud, with a seeded offset.
-  const std::size_t sub_n = std::min(n, std::max(options.subsample, k));
   std::vector<Eigen::Vector3d> sub(sub_n);
   const double stride = static_cast<double>(n) / static_cast<double>(sub_n);
-  const double offset = static_cast<double>(options.seed % 997) / 997.0 * stride;
+  const double offset = static_cast<double>(seed % 997) / 997.0 * stride;
   for (std::size_t i = 0; i < sub_n; ++i) {
     sub[i] =
         points[std::min(n - 1, static_cast<std::size_t>(offset + stride * static_cast<double>(i)))];
   }
-  const std::size_t seeds = std::min(sub_n, static_cast<std::size_t>(options.seeds));
+  return sub;
+}
+
+// One PCA plane patch of k points per seed, verified against the other seeds (most within
+// tolerance wins, the smaller median distance of the supporters breaks ties). Invalid when no
+// patch gives a plane.
+pca::Plane best_seed_plane(std::span<const Eigen::Vector3d> sub, std::size_t seeds, std::size_t k,
+                           double tol) {
+  const std::size_t sub_n = sub.size();
   std::vector<std::size_t> seed_idx(seeds);
   for (std::size_t s = 0; s < seeds; ++s) seed_idx[s] = s * sub_n / seeds;
-
-  // One PCA plane patch per seed, verified against the other seeds (most within tolerance wins,
-  // the smaller median distance of the supporters breaks ties).
-  const double tol = options.distance_tolerance_mm;
   std::vector<std::pair<double, std::size_t>> dist(sub_n);
   std::vector<Eigen::Vector3d> patch(k);
+  pca::Plane best;
   std::size_t best_support = 0;
   double best_median = 0.0;
   for (std::size_t s = 0; s < seeds; ++s) {
@@ -64,9 +60,28 @@ PlaneRemovalResult remove_dominant_plane(std::span<const Eigen::Vector3d> points
     if (support.size() > best_support || (support.size() == best_support && median < best_median)) {
       best_support = support.size();
       best_median = median;
-      result.plane = plane;
+      best = plane;
     }
   }
+  return best;
+}
+
+}  // namespace
+
+PlaneRemovalResult remove_dominant_plane(std::span<const Eigen::Vector3d> points,
+                                         const PlaneRemovalOptions& options) {
+  PlaneRemovalResult result;
+  const std::size_t n = points.size();
+  const std::size_t k = static_cast<std::size_t>(std::max(options.patch_points, 3));
+  if (n < k || options.seeds < 1) {
+    result.remaining = all_indices(n);
+    return result;
+  }
+  const std::size_t sub_n = std::min(n, std::max(options.subsample, k));
+  const std::vector<Eigen::Vector3d> sub = even_spread(points, sub_n, options.seed);
+  const double tol = options.distance_tolerance_mm;
+  result.plane = best_seed_plane(sub, std::min(sub_n, static_cast<std::size_t>(options.seeds)), k,
+                                 tol);
   if (!result.plane.valid) {
     result.reason = PlaneRemovalReason::kNotDominant;
     result.remaining = all_indices(n);

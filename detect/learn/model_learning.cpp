@@ -187,6 +187,76 @@ PartFit learn_part(std::span<const Eigen::Vector3d> object_points,
   return out;
 }
 
+namespace {
+
+// Thesis ch. 7: a compound object as two parts. The clusters the segmentation kept, or the
+// largest cut in two, are fitted apart; points near the cut are then given to whichever part
+// explains them and each part refitted; the link (angle, centre distance) is measured.
+LearnReason learn_two_parts(std::span<const Eigen::Vector3d> points,
+                            std::span<const Eigen::Vector3d> object,
+                            const std::optional<pca::Plane>& plane, const LearnOptions& options,
+                            LearnResult& r) {
+  const double gap = r.segment.gap_mm;
+  std::array<std::vector<Eigen::Vector3d>, 2> side;
+  if (r.segment.kept.size() == 2 &&
+      r.segment.kept[1].size() * kMinSecondCluster >= r.segment.kept[0].size()) {
+    // Two separate clusters: the parts do not touch in the scan.
+    side = {gather(points, r.segment.kept[0]), gather(points, r.segment.kept[1])};
+  } else {
+    // One cluster (the largest, when the second is only a fragment): cut it in two.
+    const std::vector<Eigen::Vector3d> largest = gather(points, r.segment.kept[0]);
+    const TwoPartSplit split = split_two_parts(largest, 20);
+    if (!split.ok) return LearnReason::kTooFewPoints;
+    side = {gather(largest, split.parts[0]), gather(largest, split.parts[1])};
+  }
+  std::array<ShapeFitResult, 2> fits;
+  for (int k = 0; k < 2; ++k) {
+    const PartFit f = learn_part(side[k], plane, options);
+    r.starts += f.starts;
+    if (!f.fit.ok) return LearnReason::kTooFewPoints;
+    fits[k] = f.fit;
+  }
+  // Points near the cut belong to whichever part explains them: reassign by radial distance
+  // and refit each part from where it is.
+  const SuperquadricMetric m0(fits[0].part.shape), m1(fits[1].part.shape);
+  const Eigen::Isometry3d inv0 = fits[0].part.T_world_part.inverse();
+  const Eigen::Isometry3d inv1 = fits[1].part.T_world_part.inverse();
+  side[0].clear();
+  side[1].clear();
+  for (const Eigen::Vector3d& p : object) {
+    side[radial_distance(m0, inv0, p) <= radial_distance(m1, inv1, p) ? 0 : 1].push_back(p);
+  }
+  for (int k = 0; k < 2; ++k) {
+    if (side[k].size() < 20) return LearnReason::kTooFewPoints;
+    const Superquadric& s = fits[k].part.shape;
+    const std::vector<Eigen::Vector3d> fine = spread(side[k], options.fit_points);
+    const ShapeFitResult f = fit_superquadric(
+        fine, fits[k].part, fit_options(options, s.a1 * s.a2 * s.a3, options.iterations));
+    if (f.ok) fits[k] = f;
+  }
+  // The larger part first, so the order does not depend on the direction of the moments.
+  auto volume = [](const Superquadric& s) { return s.a1 * s.a2 * s.a3; };
+  if (volume(fits[1].part.shape) > volume(fits[0].part.shape)) {
+    std::swap(fits[0], fits[1]);
+    std::swap(side[0], side[1]);
+  }
+  for (int k = 0; k < 2; ++k) {
+    r.parts.push_back(describe(k == 0 ? "part0" : "part1", fits[k], side[k], options, gap));
+  }
+  const Eigen::Isometry3d& a = r.parts[0].T_world_part;
+  const Eigen::Isometry3d& b = r.parts[1].T_world_part;
+  PartLink link;
+  link.first = 0;
+  link.second = 1;
+  link.angle_rad =
+      std::acos(std::clamp(std::abs(a.linear().col(2).dot(b.linear().col(2))), 0.0, 1.0));
+  link.distance_mm = (a.translation() - b.translation()).norm();
+  r.model.links.push_back(link);
+  return LearnReason::kLearnt;
+}
+
+}  // namespace
+
 LearnResult learn_model(std::span<const Eigen::Vector3d> points, const LearnOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   LearnResult r;
@@ -235,71 +305,10 @@ LearnResult learn_model(std::span<const Eigen::Vector3d> points, const LearnOpti
       return r;
     }
     r.parts.push_back(describe("body", f.fit, object, options, gap));
-  } else {
-    std::array<std::vector<Eigen::Vector3d>, 2> side;
-    if (r.segment.kept.size() == 2 &&
-        r.segment.kept[1].size() * kMinSecondCluster >= r.segment.kept[0].size()) {
-      // Two separate clusters: the parts do not touch in the scan.
-      side = {gather(points, r.segment.kept[0]), gather(points, r.segment.kept[1])};
-    } else {
-      // One cluster (the largest, when the second is only a fragment): cut it in two.
-      const std::vector<Eigen::Vector3d> largest = gather(points, r.segment.kept[0]);
-      const TwoPartSplit split = split_two_parts(largest, 20);
-      if (!split.ok) {
-        r.reason = LearnReason::kTooFewPoints;
-        return r;
-      }
-      side = {gather(largest, split.parts[0]), gather(largest, split.parts[1])};
-    }
-    std::array<ShapeFitResult, 2> fits;
-    for (int k = 0; k < 2; ++k) {
-      const PartFit f = learn_part(side[k], plane, o);
-      r.starts += f.starts;
-      if (!f.fit.ok) {
-        r.reason = LearnReason::kTooFewPoints;
-        return r;
-      }
-      fits[k] = f.fit;
-    }
-    // Points near the cut belong to whichever part explains them: reassign by radial distance
-    // and refit each part from where it is.
-    const SuperquadricMetric m0(fits[0].part.shape), m1(fits[1].part.shape);
-    const Eigen::Isometry3d inv0 = fits[0].part.T_world_part.inverse();
-    const Eigen::Isometry3d inv1 = fits[1].part.T_world_part.inverse();
-    side[0].clear();
-    side[1].clear();
-    for (const Eigen::Vector3d& p : object) {
-      side[radial_distance(m0, inv0, p) <= radial_distance(m1, inv1, p) ? 0 : 1].push_back(p);
-    }
-    for (int k = 0; k < 2; ++k) {
-      if (side[k].size() < 20) {
-        r.reason = LearnReason::kTooFewPoints;
-        return r;
-      }
-      const Superquadric& s = fits[k].part.shape;
-      const std::vector<Eigen::Vector3d> fine = spread(side[k], options.fit_points);
-      const ShapeFitResult f = fit_superquadric(
-          fine, fits[k].part, fit_options(options, s.a1 * s.a2 * s.a3, options.iterations));
-      if (f.ok) fits[k] = f;
-    }
-    // The larger part first, so the order does not depend on the direction of the moments.
-    auto volume = [](const Superquadric& s) { return s.a1 * s.a2 * s.a3; };
-    if (volume(fits[1].part.shape) > volume(fits[0].part.shape)) {
-      std::swap(fits[0], fits[1]);
-      std::swap(side[0], side[1]);
-    }
-    for (int k = 0; k < 2; ++k) {
-      r.parts.push_back(describe(k == 0 ? "part0" : "part1", fits[k], side[k], options, gap));
-    }
-    const Eigen::Isometry3d& a = r.parts[0].T_world_part;
-    const Eigen::Isometry3d& b = r.parts[1].T_world_part;
-    PartLink link;
-    link.first = 0;
-    link.second = 1;
-    link.angle_rad =
-        std::acos(std::clamp(std::abs(a.linear().col(2).dot(b.linear().col(2))), 0.0, 1.0));
-    link.distance_mm = (a.translation() - b.translation()).norm();
-    r.model.links.push_back(link);
+  } else if (const LearnReason why = learn_two_parts(points, object, plane, o, r);
+             why != LearnReason::kLearnt) {
+    r.reason = why;
+    return r;
   }
   for (const LearntPart& p : r.parts) r.model.parts.push_back({p.name, p.shape});
   r.reason = LearnReason::kLearnt;

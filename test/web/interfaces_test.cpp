@@ -8,8 +8,10 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <future>
 #include <nlohmann/json.hpp>
+#include <thread>
 #include <vector>
 
 #include "web_daemon.hpp"
@@ -193,6 +195,12 @@ TEST(Interfaces, ABusyCellAnswersBusyAndATimedOutScanTimeoutOnEveryInterface) {
   slow["id"] = "running";
   const auto first = c.Post("/v1/detect?wait=0", slow.dump(), "application/json");
   ASSERT_EQ(first->status, 202) << first->body;
+  // The queue holds one: the second request is queued only once the first has left it.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (parse(c.Get("/v1/state"))["state"] != "scanning" &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
   slow["id"] = "queued";
   ASSERT_EQ(c.Post("/v1/detect?wait=0", slow.dump(), "application/json")->status, 202);
   slow["id"] = "refused";

@@ -130,12 +130,9 @@ void common(CLI::App* sub, RequestArgs& a) {
   sub->add_option("--seed", a.seed, "seed of the detection (default: the daemon's)");
 }
 
-}  // namespace
-
-void add_request_command(CLI::App& app, int* exit_code) {
-  auto* cmd = app.add_subcommand("request", "ask a running rangefitd to scan and detect (DDS)");
-  cmd->require_subcommand(1);
-  static RequestArgs bore_args, object_args, learn_args, calibrate_args;
+// `rangefit request bore`: the CAD prior of `rangefit bore`, sent to the daemon.
+void add_bore_request(CLI::App* cmd, int* exit_code) {
+  static RequestArgs bore_args;
   auto* bore = cmd->add_subcommand("bore", "find a bore near a CAD prior");
   common(bore, bore_args);
   // The names of `rangefit bore` (--cad-*) are accepted beside the short ones; vectors as
@@ -182,6 +179,11 @@ void add_request_command(CLI::App& app, int* exit_code) {
                     "an elliptic bore: direction x y z of the --cad-radius semi-axis")
       ->check(finite_range(-kMaxCoordinateMm, kMaxCoordinateMm));
   bore->callback([exit_code] { *exit_code = run(bore_args, daemon::DetectKind::kBore); });
+}
+
+// `rangefit request object`: a configured model, as `rangefit object`.
+void add_object_request(CLI::App* cmd, int* exit_code) {
+  static RequestArgs object_args;
   auto* object = cmd->add_subcommand("object", "find a configured object model");
   common(object, object_args);
   object->add_option("--model", object_args.model, "object model name (daemon config)")->required();
@@ -197,6 +199,11 @@ void add_request_command(CLI::App& app, int* exit_code) {
                     "sensor position x y z, mm (default: what the sensor reports)")
       ->check(finite_range(-kMaxCoordinateMm, kMaxCoordinateMm));
   object->callback([exit_code] { *exit_code = run(object_args, daemon::DetectKind::kObject); });
+}
+
+// `rangefit request learn`: scan and learn, as `rangefit learn`.
+void add_learn_request(CLI::App* cmd, int* exit_code) {
+  static RequestArgs learn_args;
   auto* learn = cmd->add_subcommand(
       "learn", "scan and learn an object model (as `rangefit learn`); model.toml in the spool");
   common(learn, learn_args);
@@ -204,6 +211,11 @@ void add_request_command(CLI::App& app, int* exit_code) {
   learn->add_option("--parts", learn_args.parts, "parts of the model: 1, or 2 (head and shaft)")
       ->check(CLI::Range(1, 2));
   learn->callback([exit_code] { *exit_code = run(learn_args, daemon::DetectKind::kLearn); });
+}
+
+// `rangefit request calibrate stripe`: one sweep over the hollow cube.
+void add_calibrate_request(CLI::App* cmd, int* exit_code) {
+  static RequestArgs calibrate_args;
   auto* calibrate = cmd->add_subcommand(
       "calibrate", "scan a calibration body and calibrate; written to the spool, never applied");
   calibrate->require_subcommand(1);
@@ -223,6 +235,17 @@ void add_request_command(CLI::App& app, int* exit_code) {
       ->check(finite_range(-kMaxCoordinateMm, kMaxCoordinateMm));
   stripe->callback(
       [exit_code] { *exit_code = run(calibrate_args, daemon::DetectKind::kCalibrate); });
+}
+
+}  // namespace
+
+void add_request_command(CLI::App& app, int* exit_code) {
+  auto* cmd = app.add_subcommand("request", "ask a running rangefitd to scan and detect (DDS)");
+  cmd->require_subcommand(1);
+  add_bore_request(cmd, exit_code);
+  add_object_request(cmd, exit_code);
+  add_learn_request(cmd, exit_code);
+  add_calibrate_request(cmd, exit_code);
 }
 
 }  // namespace rangefit::cli
