@@ -5,13 +5,14 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <numeric>
 
+#include "detect/common/spread_subset.hpp"
 #include "detect/learn/learn_split.hpp"
 #include "detect/learn/learn_start.hpp"
 #include "detect/learn/learn_surface.hpp"
 #include "detect/object/pose_fit.hpp"
-#include "detect/common/spread_subset.hpp"
 
 namespace rangefit {
 namespace {
@@ -135,8 +136,9 @@ PartFit learn_part(std::span<const Eigen::Vector3d> object_points,
   const std::vector<Eigen::Vector3d> coarse = spread(object_points, options.start_points);
   const std::vector<Eigen::Vector3d> fine = spread(object_points, options.fit_points);
   // Ellipsoid, cylinder-like, box-like and pinched (eps > 1) starts; tapered ones standing.
-  static constexpr StartShape kShapes[] = {{1.0, 1.0}, {0.3, 1.0},       {0.3, 0.3},
-                                           {1.6, 1.6}, {0.3, 1.0, -0.6}, {1.0, 1.0, -0.6}};
+  static constexpr StartShape kShapes[] = {{1.0, 1.0},       {0.3, 1.0},       {0.3, 0.3},
+                                           {1.6, 1.6},       {0.3, 1.0, -0.6}, {1.0, 1.0, -0.6},
+                                           {0.3, 1.0, -0.9}, {0.3, 0.3, -0.9}};
   std::vector<PosedSuperquadric> starts = learn_starts(coarse, plane, kShapes);
   // A single part stands on the table (its normal turned towards it); a part of a compound
   // object need not reach it.
@@ -183,6 +185,22 @@ PartFit learn_part(std::span<const Eigen::Vector3d> object_points,
       radial_rms_mm(out.fit.part.shape, out.fit.part.T_world_part, fine) >
           options.retry_residual_mm) {
     finish(kept, n);
+  }
+  // A section near eps2 = 2 is a diamond: a square turned by 45 deg (eps2 = 2 exactly is
+  // |x|/a + |y|/a = 1, the square of half side a / sqrt 2). The fit reaches it when it starts
+  // 45 deg off a square object; try the square the other way and keep the better.
+  constexpr double kDiamondEps = 1.5;
+  if (out.fit.ok && out.fit.part.shape.eps2 > kDiamondEps) {
+    PosedSuperquadric square = out.fit.part;
+    const double half = 0.5 * (square.shape.a1 + square.shape.a2) / std::numbers::sqrt2;
+    square.shape.a1 = square.shape.a2 = half;
+    square.shape.eps2 = std::max(2.0 - square.shape.eps2, 0.1);
+    square.T_world_part.linear() =
+        square.T_world_part.linear() *
+        Eigen::AngleAxisd(0.25 * std::numbers::pi, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    const ShapeFitResult f =
+        fit_superquadric(fine, square, fit_options(options, v0, options.iterations, support));
+    if (f.ok && f.cost < out.fit.cost) out.fit = f;
   }
   return out;
 }
