@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <random>
 #include <utility>
 
 #include "detect/common/kdtree.hpp"
@@ -46,7 +47,20 @@ SegmentResult segment_object(std::span<const Eigen::Vector3d> points,
   SegmentResult out;
   std::vector<std::uint32_t> rest;
   if (options.remove_plane) {
-    out.plane = remove_dominant_plane(points, options.plane);
+    // The plane removal draws its patches and seeds at even strides through the points; an
+    // organised scan (a stripe ranger's profiles, row by row) aliases with those strides, so the
+    // seeds fall on a few lines across the table and a vertical plane through one of them (a face
+    // of the object) can outvote the table. The points are handed over in a seeded shuffle.
+    std::vector<std::uint32_t> order(points.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::mt19937_64 rng(options.plane.seed);
+    std::shuffle(order.begin(), order.end(), rng);
+    std::vector<Eigen::Vector3d> shuffled;
+    shuffled.reserve(points.size());
+    for (std::uint32_t i : order) shuffled.push_back(points[i]);
+    out.plane = remove_dominant_plane(shuffled, options.plane);
+    for (std::uint32_t& i : out.plane.remaining) i = order[i];
+    std::sort(out.plane.remaining.begin(), out.plane.remaining.end());
     rest = out.plane.remaining;
   } else {
     rest.resize(points.size());
