@@ -88,6 +88,33 @@ double residual(double g, double q_norm, bool radial) {
   return q_norm * (1.0 - 1.0 / std::sqrt(std::max(g, kTinyG)));
 }
 
+// The point of the part farthest along `u` (unit, part frame): where the normal of the untapered
+// superquadric (eq. 2.14) is parallel to u, then tapered as every surface point is. Exact for an
+// untapered part and, whatever the taper, for u along its z-axis (its end).
+Eigen::Vector3d extreme_point(const Superquadric& s, const Eigen::Vector3d& u) {
+  const double uxy = std::hypot(u.x(), u.y());
+  // Longitude: tan^(2 - eps2) omega = a2 u2 / (a1 u1).
+  // (eps 2 has a flat normal map, pinched edges: the exponent is kept finite just below it.)
+  const double pw = 1.0 / (2.0 - std::min(s.eps2, 1.95)), pe = 1.0 / (2.0 - std::min(s.eps1, 1.95));
+  const double omega = std::atan2(std::copysign(std::pow(std::abs(s.a2 * u.y()), pw), u.y()),
+                                  std::copysign(std::pow(std::abs(s.a1 * u.x()), pw), u.x()));
+  double eta = std::copysign(0.5 * 3.141592653589793, u.z());
+  if (uxy > 1e-12) {
+    // Latitude: tan^(2 - eps1) eta = a3 m u3 / |u_xy| with m the norm of the section's normal.
+    const double c = std::abs(std::cos(omega)), sn = std::abs(std::sin(omega));
+    const double m =
+        std::hypot(std::pow(c, 2.0 - s.eps2) / s.a1, std::pow(sn, 2.0 - s.eps2) / s.a2);
+    eta = std::atan(std::copysign(std::pow(s.a3 * m * std::abs(u.z()) / uxy, pe), u.z()));
+  }
+  return surface_point(s, eta, omega);
+}
+
+// Height of the part's lowest point above the plane n . x = offset (unit n towards the part).
+double support_height(const PosedSuperquadric& x, const Eigen::Vector3d& nrm, double offset) {
+  const Eigen::Vector3d down = -(x.T_world_part.linear().transpose() * nrm);
+  return nrm.dot(x.T_world_part * extreme_point(x.shape, down)) - offset;
+}
+
 struct Problem {
   std::span<const Eigen::Vector3d> points;
   std::vector<std::uint32_t> all;  // 0..n-1 for SuperquadricMetric::values
@@ -148,23 +175,25 @@ struct Problem {
     return lin;
   }
 
-  // The end of the part along -z (or +z when z points down) on the support plane.
+  // The part's lowest point along the table normal held on the table: one residual weighted
+  // like support_weight x the points, its Jacobian by differences (a single cheap value).
   void add_support(const PosedSuperquadric& x, std::size_t n, Lin& lin) const {
     if (!o.support_plane) return;
-    const Eigen::Vector3d nrm = o.support_plane->head<3>();
-    const Eigen::Matrix3d R = x.T_world_part.linear();
-    const double up = nrm.dot(R.col(2));
-    constexpr double kCosAlong = 0.9986;  // 3 deg
-    if (std::abs(up) < kCosAlong) return;
-    const double s = up > 0.0 ? 1.0 : -1.0, a3 = x.shape.a3;
     const double k = std::sqrt(o.support_weight * static_cast<double>(n));
-    const double r =
-        k * (nrm.dot(x.T_world_part.translation()) - s * a3 * up - (*o.support_plane)[3]);
+    const auto height = [&](const PosedSuperquadric& p) {
+      return support_height(p, o.support_plane->head<3>(), (*o.support_plane)[3]);
+    };
+    const double r = k * height(x);
     Eigen::Matrix<double, kN, 1> j = Eigen::Matrix<double, kN, 1>::Zero();
-    j.head<3>() = k * nrm;
-    // z = R e_z, R <- R exp([w]x): d(n . z) / dw = (e_z x R^T n) . w.
-    j.segment<3>(3) = -k * s * a3 * Eigen::Vector3d::UnitZ().cross(R.transpose() * nrm);
-    j[6 + 2] = -k * s * a3 * up;  // d / d log a3
+    j.head<3>() = k * o.support_plane->head<3>();
+    constexpr double kH = 1e-6;
+    for (int c = 3; c < 6 + model_params(); ++c) {
+      Vector h = Vector::Zero();
+      h[c] = kH;
+      const PosedSuperquadric nudged = step(x, h);
+      const double dv = c >= 6 ? get(nudged.shape, c - 6) - get(x.shape, c - 6) : kH;
+      j[c] = dv != 0.0 ? k * (height(nudged) - height(x)) / dv : 0.0;
+    }
     lin.cost += 0.5 * r * r;
     lin.jtj.noalias() += j * j.transpose();
     lin.g.noalias() += j * r;

@@ -44,11 +44,12 @@ struct ShapeFitOptions {
   double min_eps = 0.1, max_eps = 2.0;
   double max_taper = 1.0;  // |kx|, |ky| at most this
   double min_size_mm = 0.5;
-  // The table the part stands on, n . x = offset with unit n towards the part: while the part's
-  // z-axis is within ~3 deg of n, its end -a3 along z (its lowest point, whatever its shape and
-  // taper) is held on the table by one residual weighted like support_weight x the points. A
-  // single view never sees that end, and without it a3, the taper and the centre trade off (a
-  // cone's base floated 0.3 mm above the table and its size was 2 % off).
+  // The table the part rests on, n . x = offset with unit n towards the part: the part's lowest
+  // point along n (exact for an untapered part, and for any part standing on an end: learn_fit.cpp
+  // extreme_point) is held on the table by one residual weighted like support_weight x the points.
+  // A single view never sees where the part touches the table, and without it the hidden side
+  // is free: a cone's size, taper and centre trade off (its base floated 0.3 mm above the table,
+  // 2 % off), a sphere whose fitted axis turned away from the vertical grew an egg's unseen half.
   std::optional<Eigen::Vector4d> support_plane;  // (n, offset)
   double support_weight = 0.1;
 };

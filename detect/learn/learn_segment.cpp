@@ -1,8 +1,11 @@
 #include "detect/learn/learn_segment.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <numbers>
 #include <numeric>
+#include <random>
 #include <utility>
 
 #include "detect/common/kdtree.hpp"
@@ -10,18 +13,31 @@
 namespace rangefit {
 namespace {
 
-// Median distance to the nearest other point over an even sample of at most 500 points.
+// The sample spacing of the scan: over an even sample of at most 500 points, the median of the
+// distance to the nearest other point and of the spacing the 16 nearest imply (radius r of 16
+// points: pi r^2 / 16 of surface each), the larger. A laser-stripe scan is far denser along its
+// lines than across them (a steep face seen at a low angle: lines 1 mm apart, points 0.1 mm
+// along them); the nearest neighbour alone measures the along-line spacing, and a gap a few
+// times that cuts the object into its lines.
 double median_spacing(std::span<const Eigen::Vector3d> pts, const KdTree& tree) {
-  std::vector<double> d;
+  constexpr int kArea = 16;
+  std::vector<double> d, a;
   std::vector<std::uint32_t> nn;
   const std::size_t stride = std::max<std::size_t>(1, pts.size() / 500);
   for (std::size_t i = 0; i < pts.size(); i += stride) {
-    tree.knn_search(pts[i], 2, nn);
-    if (nn.size() == 2) d.push_back((pts[nn[1]] - pts[i]).norm());
+    tree.knn_search(pts[i], kArea + 1, nn);
+    if (nn.size() >= 2) d.push_back((pts[nn[1]] - pts[i]).norm());
+    if (nn.size() == kArea + 1) {
+      a.push_back((pts[nn[kArea]] - pts[i]).norm() * std::sqrt(std::numbers::pi / kArea));
+    }
   }
   if (d.empty()) return 1.0;
-  std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
-  return d[d.size() / 2];
+  const auto median = [](std::vector<double>& v) {
+    if (v.empty()) return 0.0;
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  return std::max(median(d), median(a));
 }
 
 }  // namespace
@@ -31,7 +47,20 @@ SegmentResult segment_object(std::span<const Eigen::Vector3d> points,
   SegmentResult out;
   std::vector<std::uint32_t> rest;
   if (options.remove_plane) {
-    out.plane = remove_dominant_plane(points, options.plane);
+    // The plane removal draws its patches and seeds at even strides through the points; an
+    // organised scan (a stripe ranger's profiles, row by row) aliases with those strides, so the
+    // seeds fall on a few lines across the table and a vertical plane through one of them (a face
+    // of the object) can outvote the table. The points are handed over in a seeded shuffle.
+    std::vector<std::uint32_t> order(points.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::mt19937_64 rng(options.plane.seed);
+    std::shuffle(order.begin(), order.end(), rng);
+    std::vector<Eigen::Vector3d> shuffled;
+    shuffled.reserve(points.size());
+    for (std::uint32_t i : order) shuffled.push_back(points[i]);
+    out.plane = remove_dominant_plane(shuffled, options.plane);
+    for (std::uint32_t& i : out.plane.remaining) i = order[i];
+    std::sort(out.plane.remaining.begin(), out.plane.remaining.end());
     rest = out.plane.remaining;
   } else {
     rest.resize(points.size());

@@ -17,7 +17,8 @@ namespace rangefit {
 struct SegmentOptions {
   bool remove_plane = true;
   PlaneRemovalOptions plane;
-  // Points closer than this are one object; 0: four times the median nearest-neighbour spacing.
+  // Points closer than this are one object; 0: four times the scan's sample spacing (the larger
+  // of the median nearest-neighbour distance and the spacing the 16 nearest imply).
   double gap_mm = 0.0;
   std::size_t min_points = 50;          // smaller clusters are noise
   std::optional<Eigen::Vector3d> near;  // pick the cluster nearest this point (else the largest)

@@ -62,10 +62,11 @@ std::vector<PosedSuperquadric> learn_starts(std::span<const Eigen::Vector3d> poi
     extents(points, axes, lo, hi);
   }
   const bool on_plane = plane && plane->valid;
-  // The starts of one frame; turned: z along the plane normal only, round sections untapered
-  // (from there the fit finds the section's shape and taper as well as from any other).
+  const double h0 = hi.x() - lo.x(), h1 = hi.y() - lo.y();
+  // The starts of one frame; turned: z along the plane normal only, round sections (untapered
+  // unless `tapered`; from there the fit finds the section's shape as well as from any other).
   auto add_frame = [&](const Eigen::Matrix3d& frame, Eigen::Vector3d f_lo, Eigen::Vector3d f_hi,
-                       bool turned) {
+                       bool turned, bool tapered = false) {
     const Eigen::Vector3d centre = frame * (0.5 * (f_lo + f_hi));
     const Eigen::Vector3d half =
         (0.5 * (f_hi - f_lo)).cwiseMax(1e-3 * (f_hi - f_lo).maxCoeff()).cwiseMax(0.5);
@@ -74,7 +75,8 @@ std::vector<PosedSuperquadric> learn_starts(std::span<const Eigen::Vector3d> poi
       const double a[3] = {half[(zi + 1) % 3], half[(zi + 2) % 3], half[zi]};
       for (const StartShape& s : shapes) {
         if (s.taper != 0.0 && !(on_plane && zi == 2)) continue;
-        if (turned && (s.taper != 0.0 || s.eps2 != 1.0)) continue;
+        if (turned && s.eps2 != 1.0) continue;
+        if (turned && !tapered && s.taper != 0.0) continue;
         // A tapered part is widest at one end, 1 + |k| times its mid-height size: that end,
         // not the middle, spans the points.
         const double w = 1.0 / (1.0 + std::abs(s.taper));
@@ -87,10 +89,27 @@ std::vector<PosedSuperquadric> learn_starts(std::span<const Eigen::Vector3d> poi
     }
   };
   add_frame(axes, lo, hi, false);
+  // One view of a round or square object standing on the plane shows only its near half: the
+  // points span its full width across the line of sight but about half of it along that line,
+  // and a start in the middle of what was seen sits half a radius in front of the object's axis.
+  // Complete the section to the wider extent on either side of the short axis (the hidden side
+  // is one of them), z along the normal, round sections.
+  if (on_plane && std::max(h0, h1) >= kSimilarMoments * std::min(h0, h1)) {
+    const int s_axis = h0 < h1 ? 0 : 1;
+    const double missing = std::abs(h0 - h1);
+    for (const double side : {-1.0, 1.0}) {
+      Eigen::Vector3d c_lo = lo, c_hi = hi;
+      if (side < 0.0) {
+        c_lo[s_axis] -= missing;
+      } else {
+        c_hi[s_axis] += missing;
+      }
+      add_frame(axes, c_lo, c_hi, true, true);
+    }
+  }
   // When the object's two horizontal moments are about equal, their axes say little about how
   // its cross-section is turned, and a square-ish section (eps2 away from 1) started 45 deg off
   // ends in a local minimum. Try the frame turned by 45 deg about the normal too.
-  const double h0 = hi.x() - lo.x(), h1 = hi.y() - lo.y();
   if (on_plane && std::max(h0, h1) < kSimilarMoments * std::min(h0, h1)) {
     const Eigen::Matrix3d turned =
         Eigen::AngleAxisd(0.25 * std::numbers::pi, axes.col(2)).toRotationMatrix() * axes;

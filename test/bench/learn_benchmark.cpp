@@ -3,16 +3,30 @@
 // ratio to a baseline measured in the same run: the moment-started pose fit of the true model
 // (detect/pose_fit.hpp, what the detector runs per refinement) on the same object points. The
 // machine is shared, so absolute times are noisy; the ratio is the figure to compare.
+//
+//   learn_benchmark --daily [--seeds N] [--held-out] [--object NAME]
+// prints, instead, per daily-life object of the thesis (sim/daily_objects.hpp, tables 5.6, 5.7)
+// learnt from stripe-cell teach-in scans (test/detect/learn_daily.hpp) from one and from two
+// views, over N seeds (tuning seeds 1..N, or the held-out ones from 1000001): how many met the
+// goals (one view: sizes 2 %, shapes 0.1; two: 1 %, 0.05), the median and worst size and shape
+// error, and the median learning time per part.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <numeric>
+#include <string>
 #include <vector>
 
 #include "detect/learn/learn_segment.hpp"
 #include "detect/learn/model_learning.hpp"
 #include "detect/object/pose_fit.hpp"
 #include "sim/scene_objects.hpp"
+#include "sim/varied_scene.hpp"
+#include "test/detect/learn_daily.hpp"
 #include "test/detect/learn_scenes.hpp"
 
 namespace rangefit {
@@ -82,7 +96,80 @@ void BM_SegmentTeachScan(benchmark::State& state) {
 }
 BENCHMARK(BM_SegmentTeachScan)->Unit(benchmark::kMillisecond);
 
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+void print_daily(int seeds, bool held_out, const std::string& only) {
+  const std::uint64_t base = held_out ? sim::kHeldOutSeedBase : sim::kTuningSeedBase;
+  std::printf("daily-life objects, %s seeds %llu..%llu, stripe-cell teach-in scans\n",
+              held_out ? "held-out" : "tuning", static_cast<unsigned long long>(base),
+              static_cast<unsigned long long>(base + seeds - 1));
+  std::printf("%-9s %5s | %9s %8s %8s %8s %8s | %9s %8s %8s %8s %8s | %7s\n", "object", "table",
+              "1v within", "size med", "size max", "shp med", "shp max", "2v within", "size med",
+              "size max", "shp med", "shp max", "ms/part");
+  for (const sim::DailyObject& object : sim::daily_life_objects()) {
+    if (!only.empty() && object.name != only) continue;
+    int within[2] = {0, 0};
+    std::vector<double> size[2], shape[2], ms;
+    for (int views = 1; views <= 2; ++views) {
+      const double size_goal = views == 1 ? 0.02 : 0.01, shape_goal = views == 1 ? 0.1 : 0.05;
+      for (int i = 0; i < seeds; ++i) {
+        const test::DailyLearnt l = test::learn_daily(object, base + i, views);
+        size[views - 1].push_back(l.size);
+        shape[views - 1].push_back(l.shape);
+        if (l.size <= size_goal && l.shape <= shape_goal) ++within[views - 1];
+        if (views == 1 && l.result.learnt()) {
+          ms.push_back(l.result.total_ms / static_cast<double>(l.result.parts.size()));
+        }
+        if (std::getenv("LEARN_DAILY_VERBOSE")) {
+          std::printf("  %s seed %llu %dv: size %.4f shape %.4f %.0f ms%s\n", object.name.c_str(),
+                      static_cast<unsigned long long>(base + i), views, l.size, l.shape,
+                      l.result.total_ms, l.result.learnt() ? "" : to_string(l.result.reason));
+        }
+      }
+    }
+    std::printf(
+        "%-9s %5s | %5d/%-3d %7.2f%% %7.2f%% %8.3f %8.3f | %5d/%-3d %7.2f%% %7.2f%% %8.3f "
+        "%8.3f | %7.0f\n",
+        object.name.c_str(), object.table.c_str(), within[0], seeds, 100.0 * median(size[0]),
+        100.0 * *std::max_element(size[0].begin(), size[0].end()), median(shape[0]),
+        *std::max_element(shape[0].begin(), shape[0].end()), within[1], seeds,
+        100.0 * median(size[1]), 100.0 * *std::max_element(size[1].begin(), size[1].end()),
+        median(shape[1]), *std::max_element(shape[1].begin(), shape[1].end()), median(ms));
+  }
+}
+
 }  // namespace
 }  // namespace rangefit
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  int seeds = 10;
+  bool daily = false, held_out = false;
+  std::string only;
+  std::vector<char*> rest = {argv[0]};
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--daily")) {
+      daily = true;
+    } else if (!std::strcmp(argv[i], "--held-out")) {
+      held_out = true;
+    } else if (!std::strcmp(argv[i], "--object") && i + 1 < argc) {
+      only = argv[++i];
+    } else if (!std::strcmp(argv[i], "--seeds") && i + 1 < argc) {
+      seeds = std::max(1, std::atoi(argv[++i]));
+    } else {
+      rest.push_back(argv[i]);
+    }
+  }
+  if (daily) {
+    rangefit::print_daily(seeds, held_out, only);
+    return 0;
+  }
+  int rest_argc = static_cast<int>(rest.size());
+  benchmark::Initialize(&rest_argc, rest.data());
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

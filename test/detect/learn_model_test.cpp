@@ -63,10 +63,14 @@ struct ThesisCase {
   double size_two, shape_two;  // what two views reach (the goal: 1 %, 0.05)
 };
 
-// The goals are met except for the cone from two views: its tip (a taper of -1) is where the
-// radial distance is least exact, 1.9 % from one view and 1.3 % from two (measured; the limit
-// below). Fitted from the true model, the same points give 0.8 %: the fits from the starts end in
-// a flatter valley of a1, a3 and the taper.
+// The goals are met except for the cone from two views, 1.3 % (the limit below; 1.8 % from one
+// view). Its a3 is short, the taper -0.975 and the centre 0.5 mm low with the base on the table:
+// near the apex the surface has next to no area and next to no points (the highest point seen is
+// 78.5 mm of 80), so the sides fix where they meet (a3 / |k|) but a3 and the taper slide along
+// that valley; with the 0.05 mm noise the points near the tip prefer a blunted tip clearly
+// enough that a refit with the taper on its bound costs more (model_learning.cpp keeps that refit
+// only when the points cannot tell: on other yaws it brings two views to 0.1 %). Noise-free,
+// both views give the exact cone; twice the rays per view still leave it 1-2 % short.
 const ThesisCase kThesis[] = {
     {"cylinder", sim::cylinder_model(), 0.02, 0.1, 0.01, 0.05},
     {"box", sim::box_model(), 0.02, 0.1, 0.01, 0.05},
@@ -91,6 +95,25 @@ TEST(LearnModel, LearnsTheThesisObjectsFromOneView) {
     EXPECT_GT(l.result.parts[0].visible_share, 0.25) << c.name;
     EXPECT_LT(l.result.parts[0].visible_share, 0.65) << c.name;
     EXPECT_LT(l.result.parts[0].residual_mm, 3.0 * kNoise) << c.name;
+  }
+}
+
+// One view of the cone shows the near half of its round base: started in the middle of what was
+// seen, the fits ended half a radius in front of its axis (7-101 % size errors on these yaws);
+// starts completing the section on either side (detect/learn/learn_start.cpp) find it.
+TEST(LearnModel, LearnsTheConeFromOneViewWhateverItsYaw) {
+#if defined(__SANITIZE_ADDRESS__)
+  constexpr std::uint64_t kLast = 4;  // ASan+UBSan runs ~10x slower
+#else
+  constexpr std::uint64_t kLast = 7;
+#endif
+  for (std::uint64_t seed = 4; seed <= kLast; ++seed) {
+    const Learnt l = learn(sim::cone_model(), seed, 1);
+    std::printf("  cone, seed %llu, one view: %s\n", static_cast<unsigned long long>(seed),
+                describe(l).c_str());
+    ASSERT_TRUE(l.result.learnt()) << seed;
+    EXPECT_LE(l.error.size, 0.02) << seed << ": " << describe(l);
+    EXPECT_LE(l.error.shape, 0.1) << seed << ": " << describe(l);
   }
 }
 
