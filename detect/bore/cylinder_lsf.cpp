@@ -153,7 +153,7 @@ void equations_sse2(const Eigen::Vector3d* pts, std::size_t n, const Frame& f, d
 double normal_equations(std::span<const Eigen::Vector3d> pts, const Cylinder& c, double delta,
                         double trim, Matrix5d& jtj, Vector5d& jtr) {
   const Eigen::Vector3d b1 = c.axis.unitOrthogonal(), b2 = c.axis.cross(b1);
-  const Frame f{c.point.x(), c.point.y(), c.point.z(), b1.x(), b1.y(), b1.z(),
+  const Frame f{c.point.x(), c.point.y(), c.point.z(), b1.x(),     b1.y(),     b1.z(),
                 b2.x(),      b2.y(),      b2.z(),      c.axis.x(), c.axis.y(), c.axis.z()};
   double s[20];
 #ifdef RANGEFIT_LANES_AVX2
@@ -347,8 +347,7 @@ CylinderLsfResult fit_cylinder_lsf(std::span<const Eigen::Vector3d> pts, const C
   return res;
 }
 
-CylinderSigma cylinder_sigma(std::span<const Eigen::Vector3d> pts, const Cylinder& c,
-                            double trim) {
+CylinderSigma cylinder_sigma(std::span<const Eigen::Vector3d> pts, const Cylinder& c, double trim) {
   CylinderSigma out;
   if (pts.size() < 6 || !(c.radius > 0.0) || !(c.axis.norm() > 0.0)) return out;
   Cylinder at = c;

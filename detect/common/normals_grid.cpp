@@ -179,8 +179,8 @@ pca::Moments NeighbourGrid::ball(const Eigen::Vector3d& p, double radius) const 
   pca::Moments m;
   if (nu_ == 0 || !p.allFinite() || !(radius > 0.0)) return m;
   const Eigen::Vector3d q = basis_.transpose() * (p - origin_);
-  const View g{x_.data(), y_.data(), z_.data(), start_.data(), cell_, 1.0 / cell_,
-               lo_u_,    lo_v_,    nu_,      nv_};
+  const View g{x_.data(),   y_.data(), z_.data(), start_.data(), cell_,
+               1.0 / cell_, lo_u_,     lo_v_,     nu_,           nv_};
   double s[10];
   static_assert(sizeof(q) == 3 * sizeof(double));
   const bool wide = lanes() == 8;  // never without RANGEFIT_LANES_AVX2

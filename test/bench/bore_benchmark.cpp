@@ -440,8 +440,8 @@ double bottom_tilt_sigma(const sim::SyntheticBoreScan& scan, double depth) {
     const Eigen::Vector2d u((p - plane.point).dot(e1), (p - plane.point).dot(e2));
     m += u * u.transpose();
   }
-  const double var = plane.rms * plane.rms * static_cast<double>(pts.size()) /
-                     static_cast<double>(pts.size() - 3);
+  const double var =
+      plane.rms * plane.rms * static_cast<double>(pts.size()) / static_cast<double>(pts.size() - 3);
   return std::sqrt(var * m.inverse().trace());
 }
 
@@ -450,8 +450,8 @@ double bottom_tilt_sigma(const sim::SyntheticBoreScan& scan, double depth) {
 // median one-sigma error its own fit reports (BoreResult::sigma_axis, the Cramer-Rao bound of the
 // inlier points under their residual noise; for an unbiased fit the median error is
 // sqrt(ln 2) = 0.83 of it), and the median |radius error| beside the median sigma_radius (for a
-// Gaussian error the median |error| is 0.67 sigma). A median goal below that bound cannot be met from the same points by
-// any unbiased fit, however it is tuned.
+// Gaussian error the median |error| is 0.67 sigma). A median goal below that bound cannot be met
+// from the same points by any unbiased fit, however it is tuned.
 void axis_bound(int seeds) {
   constexpr double kDeg = 180.0 / std::numbers::pi;
   std::printf("\nCSS density, axis error against the fit's own bound, %d seeds per set\n", seeds);
@@ -481,8 +481,7 @@ void axis_bound(int seeds) {
       }
       const auto med = [](std::vector<double> v) {
         if (v.empty()) return std::nan("");
-        std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2),
-                         v.end());
+        std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
         return v[v.size() / 2];
       };
       const double worst = err.empty() ? NAN : *std::max_element(err.begin(), err.end());
@@ -493,9 +492,10 @@ void axis_bound(int seeds) {
                   e / (std::sqrt(std::log(2.0)) * sg), med(n), err.size(), seeds, med(rerr),
                   med(rsig));
       if (!bottom.empty()) {
-        std::printf("          a flat bottom taken as normal to the axis (not assumed by the "
-                    "detector) would add: bottom tilt sigma %.4f deg, combined sigma %.4f deg\n",
-                    med(bottom), med(both));
+        std::printf(
+            "          a flat bottom taken as normal to the axis (not assumed by the "
+            "detector) would add: bottom tilt sigma %.4f deg, combined sigma %.4f deg\n",
+            med(bottom), med(both));
       }
     }
   }
