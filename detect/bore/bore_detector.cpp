@@ -51,6 +51,11 @@ void report_main_wall(const bore::WallFit& w, BoreResult& res) {
   res.rsf_axis = w.rsf.cylinder.axis;
   res.second_fit = w.second_fit;
   res.refined = w.refined;
+  if (w.sigma.valid) {
+    res.sigma_axis = w.sigma.axis;
+    res.sigma_offset = w.sigma.offset;
+    res.sigma_radius = w.sigma.radius;
+  }
 }
 
 BoreWallResult wall_result(const bore::WallFit& w, std::size_t wall_points) {

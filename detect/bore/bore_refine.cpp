@@ -188,6 +188,8 @@ RefineOutcome refine_wall(const RefineInput& in, const Cylinder& start, const Bo
   out.lsf = fit_cylinder_lsf(kept, out.lsf.cylinder, lo);
   out.inliers = kept.size();
   if (out.lsf.iterations == 0) out.lsf.iterations = done;  // already at the minimum
+  // How well these points determine the cylinder: the inliers within the trim of the answer.
+  out.sigma = cylinder_sigma(kept, out.lsf.cylinder, limit);
   return out;
 }
 

@@ -27,6 +27,7 @@ struct RefineInput {
 struct RefineOutcome {
   CylinderLsfResult lsf;
   std::size_t inliers = 0;  // points of the last fit
+  CylinderSigma sigma;      // of the last fit on its inliers (invalid: too few points)
 };
 
 RefineOutcome refine_wall(const RefineInput& in, const Cylinder& start, const BoreOptions& o);

@@ -80,6 +80,13 @@ struct BoreResult {
   Eigen::Vector3d rsf_axis = Eigen::Vector3d::UnitZ();
   bool second_fit = false;  // the notch filter removed points and the RSF ran again
   bool refined = false;     // the final least-squares refinement converged and was used
+  // The refined cylinder's one-sigma standard errors from its own fit (cylinder_sigma in
+  // cylinder_lsf.hpp: sigma^2 (J^T J)^-1 on the inliers, the Cramer-Rao bound of these points
+  // under their residual noise): how well the scan determines the bore, e.g. a short one-sided
+  // wall's axis; 0 when not refined.
+  double sigma_axis = 0.0;    // rad, rms angle
+  double sigma_offset = 0.0;  // mm, rms shift of the axis across itself at the wall's centroid
+  double sigma_radius = 0.0;  // mm
   BoreCounts counts;
   BoreTimes time_ms;
   // walls = kBoth: the outer wall (the fields above are the inner one); otherwise empty.

@@ -92,6 +92,7 @@ struct WallFit {
   RsfResult rsf;
   bool second_fit = false, refined = false;
   std::size_t wall_final = 0, refine_inliers = 0;
+  CylinderSigma sigma;  // of the refined cylinder (invalid: not refined)
   Eigen::Vector3d entrance = Eigen::Vector3d::Zero(), axis = Eigen::Vector3d::UnitZ();
 };
 // base: the refinement's inputs shared by the walls (cloud, region, plane, up, R).

@@ -59,6 +59,7 @@ void refine(const RefineInput& base, const Wall& wall, const BoreOptions& o, Wal
       std::abs(r.lsf.cylinder.axis.dot(c.axis)) > std::cos(5.0 * kDeg)) {
     w.cylinder = r.lsf.cylinder;
     w.refined = true;
+    w.sigma = r.sigma;
   }
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "detect/common/lanes.hpp"
 #include "detect/common/pca.hpp"
 
 namespace rangefit {
@@ -67,26 +68,45 @@ bool point_term(const Eigen::Vector3d& q, const Cylinder& c, const Eigen::Vector
 
 // Gauss-Newton system J^T W J and gradient J^T W r: the hot loop of the refinement. Each point
 // in the axis frame (x, y along b1, b2; h along the axis), the 15 distinct entries of the
-// symmetric J^T W J as scalars (no 5x5 outer product per point).
-void normal_equations(std::span<const Eigen::Vector3d> pts, const Cylinder& c, double delta,
-                      double trim, Matrix5d& jtj, Vector5d& jtr) {
-  const Eigen::Vector3d b1 = c.axis.unitOrthogonal(), b2 = c.axis.cross(b1);
-  double a11 = 0, a12 = 0, a13 = 0, a14 = 0, a15 = 0, a22 = 0, a23 = 0, a24 = 0, a25 = 0;
-  double a33 = 0, a34 = 0, a35 = 0, a44 = 0, a45 = 0, a55 = 0;
-  double g1 = 0, g2 = 0, g3 = 0, g4 = 0, g5 = 0;
-  for (const auto& q : pts) {
-    const Eigen::Vector3d d = q - c.point;
-    const double x = d.dot(b1), y = d.dot(b2), h = d.dot(c.axis);
-    const double dist2 = x * x + y * y;
-    if (dist2 < 1e-24) continue;  // on the axis: no direction, no gradient
-    const double dist = std::sqrt(dist2);
-    const double r = dist - c.radius, ar = std::abs(r);
-    if (trim > 0.0 && ar > trim) continue;
-    const double w = delta <= 0.0 || ar <= delta ? 1.0 : delta / ar;
+// symmetric J^T W J as scalars (no 5x5 outer product per point), four points per step in the
+// lanes of a V4d (lanes.hpp: compiled for SSE2 and AVX2); a point on the axis (no direction, no
+// gradient) or beyond the trim gets no weight. s: the 14 sums of J^T W J named below, the 5 of
+// J^T W r, then the weighted sum of squared residuals.
+struct Frame {
+  double px, py, pz, b1x, b1y, b1z, b2x, b2y, b2z, ax, ay, az;
+};
+
+template <class V>
+[[gnu::always_inline]] inline void equations_lanes(const Eigen::Vector3d* pts, std::size_t n,
+                                                   const Frame& f, double radius, double delta,
+                                                   double trim, double* s) {
+  V a11{}, a12{}, a13{}, a14{}, a15{}, a22{}, a24{}, a25{}, a33{}, a34{}, a35{}, a44{}, a45{},
+      a55{}, g1{}, g2{}, g3{}, g4{}, g5{}, rr{};
+  const V one = lanes::splat<V>(1.0), zero = lanes::splat<V>(0.0);
+  for (std::size_t k = 0; k < n; k += 4) {
+    V qx, qy, qz;
+    for (std::size_t l = 0; l < 4; ++l) {
+      // Past the end: the axis point itself, which gets no weight.
+      const bool in = k + l < n;
+      qx[l] = in ? pts[k + l].x() : f.px;
+      qy[l] = in ? pts[k + l].y() : f.py;
+      qz[l] = in ? pts[k + l].z() : f.pz;
+    }
+    const V dx = qx - f.px, dy = qy - f.py, dz = qz - f.pz;
+    const V x = dx * f.b1x + dy * f.b1y + dz * f.b1z;
+    const V y = dx * f.b2x + dy * f.b2y + dz * f.b2z;
+    const V h = dx * f.ax + dy * f.ay + dz * f.az;
+    const V dist2 = x * x + y * y;
+    const auto on_axis = dist2 < 1e-24;
+    const V dist = lanes::sqrt(on_axis ? one : dist2);
+    const V r = dist - radius, ar = lanes::abs(r);
+    V w = delta <= 0.0 ? one : (ar <= delta ? one : delta / ar);
+    w = on_axis ? zero : w;
+    if (trim > 0.0) w = ar > trim ? zero : w;
     // J = (-m1, -m2, -h m1, -h m2, -1) with m = (x, y) / dist.
-    const double inv = 1.0 / dist;
-    const double m1 = x * inv, m2 = y * inv;
-    const double wm1 = w * m1, wm2 = w * m2, hh = h * h;
+    const V inv = one / dist;
+    const V m1 = x * inv, m2 = y * inv;
+    const V wm1 = w * m1, wm2 = w * m2, hh = h * h;
     a11 += wm1 * m1;
     a12 += wm1 * m2;
     a22 += wm2 * m2;
@@ -101,20 +121,61 @@ void normal_equations(std::span<const Eigen::Vector3d> pts, const Cylinder& c, d
     a35 += wm1 * h;
     a45 += wm2 * h;
     a55 += w;
-    const double wr = w * r;
+    const V wr = w * r;
     g1 += wr * m1;
     g2 += wr * m2;
     g3 += wr * m1 * h;
     g4 += wr * m2 * h;
     g5 += wr;
+    rr += wr * r;
   }
-  a23 = a14;                       // (m2)(m1 h)
+  const V* sums[] = {&a11, &a12, &a13, &a14, &a15, &a22, &a24, &a25, &a33, &a34,
+                     &a35, &a44, &a45, &a55, &g1,  &g2,  &g3,  &g4,  &g5,  &rr};
+  for (std::size_t i = 0; i < 20; ++i) {
+    const V& v = *sums[i];
+    s[i] = (v[0] + v[1]) + (v[2] + v[3]);
+  }
+}
+
+void equations_sse2(const Eigen::Vector3d* pts, std::size_t n, const Frame& f, double radius,
+                    double delta, double trim, double* s) {
+  equations_lanes<lanes::V4d>(pts, n, f, radius, delta, trim, s);
+}
+#ifdef RANGEFIT_LANES_AVX2
+[[gnu::target("avx2")]] void equations_avx2(const Eigen::Vector3d* pts, std::size_t n,
+                                            const Frame& f, double radius, double delta,
+                                            double trim, double* s) {
+  equations_lanes<lanes::V4d>(pts, n, f, radius, delta, trim, s);
+}
+#endif
+
+// Returns the weighted sum of squared residuals.
+double normal_equations(std::span<const Eigen::Vector3d> pts, const Cylinder& c, double delta,
+                        double trim, Matrix5d& jtj, Vector5d& jtr) {
+  const Eigen::Vector3d b1 = c.axis.unitOrthogonal(), b2 = c.axis.cross(b1);
+  const Frame f{c.point.x(), c.point.y(), c.point.z(), b1.x(),     b1.y(),     b1.z(),
+                b2.x(),      b2.y(),      b2.z(),      c.axis.x(), c.axis.y(), c.axis.z()};
+  double s[20];
+#ifdef RANGEFIT_LANES_AVX2
+  if (lanes::cpu_has_avx2()) {
+    equations_avx2(pts.data(), pts.size(), f, c.radius, delta, trim, s);
+  } else {
+    equations_sse2(pts.data(), pts.size(), f, c.radius, delta, trim, s);
+  }
+#else
+  equations_sse2(pts.data(), pts.size(), f, c.radius, delta, trim, s);
+#endif
+  const double a11 = s[0], a12 = s[1], a13 = s[2], a14 = s[3], a15 = s[4], a22 = s[5];
+  const double a24 = s[6], a25 = s[7], a33 = s[8], a34 = s[9], a35 = s[10], a44 = s[11];
+  const double a45 = s[12], a55 = s[13];
+  const double a23 = a14;          // (m2)(m1 h)
   jtj << a11, a12, a13, a14, a15,  //
       a12, a22, a23, a24, a25,     //
       a13, a23, a33, a34, a35,     //
       a14, a24, a34, a44, a45,     //
       a15, a25, a35, a45, a55;
-  jtr << -g1, -g2, -g3, -g4, -g5;
+  jtr << -s[14], -s[15], -s[16], -s[17], -s[18];
+  return s[19];
 }
 
 // Gradient J^T W r alone: all a steepest-descent step needs (no 5x5 outer products).
@@ -284,6 +345,30 @@ CylinderLsfResult fit_cylinder_lsf(std::span<const Eigen::Vector3d> pts, const C
   res.rms = std::sqrt(ss / static_cast<double>(pts.size()));
   res.cylinder = s.c;
   return res;
+}
+
+CylinderSigma cylinder_sigma(std::span<const Eigen::Vector3d> pts, const Cylinder& c, double trim) {
+  CylinderSigma out;
+  if (pts.size() < 6 || !(c.radius > 0.0) || !(c.axis.norm() > 0.0)) return out;
+  Cylinder at = c;
+  at.axis.normalize();
+  at = recentre(pca::centroid(pts), at);  // tilt about the data: offset and tilt uncorrelated
+  Matrix5d jtj;
+  Vector5d jtr;
+  const double ss = normal_equations(pts, at, 0.0, trim, jtj, jtr);
+  const double n = jtj(4, 4);  // plain least squares: the count of points within the trim
+  if (!(n > 6.0)) return out;
+  const Eigen::LDLT<Matrix5d> ldlt(jtj);
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return out;
+  const Matrix5d cov = (ss / (n - 5.0)) * ldlt.solve(Matrix5d::Identity());
+  if (!cov.allFinite() || !(cov.diagonal().minCoeff() > 0.0)) return out;
+  out.offset = std::sqrt(cov(0, 0) + cov(1, 1));
+  out.axis = std::sqrt(cov(2, 2) + cov(3, 3));
+  out.radius = std::sqrt(cov(4, 4));
+  out.rms = std::sqrt(ss / n);
+  out.points = static_cast<std::size_t>(n);
+  out.valid = true;
+  return out;
 }
 
 Cylinder cylinder_from_pca(std::span<const Eigen::Vector3d> pts, double radius) {

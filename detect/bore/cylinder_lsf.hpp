@@ -44,6 +44,22 @@ struct CylinderLsfResult {
 CylinderLsfResult fit_cylinder_lsf(std::span<const Eigen::Vector3d> points, const Cylinder& initial,
                                    const CylinderLsfOptions& options);
 
+// One-sigma standard errors of the cylinder c fitted to `points` (those whose residual is within
+// `trim` when > 0): sigma^2 (J^T J)^-1 of plain least squares at c, sigma^2 the residuals'
+// variance over n - 5. Under independent noise of that size this is the Cramer-Rao bound of any
+// unbiased estimate from these points: how well the data determine the cylinder, not how far
+// the fit is from the truth (a bias, e.g. from a wrong model, does not show).
+struct CylinderSigma {
+  bool valid = false;
+  double axis = 0.0;    // rad: rms angle of the axis error (both tilt components)
+  double offset = 0.0;  // mm: rms shift of the axis across itself at the points' centroid
+  double radius = 0.0;  // mm
+  double rms = 0.0;     // rms residual, mm
+  std::size_t points = 0;
+};
+CylinderSigma cylinder_sigma(std::span<const Eigen::Vector3d> points, const Cylinder& c,
+                             double trim);
+
 // The thesis's PCA start for the LSF baseline: centroid, largest eigenvector, given radius.
 Cylinder cylinder_from_pca(std::span<const Eigen::Vector3d> points, double radius);
 

@@ -41,15 +41,17 @@ template <int W>
   const F one = F{} + 1.0f;
   F n{}, sx{}, sy{}, sz{}, sxx{}, sxy{}, sxz{}, syy{}, syz{}, szz{};
   const double u = q[0] - g.lo_u, v = q[1] - g.lo_v;
-  const int v0 = std::max(0, static_cast<int>(std::floor((v - radius) / g.cell)));
-  const int v1 = std::min(g.nv - 1, static_cast<int>(std::floor((v + radius) / g.cell)));
+  // Cells by multiplying with 1 / cell as build() assigned them (monotone rounding: a point
+  // within the ball never falls in a cell outside the range), no division per row.
+  const int v0 = std::max(0, static_cast<int>(std::floor((v - radius) * g.inv_cell)));
+  const int v1 = std::min(g.nv - 1, static_cast<int>(std::floor((v + radius) * g.inv_cell)));
   for (int iv = v0; iv <= v1; ++iv) {
     // Only the cells of this row that the ball's disc reaches: one contiguous span.
     const double dv = std::max({0.0, iv * g.cell - v, v - (iv + 1) * g.cell});
     if (dv > radius) continue;
     const double half = std::sqrt(radius * radius - dv * dv);
-    const int u0 = std::max(0, static_cast<int>(std::floor((u - half) / g.cell)));
-    const int u1 = std::min(g.nu - 1, static_cast<int>(std::floor((u + half) / g.cell)));
+    const int u0 = std::max(0, static_cast<int>(std::floor((u - half) * g.inv_cell)));
+    const int u1 = std::min(g.nu - 1, static_cast<int>(std::floor((u + half) * g.inv_cell)));
     if (u0 > u1) continue;
     const std::size_t row = static_cast<std::size_t>(iv) * static_cast<std::size_t>(g.nu);
     const std::size_t e = g.start[row + static_cast<std::size_t>(u1) + 1];
@@ -140,8 +142,9 @@ void NeighbourGrid::build(std::span<const Eigen::Vector3d> points, const std::ui
   // Bound the cell count by the point count (a sparse cloud spread over metres).
   const double area = std::max(hi.x() - lo.x(), 1e-9) * std::max(hi.y() - lo.y(), 1e-9);
   cell_ = std::max({cell, std::sqrt(area / (4.0 * static_cast<double>(finite) + 64.0)), 1e-6});
-  nu_ = static_cast<int>((hi.x() - lo.x()) / cell_) + 1;
-  nv_ = static_cast<int>((hi.y() - lo.y()) / cell_) + 1;
+  const double inv = 1.0 / cell_;
+  nu_ = static_cast<int>((hi.x() - lo.x()) * inv) + 1;
+  nv_ = static_cast<int>((hi.y() - lo.y()) * inv) + 1;
   lo_u_ = lo.x() - centre.x();
   lo_v_ = lo.y() - centre.y();
   // Counting sort by cell, rows of u-ordered cells one after another.
@@ -152,8 +155,8 @@ void NeighbourGrid::build(std::span<const Eigen::Vector3d> points, const std::ui
   for (std::size_t i = 0; i < n; ++i) {
     if (!point(i).allFinite()) continue;
     const Eigen::Vector3d l = local(point(i));
-    const int iu = std::clamp(static_cast<int>((l.x() - lo_u_) / cell_), 0, nu_ - 1);
-    const int iv = std::clamp(static_cast<int>((l.y() - lo_v_) / cell_), 0, nv_ - 1);
+    const int iu = std::clamp(static_cast<int>((l.x() - lo_u_) * inv), 0, nu_ - 1);
+    const int iv = std::clamp(static_cast<int>((l.y() - lo_v_) * inv), 0, nv_ - 1);
     cell_of[i] = static_cast<std::uint32_t>(iv * nu_ + iu);
     ++start_[cell_of[i] + 1];
   }
@@ -176,7 +179,8 @@ pca::Moments NeighbourGrid::ball(const Eigen::Vector3d& p, double radius) const 
   pca::Moments m;
   if (nu_ == 0 || !p.allFinite() || !(radius > 0.0)) return m;
   const Eigen::Vector3d q = basis_.transpose() * (p - origin_);
-  const View g{x_.data(), y_.data(), z_.data(), start_.data(), cell_, lo_u_, lo_v_, nu_, nv_};
+  const View g{x_.data(),   y_.data(), z_.data(), start_.data(), cell_,
+               1.0 / cell_, lo_u_,     lo_v_,     nu_,           nv_};
   double s[10];
   static_assert(sizeof(q) == 3 * sizeof(double));
   const bool wide = lanes() == 8;  // never without RANGEFIT_LANES_AVX2

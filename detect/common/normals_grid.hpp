@@ -36,7 +36,7 @@ class NeighbourGrid {
   struct View {
     const float *x, *y, *z;
     const std::uint32_t* start;  // first sorted point of each cell; start[cells] is the end
-    double cell, lo_u, lo_v;
+    double cell, inv_cell, lo_u, lo_v;  // inv_cell: 1 / cell, as the cells were assigned
     int nu, nv;
   };
 

@@ -57,14 +57,16 @@ namespace rangefit::bench {
 // with the synthetic generator's noise, 5 % outliers and 1 % ghosts. The cost of a pipeline that
 // scales with the point count is largest here; the small bore has the fewest wall points (a
 // budgeted subset must not lose them) and the large one the largest region and a scan window
-// that covers only a strip across it (as a CSS sweep over a 50 mm bore does).
+// that covers only a strip across it (as a CSS sweep over a 50 mm bore does). d50_60k is the
+// hardest realistic case of all: the same bore at the CSS's finest spacing, a ~60,000-point
+// region (the largest the CSS scans gave) around a wall seen only as a narrow arc.
 struct CssBoreCase {
   const char* name;
   sim::SyntheticBoreOptions scan;
 };
 
 inline std::vector<CssBoreCase> css_bore_cases() {
-  std::vector<CssBoreCase> c(4);
+  std::vector<CssBoreCase> c(5);
   const auto base = [](double radius, double spacing, std::uint64_t seed) {
     sim::SyntheticBoreOptions o;
     o.radius = radius;
@@ -85,6 +87,9 @@ inline std::vector<CssBoreCase> css_bore_cases() {
   c[3] = {"d50", base(25.0, 0.17, 44)};
   c[3].scan.extent = 28.0;
   c[3].scan.extent_v = 12.0;
+  c[4] = {"d50_60k", base(25.0, 0.15, 45)};
+  c[4].scan.extent = 28.0;
+  c[4].scan.extent_v = 11.0;
   return c;
 }
 
