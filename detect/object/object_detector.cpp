@@ -54,7 +54,7 @@ bool options_ok(const ObjectDetectOptions& o) {
          o.gamma < 1.0 && o.neighbourhood_factor > 0.0 && o.instances >= 1 && o.batch >= 1 &&
          o.confirmations >= 1 && o.refine_trim >= 0.0 && o.max_measure > 0.0 &&
          o.max_interior_ratio >= 0.0 && o.min_coverage >= 0.0 &&
-         o.min_coverage_unknown_sensor >= 0.0 && o.max_seen_through >= 0.0 &&
+         o.min_coverage_unknown_sensor >= 0.0 && o.min_coverage_compound_part >= 0.0 && o.max_seen_through >= 0.0 &&
          o.max_open_end >= 0.0 && o.max_open_end_compound >= 0.0 &&
          o.max_size_deviation > 0.0 && o.max_candidates >= 1 && o.min_measurable_samples >= 0 &&
          o.min_measurable_share >= 0.0 && o.max_continuation >= 0.0 && o.plane_margin_mm >= 0.0 &&
@@ -88,7 +88,13 @@ bool plausible(const PartHypothesis& h, const ObjectDetectOptions& o) {
 // siblings hide some of it: the head hides the end of the shaft), and its open ends not at all.
 std::optional<Rejection> unconfirmed(const SurfaceCoverage& c, const ObjectDetectOptions& o,
                                      bool sensor_known, bool judge_share, double noise_mm) {
-  const double min_cover = sensor_known ? o.min_coverage : o.min_coverage_unknown_sensor;
+  // A compound object's part is held to the whole object's coverage (detect_object) and alone
+  // only to the lower of the floor for parts and the unknown sensor's share.
+  const double min_cover =
+      !judge_share ? std::min(o.min_coverage_compound_part,
+                              sensor_known ? o.min_coverage : o.min_coverage_unknown_sensor)
+      : sensor_known ? o.min_coverage
+                     : o.min_coverage_unknown_sensor;
   if (c.measurable < o.min_measurable_samples) {
     return Rejection{0, Check::kHidden, static_cast<double>(c.measurable),
                      static_cast<double>(o.min_measurable_samples), Eigen::Vector3d::Zero()};
@@ -838,6 +844,7 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
     double lowest = INFINITY, lowest_size = 0.0;
     std::size_t lowest_part = 0;
     int facing = 0, measurable = 0;
+    double covered = 0.0;  // measurable samples with scan points, over all parts
     for (std::size_t p = 0; p < model.parts.size() && !why; ++p) {
       DetectedPart& part = inst.parts[p];
       std::vector<PlacedPart> others;
@@ -857,12 +864,19 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
         lowest = seen.lowest_mm, lowest_size = model.parts[p].shape.max_size(), lowest_part = p;
       }
       facing += seen.facing, measurable += seen.measurable;
+      covered += seen.covered * seen.measurable;
     }
-    // A compound object's measurable share and rest on the table, over all its parts.
+    // A compound object's measurable share, coverage and rest on the table, over all its parts.
     if (!why && !single && measurable < options.min_measurable_share * facing) {
       why =
           Rejection{0, Check::kHidden, facing > 0 ? static_cast<double>(measurable) / facing : 0.0,
                     options.min_measurable_share, inst.parts[0].center()};
+    }
+    const double min_cover = cover.sensor.kind != SensorView::Kind::kUnknown
+                                 ? options.min_coverage
+                                 : options.min_coverage_unknown_sensor;
+    if (!why && !single && measurable > 0 && covered < min_cover * measurable) {
+      why = Rejection{0, Check::kCoverage, covered / measurable, min_cover, inst.parts[0].center()};
     }
     if (!why && !single) {
       why = floating(lowest, lowest_size, cover.removed_plane.has_value(), noise_mm, options);

@@ -68,23 +68,33 @@ TEST(AxialSlide, LeavesLongerAndHiddenWallsAlone) {
 // wrongly: seed 7, a head lying with its caps along the sweep, fitted 4 mm short of its wall's
 // end and rejected as continuing past it; seed 28, its shaft 3-4 mm off along its axis; seed 15,
 // a shaft rolled about its axis. Both parts must be the true ones (centre < 3 mm, axis < 5 deg).
-TEST(ObjectMallet, PlacedAlongItsAxesWhereItsEndsShowNoPoints) {
-  for (std::uint64_t seed : {7u, 15u, 28u}) {
-    sim::VariedSceneOptions so;
-    so.target = sim::VariedTarget::kMallet;
-    const sim::VariedScene s = sim::make_varied_scene(so, seed);
-    ObjectDetectOptions o;
-    o.seed = seed;
-    o.sensor = s.view;
-    const ObjectDetectResult r = detect_object(s.model, s.cloud.points, o);
-    ASSERT_TRUE(r.found()) << "seed " << seed << ": " << to_string(r.reason);
-    for (std::size_t p = 0; p < s.target_parts.size(); ++p) {
-      const sim::ScenePart& truth = s.parts[static_cast<std::size_t>(s.target_parts[p])];
-      const test::PoseError e = test::pose_error(r.instances[0].parts[p].T_world_part, truth);
-      EXPECT_TRUE(test::true_positive(r.instances[0].parts[p].T_world_part, truth))
-          << "seed " << seed << ", " << truth.name << ": " << e.centre_mm << " mm off";
-    }
+void expect_mallet_found(std::uint64_t seed) {
+  sim::VariedSceneOptions so;
+  so.target = sim::VariedTarget::kMallet;
+  const sim::VariedScene s = sim::make_varied_scene(so, seed);
+  ObjectDetectOptions o;
+  o.seed = seed;
+  o.sensor = s.view;
+  const ObjectDetectResult r = detect_object(s.model, s.cloud.points, o);
+  ASSERT_TRUE(r.found()) << "seed " << seed << ": " << to_string(r.reason);
+  for (std::size_t p = 0; p < s.target_parts.size(); ++p) {
+    const sim::ScenePart& truth = s.parts[static_cast<std::size_t>(s.target_parts[p])];
+    const test::PoseError e = test::pose_error(r.instances[0].parts[p].T_world_part, truth);
+    EXPECT_TRUE(test::true_positive(r.instances[0].parts[p].T_world_part, truth))
+        << "seed " << seed << ", " << truth.name << ": " << e.centre_mm << " mm off";
   }
+}
+
+TEST(ObjectMallet, PlacedAlongItsAxesWhereItsEndsShowNoPoints) {
+  for (std::uint64_t seed : {7u, 15u, 28u}) expect_mallet_found(seed);
+}
+
+// Varied stripe scenes (tuning seeds) where one part was partly hidden and shows less than
+// min_coverage of what the sensor could have measured of it, the other part fully seen: seed 14,
+// the head under an overhang (0.53); seed 16, the shaft behind a wall (0.50). The object is
+// judged by the coverage of both parts together.
+TEST(ObjectMallet, FoundWithOnePartPartlyHidden) {
+  for (std::uint64_t seed : {14u, 16u}) expect_mallet_found(seed);
 }
 
 }  // namespace
