@@ -10,7 +10,10 @@
 // continuation check's evidence (object_continuation.hpp), not to be explained away here.
 //
 // Asked along z for eps1 <= 0.5 (the side wall is straight along the axis) and, when eps2 <=
-// 0.5 too (a box), along x and y as well. Tapered parts are not asked.
+// 0.5 too (a box), along x and y as well. Tapered parts are not asked. The detector slides the
+// parts of a compound object after their joint refinement (object_detector.cpp); single parts
+// are judged as fitted (sliding them every refinement cost two cylinders and two boxes of the
+// varied tuning scenes, slid onto a run of a longer can's wall that a shadow cut short).
 
 #include <Eigen/Geometry>
 #include <functional>
