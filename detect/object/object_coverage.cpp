@@ -203,7 +203,7 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
   // no scan points near them is how much of the end is missing. A true part whose end the scan
   // does not show for another reason (grazed, behind a wall) shows little of the inner rings
   // either.
-  double open_end = 0.0;
+  double open_end = 0.0, open_end_at[2] = {0.0, 0.0};
   if (sq.eps1 <= kFlatEdgeExponent && sq.kx == 0.0 && sq.ky == 0.0 && o.end_rings > 0) {
     const double step = o.end_strip / o.end_rings;  // of the half-length
     for (double side : {-1.0, 1.0}) {
@@ -226,7 +226,8 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
       }
       if (outer >= o.min_end_samples && inner >= o.min_end_samples &&
           inner_covered >= kEndReference * inner) {
-        open_end = std::max(open_end, static_cast<double>(open) / outer);
+        open_end_at[side > 0.0] = static_cast<double>(open) / outer;
+        open_end = std::max(open_end, open_end_at[side > 0.0]);
       }
     }
   }
@@ -247,6 +248,7 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
   c.max_size_mm = sq.max_size();
   c.facing = facing;
   c.open_end = open_end;
+  c.open_end_at[0] = open_end_at[0], c.open_end_at[1] = open_end_at[1];
   if (measured == 0) return c;
   c.measurable = measured;
   c.covered = static_cast<double>(covered) / measured;

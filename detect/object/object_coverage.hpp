@@ -59,6 +59,7 @@ struct SurfaceCoverage {
   double open_end = 0.0;        // of the measurable samples by a flat end whose side wall the
                                 // scan shows farther in, the largest share (of the two ends)
                                 // with no scan points near them
+  double open_end_at[2] = {0.0, 0.0};  // the same per end: the one at -z, the one at +z
   double below_plane_mm = 0.0;  // how far the part (as modelled) reaches through the removed plane
   double lowest_mm = 0.0;       // height of its lowest point above the removed plane, its flat
                                 // faces' rounded edges taken as sharp (refined on the surface's

@@ -54,8 +54,8 @@ bool options_ok(const ObjectDetectOptions& o) {
          o.gamma < 1.0 && o.neighbourhood_factor > 0.0 && o.instances >= 1 && o.batch >= 1 &&
          o.confirmations >= 1 && o.refine_trim >= 0.0 && o.max_measure > 0.0 &&
          o.max_interior_ratio >= 0.0 && o.min_coverage >= 0.0 &&
-         o.min_coverage_unknown_sensor >= 0.0 && o.max_seen_through >= 0.0 &&
-         o.max_open_end >= 0.0 &&
+         o.min_coverage_unknown_sensor >= 0.0 && o.min_coverage_compound_part >= 0.0 && o.max_seen_through >= 0.0 &&
+         o.max_open_end >= 0.0 && o.max_open_end_compound >= 0.0 &&
          o.max_size_deviation > 0.0 && o.max_candidates >= 1 && o.min_measurable_samples >= 0 &&
          o.min_measurable_share >= 0.0 && o.max_continuation >= 0.0 && o.plane_margin_mm >= 0.0 &&
          o.rest_noise_factor >= 0.0 && o.rest_size_share >= 0.0 && o.sink_floor_mm >= 0.0 &&
@@ -88,7 +88,13 @@ bool plausible(const PartHypothesis& h, const ObjectDetectOptions& o) {
 // siblings hide some of it: the head hides the end of the shaft), and its open ends not at all.
 std::optional<Rejection> unconfirmed(const SurfaceCoverage& c, const ObjectDetectOptions& o,
                                      bool sensor_known, bool judge_share, double noise_mm) {
-  const double min_cover = sensor_known ? o.min_coverage : o.min_coverage_unknown_sensor;
+  // A compound object's part is held to the whole object's coverage (detect_object) and alone
+  // only to the lower of the floor for parts and the unknown sensor's share.
+  const double min_cover =
+      !judge_share ? std::min(o.min_coverage_compound_part,
+                              sensor_known ? o.min_coverage : o.min_coverage_unknown_sensor)
+      : sensor_known ? o.min_coverage
+                     : o.min_coverage_unknown_sensor;
   if (c.measurable < o.min_measurable_samples) {
     return Rejection{0, Check::kHidden, static_cast<double>(c.measurable),
                      static_cast<double>(o.min_measurable_samples), Eigen::Vector3d::Zero()};
@@ -244,6 +250,32 @@ std::optional<Rejection> continues(const HypothesisContext& ctx, const Superquad
   return std::nullopt;
 }
 
+// The open-end check of a compound object's part (ObjectDetectOptions::max_open_end_compound),
+// once its siblings are placed: an end that faces a sibling (a shaft's end at its head) may end
+// short of the scan's points there, the others may not. A head slid along its axis onto a rod
+// that happens to lie at the link's distance that way leaves one end with its side wall shown
+// farther in and none by the cap.
+std::optional<Rejection> open_end_of_compound_part(const SurfaceCoverage& c,
+                                                   const Eigen::Isometry3d& T,
+                                                   std::span<const PlacedPart> others,
+                                                   const ObjectDetectOptions& o) {
+  constexpr double kFacesEnd = 0.5;  // cos of the cone around the axis in which a sibling faces
+  const Eigen::Vector3d z = T.linear().col(2);
+  double open = 0.0;
+  for (int side = 0; side < 2; ++side) {
+    const double sign = side == 1 ? 1.0 : -1.0;
+    const bool faces_sibling = std::any_of(others.begin(), others.end(), [&](const PlacedPart& p) {
+      const Eigen::Vector3d v = p.T_world_part.translation() - T.translation();
+      return sign * v.dot(z) > kFacesEnd * v.norm();
+    });
+    if (!faces_sibling) open = std::max(open, c.open_end_at[side]);
+  }
+  if (open > o.max_open_end_compound) {
+    return Rejection{0, Check::kOpenEnd, open, o.max_open_end_compound, T.translation()};
+  }
+  return std::nullopt;
+}
+
 // Every check a posed part must pass beyond eq. 5.2-5.4, in one place for the search's early
 // stop and for the final candidates. `alone`: a part of a single-part model, whose measurable
 // share and rest on the table are judged here; a part of a compound object is judged on those
@@ -269,6 +301,7 @@ std::optional<Rejection> judge_part(const HypothesisContext& ctx, const Superqua
   if (!why && alone) {
     why = floating(c.lowest_mm, part.max_size(), cover.removed_plane.has_value(), noise_mm, o);
   }
+  if (!why && !alone && !others.empty()) why = open_end_of_compound_part(c, T, others, o);
   if (!why) why = misfit(ctx, part, T, others, noise_mm, c, alone, scores);
   if (!why) why = continues(ctx, part, T, others, noise_mm, scores);
   if (why) why->centre = T.translation();
@@ -409,6 +442,20 @@ std::pair<double, double> link_errors(const PartLink& l, const Eigen::Isometry3d
           std::abs(l.distance_mm - (ti.translation() - tj.translation()).norm())};
 }
 
+// The shift along a part's own z-axis that puts its centre at the link's distance from its
+// sibling's centre `q`, when its axis points at the sibling (a mallet's shaft at its head; 0
+// otherwise, and when no shift reaches the distance). Where the part's wall leaves its place
+// along the axis open (its ends hidden), this is the evidence that remains.
+Eigen::Vector3d link_prefer(const Eigen::Isometry3d& T, const Eigen::Vector3d& q, double d) {
+  constexpr double kPointsAt = 0.8;  // |cos| of the angle between the axis and the link
+  const Eigen::Vector3d z = T.linear().col(2), v = T.translation() - q;
+  const double vz = v.dot(z);
+  const double disc = vz * vz - v.squaredNorm() + d * d;
+  if (std::abs(vz) < kPointsAt * v.norm() || disc < 0.0) return Eigen::Vector3d::Zero();
+  const double r = std::sqrt(disc), s1 = -vz + r, s2 = -vz - r;
+  return Eigen::Vector3d(0.0, 0.0, std::abs(s1) < std::abs(s2) ? s1 : s2);
+}
+
 struct Combination {
   std::vector<std::size_t> pick;  // per part, index into its valid hypotheses
   std::vector<double> a, d;       // per link, eq. 5.5 and 5.6
@@ -502,7 +549,7 @@ std::vector<PartHypothesis> best_of(std::vector<PartHypothesis> valid, Selection
 // alone, so points of the head leak into the shaft's trimmed least squares and pull its centre
 // along its axis (the thesis's "false negative along the axis"); explained away, they cannot.
 void refine_jointly(const HypothesisContext& ctx, const ObjectModel& model,
-                    DetectedInstance& inst) {
+                    const CoverageOptions& cover, DetectedInstance& inst) {
   const std::size_t n = model.parts.size();
   std::vector<std::size_t> order(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = i;
@@ -519,6 +566,30 @@ void refine_jointly(const HypothesisContext& ctx, const ObjectModel& model,
   for (std::size_t p : order) {
     inst.parts[p].T_world_part =
         refine_pose(ctx, model.parts[p].shape, inst.parts[p].T_world_part, siblings(p));
+  }
+  // Each part with flat ends slid along its axes to where its wall's points end: a mallet's
+  // head lies with its caps along the sweep (no points on them) and came out 4 mm short of its
+  // wall's end, the trimmed fit leaving out the wall points past its cap. Where the wall leaves
+  // the part free along its axis (its ends hidden), the link to its sibling places it, unless
+  // that leaves one of its ends open (object_coverage.hpp open_end: the wall shown farther in,
+  // none by the cap): a rod cut by the sweep's end is not pulled 25 mm towards a drum.
+  for (std::size_t p = 0; p < n; ++p) {
+    const Superquadric& shape = model.parts[p].shape;
+    Eigen::Isometry3d& T = inst.parts[p].T_world_part;
+    Eigen::Vector3d prefer = Eigen::Vector3d::Zero();
+    for (const PartLink& link : model.links) {
+      if (!prefer.isZero() || (link.first != p && link.second != p)) continue;
+      const std::size_t q = link.first == p ? link.second : link.first;
+      prefer = link_prefer(T, inst.parts[q].T_world_part.translation(), link.distance_mm);
+    }
+    const std::vector<PlacedPart> others = siblings(p);
+    const Eigen::Isometry3d least = slide_pose(ctx, shape, T, Eigen::Vector3d::Zero(), others);
+    const Eigen::Isometry3d linked =
+        prefer.isZero() ? least : slide_pose(ctx, shape, T, prefer, others);
+    T = least;
+    if (linked.isApprox(least)) continue;
+    const SurfaceCoverage c = surface_coverage(shape, linked, ctx.points, *ctx.tree, cover);
+    if (c.open_end <= ctx.options->max_open_end_compound) T = linked;
   }
   for (std::size_t p = 0; p < n; ++p) {
     const int rank_sum = inst.parts[p].scores.rank_sum;
@@ -738,7 +809,7 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
       part.scores.rank_sum = c.rank_sum;
       inst.parts.push_back(std::move(part));
     }
-    if (!single) refine_jointly(ctx, model, inst);
+    if (!single) refine_jointly(ctx, model, cover, inst);
     std::optional<Rejection> why;
     // A single part's place judged by the search already: the same verdict, not judged again.
     const Judged* before = nullptr;
@@ -773,6 +844,7 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
     double lowest = INFINITY, lowest_size = 0.0;
     std::size_t lowest_part = 0;
     int facing = 0, measurable = 0;
+    double covered = 0.0;  // measurable samples with scan points, over all parts
     for (std::size_t p = 0; p < model.parts.size() && !why; ++p) {
       DetectedPart& part = inst.parts[p];
       std::vector<PlacedPart> others;
@@ -792,12 +864,19 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
         lowest = seen.lowest_mm, lowest_size = model.parts[p].shape.max_size(), lowest_part = p;
       }
       facing += seen.facing, measurable += seen.measurable;
+      covered += seen.covered * seen.measurable;
     }
-    // A compound object's measurable share and rest on the table, over all its parts.
+    // A compound object's measurable share, coverage and rest on the table, over all its parts.
     if (!why && !single && measurable < options.min_measurable_share * facing) {
       why =
           Rejection{0, Check::kHidden, facing > 0 ? static_cast<double>(measurable) / facing : 0.0,
                     options.min_measurable_share, inst.parts[0].center()};
+    }
+    const double min_cover = cover.sensor.kind != SensorView::Kind::kUnknown
+                                 ? options.min_coverage
+                                 : options.min_coverage_unknown_sensor;
+    if (!why && !single && measurable > 0 && covered < min_cover * measurable) {
+      why = Rejection{0, Check::kCoverage, covered / measurable, min_cover, inst.parts[0].center()};
     }
     if (!why && !single) {
       why = floating(lowest, lowest_size, cover.removed_plane.has_value(), noise_mm, options);

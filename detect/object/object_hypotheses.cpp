@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "detect/object/object_axial_slide.hpp"
 #include "detect/object/pose_fit.hpp"
 #include "detect/common/sensor_view.hpp"
 
@@ -170,6 +171,19 @@ Eigen::Isometry3d refine_pose(const HypothesisContext& ctx, const Superquadric& 
                               const Eigen::Isometry3d& T, std::span<const PlacedPart> explained) {
   Scratch scratch;
   return refine(ctx, part, T, ExplainedBy(explained, *ctx.options), scratch);
+}
+
+Eigen::Isometry3d slide_pose(const HypothesisContext& ctx, const Superquadric& part,
+                             const Eigen::Isometry3d& T, const Eigen::Vector3d& prefer,
+                             std::span<const PlacedPart> explained) {
+  const ExplainedBy explained_by(explained, *ctx.options);
+  AxialSlideOptions so;
+  so.band_mm = std::max(1.0, 3.0 * ctx.table_noise_mm);
+  so.table = ctx.table;
+  so.table_margin_mm = table_margin_mm(*ctx.options, part.min_size(), ctx.table_noise_mm);
+  so.prefer = prefer;
+  return slide_to_wall(part, T, ctx.points, *ctx.tree, so,
+                       [&](const Eigen::Vector3d& p) { return explained_by(p); });
 }
 
 PartScores verify_pose(const HypothesisContext& ctx, const Superquadric& part,

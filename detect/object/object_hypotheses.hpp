@@ -69,6 +69,13 @@ Eigen::Isometry3d refine_pose(const HypothesisContext& ctx, const Superquadric& 
                               const Eigen::Isometry3d& T_world_part,
                               std::span<const PlacedPart> explained = {});
 
+// The part slid along its flat-ended axes to where its wall's points end, as close to `prefer`
+// (a shift along its own x, y, z, mm) as they allow (object_axial_slide.hpp): where its ends show
+// no points, the refinement leaves it free along them.
+Eigen::Isometry3d slide_pose(const HypothesisContext& ctx, const Superquadric& part,
+                             const Eigen::Isometry3d& T_world_part, const Eigen::Vector3d& prefer,
+                             std::span<const PlacedPart> explained = {});
+
 // M over the refinement selection, I and S over the neighbourhood within the verification radius.
 PartScores verify_pose(const HypothesisContext& ctx, const Superquadric& part,
                        const Eigen::Isometry3d& T_world_part,

@@ -1,0 +1,88 @@
+#include "detect/object/object_axial_slide.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace rangefit {
+namespace {
+
+// Faces are straight along a direction when their exponent is at most this (as in
+// object_continuation.cpp).
+constexpr double kFlatExponent = 0.5;
+// A part stretched by this factor along one axis stands for its wall extended without end: for
+// eps <= 0.5 its G along that axis is (z / (10 a))^(2 / eps) <= 1.25^4 / 10^4 within the reach.
+constexpr double kEndless = 10.0;
+
+double surface_distance(const SuperquadricMetric& m, const Eigen::Vector3d& q) {
+  Eigen::Vector3d grad;
+  const double g = m.value_and_gradient(q, grad);
+  const double norm = grad.norm();
+  return norm > 0.0 ? (g - 1.0) / norm : q.norm();
+}
+
+// The shift along one axis of half size `a` that puts the contiguous run of wall coordinates
+// `u` (sorted) that starts within the part inside [-a, a], closest to `prefer`; 0 when no shift
+// does.
+double shift_for(const std::vector<double>& u, double a, double prefer,
+                 const AxialSlideOptions& o) {
+  const auto first = std::lower_bound(u.begin(), u.end(), -a);
+  const auto last = std::upper_bound(u.begin(), u.end(), a);
+  if (last - first < o.min_wall_points) return 0.0;
+  const double gap = o.max_gap_share * a;
+  auto hi = last - 1;
+  while (hi + 1 != u.end() && *(hi + 1) - *hi <= gap) ++hi;
+  auto lo = first;
+  while (lo != u.begin() && *lo - *(lo - 1) <= gap) --lo;
+  const double s_min = *hi - a, s_max = *lo + a;  // shifts that contain [*lo, *hi]
+  if (s_min > s_max) return 0.0;                  // the wall is longer than the part
+  return std::clamp(prefer, s_min, s_max);
+}
+
+}  // namespace
+
+Eigen::Isometry3d slide_to_wall(const Superquadric& sq, const Eigen::Isometry3d& T,
+                                std::span<const Eigen::Vector3d> points, const KdTree& tree,
+                                const AxialSlideOptions& o,
+                                const std::function<bool(const Eigen::Vector3d&)>& skip) {
+  if (!sq.valid() || points.empty() || sq.kx != 0.0 || sq.ky != 0.0 || sq.eps1 > kFlatExponent) {
+    return T;
+  }
+  std::vector<int> axes{2};
+  if (sq.eps2 <= kFlatExponent) axes = {2, 0, 1};
+  const Eigen::Vector3d size(sq.a1, sq.a2, sq.a3);
+  const double r = 1.0 + o.reach;
+  std::vector<std::uint32_t> nbr;
+  tree.radius_search(T.translation(), r * size.norm() + o.band_mm, nbr);
+  const double stride =
+      std::max(1.0, static_cast<double>(nbr.size()) / static_cast<double>(o.max_points));
+  std::vector<Eigen::Vector3d> q;  // part frame
+  for (double f = 0.0; f < static_cast<double>(nbr.size()); f += stride) {
+    const Eigen::Vector3d& p = points[nbr[static_cast<std::size_t>(f)]];
+    if (o.table && o.table->normal.dot(p - o.table->point) < o.table_margin_mm) continue;
+    if (skip && skip(p)) continue;
+    q.push_back(T.inverse() * p);
+  }
+  Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+  for (int k : axes) {
+    Superquadric endless = sq;
+    (k == 0 ? endless.a1 : k == 1 ? endless.a2 : endless.a3) *= kEndless;
+    const SuperquadricMetric wall(endless);
+    const double a = size[k];
+    std::vector<double> u;
+    for (const Eigen::Vector3d& x : q) {
+      if (std::abs(x[k]) > r * a) continue;
+      // On the wall along axis k: near the endless part's surface, and not on one of the other
+      // axes' faces far out (for a box, the faces across k are walls too, within their size).
+      if (std::abs(surface_distance(wall, x)) <= o.band_mm) u.push_back(x[k]);
+    }
+    std::sort(u.begin(), u.end());
+    shift[k] = shift_for(u, a, o.prefer[k], o);
+  }
+  if (shift.isZero()) return T;
+  Eigen::Isometry3d out = T;
+  out.translation() += T.linear() * shift;
+  return out;
+}
+
+}  // namespace rangefit

@@ -1,0 +1,54 @@
+#pragma once
+// Where a part with flat ends sits along its axis when its ends show no points. Beyond the
+// thesis: a cylinder or box whose flat faces face along the sweep (or away from the camera) is
+// seen only on its side walls, and the pose fit (eq. 5.1) leaves it free to slide along them:
+// wall points past a cap have large G and fall out of the trimmed refinement band, wall points
+// short of a cap cost nothing. So a mallet's head came out 4 mm short of its wall's end, and a
+// shaft 3-4 mm off along its axis. The wall's points tell where the part ends: the part is slid
+// along the axis, as little as possible, until the contiguous run of its wall points lies within
+// its length. A wall longer than the part (a longer look-alike) is left alone: that is the
+// continuation check's evidence (object_continuation.hpp), not to be explained away here.
+//
+// Asked along z for eps1 <= 0.5 (the side wall is straight along the axis) and, when eps2 <=
+// 0.5 too (a box), along x and y as well. Tapered parts are not asked. The detector slides the
+// parts of a compound object after their joint refinement (object_detector.cpp); single parts
+// are judged as fitted (sliding them every refinement cost two cylinders and two boxes of the
+// varied tuning scenes, slid onto a run of a longer can's wall that a shadow cut short).
+
+#include <Eigen/Geometry>
+#include <functional>
+#include <optional>
+#include <span>
+
+#include "detect/common/kdtree.hpp"
+#include "detect/common/pca.hpp"
+#include "detect/object/superquadric.hpp"
+
+namespace rangefit {
+
+struct AxialSlideOptions {
+  double reach = 0.25;   // wall points are looked for up to this share of the size past an end
+  double band_mm = 1.0;  // a point is on the wall within this distance (the scan's noise)
+  // A gap along the axis wider than this share of the part's size ends the wall's run (a
+  // neighbouring object's coplanar face farther on is not the wall).
+  double max_gap_share = 0.1;
+  int min_wall_points = 10;  // fewer wall points within the part: no verdict
+  // Points this close to the removed table (normal towards the objects) are not asked: the table
+  // touches a lying part's wall along its whole extended length.
+  std::optional<pca::Plane> table;
+  double table_margin_mm = 5.0;
+  std::size_t max_points = 6000;  // even subsample of the neighbourhood
+  // The shift along the part's x, y, z (mm) other evidence asks for (a compound part's link to
+  // its sibling): taken as far as the wall's run allows. Zero: move as little as possible.
+  Eigen::Vector3d prefer = Eigen::Vector3d::Zero();
+};
+
+// The pose slid along the part's axes to where its wall's points end (T itself when they give no
+// reason to move), or as close to options.prefer as the wall's run allows. `skip`: points explained
+// by other parts of the same object (may be empty).
+Eigen::Isometry3d slide_to_wall(const Superquadric& sq, const Eigen::Isometry3d& T_world_part,
+                                std::span<const Eigen::Vector3d> points, const KdTree& tree,
+                                const AxialSlideOptions& options = {},
+                                const std::function<bool(const Eigen::Vector3d&)>& skip = {});
+
+}  // namespace rangefit

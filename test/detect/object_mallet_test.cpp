@@ -1,0 +1,101 @@
+// The compound mallet (head + shaft, thesis 5.1.3) where its flat ends show no points: a head
+// lying with its caps along the sweep, a shaft whose ends are hidden. The pose fit leaves such a
+// part free along its axis; the scan's wall points and the link place it
+// (detect/object/object_axial_slide.hpp).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "detect/common/kdtree.hpp"
+#include "detect/object/object_axial_slide.hpp"
+#include "detect/object/object_detector.hpp"
+#include "sim/varied_scene.hpp"
+#include "test/detect/object_scenes.hpp"
+
+namespace rangefit {
+namespace {
+
+// The upper half of a lying can's side wall from z0 to z1 (part frame: axis z, radius 30), as a
+// scan sees it with its caps grazed: no points on them.
+std::vector<Eigen::Vector3d> wall(double z0, double z1) {
+  std::vector<Eigen::Vector3d> pts;
+  for (double z = z0; z <= z1; z += 1.0) {
+    for (double phi = 0.0; phi <= std::numbers::pi; phi += 0.05) {
+      pts.emplace_back(30.0 * std::cos(phi), 30.0 * std::sin(phi), z);
+    }
+  }
+  return pts;
+}
+
+Eigen::Isometry3d at_z(double z) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation().z() = z;
+  return T;
+}
+
+const Superquadric kCan{30, 30, 50, 0.1, 1, 0, 0};
+
+// Posed 4 mm short of where its wall ends, the can is slid back onto its wall.
+TEST(AxialSlide, MovesAPartToWhereItsWallEnds) {
+  const std::vector<Eigen::Vector3d> pts = wall(-50.0, 50.0);
+  const KdTree tree(pts);
+  for (double off : {-4.0, 4.0, 9.0}) {
+    const Eigen::Isometry3d T = slide_to_wall(kCan, at_z(off), pts, tree);
+    EXPECT_NEAR(T.translation().z(), 0.0, 0.5) << "posed " << off << " mm off";
+    EXPECT_NEAR(T.translation().x(), 0.0, 1e-9);
+  }
+}
+
+// A wall longer than the part (a longer look-alike) is not explained away by sliding: that is
+// the continuation check's evidence. A wall hidden at both ends leaves the part where it was,
+// or where other evidence prefers within what the wall allows.
+TEST(AxialSlide, LeavesLongerAndHiddenWallsAlone) {
+  const std::vector<Eigen::Vector3d> longer = wall(-60.0, 60.0), hidden = wall(-30.0, 30.0);
+  const KdTree longer_tree(longer), hidden_tree(hidden);
+  EXPECT_NEAR(slide_to_wall(kCan, at_z(10.0), longer, longer_tree).translation().z(), 10.0, 1e-9);
+  EXPECT_NEAR(slide_to_wall(kCan, at_z(5.0), hidden, hidden_tree).translation().z(), 5.0, 1e-9);
+  AxialSlideOptions o;
+  o.prefer = Eigen::Vector3d(0.0, 0.0, 12.0);  // within the 20 mm the hidden wall leaves free
+  EXPECT_NEAR(slide_to_wall(kCan, at_z(5.0), hidden, hidden_tree, o).translation().z(), 17.0, 1e-9);
+  o.prefer.z() = 40.0;  // beyond: as far as the wall allows (its end at the cap, z = -30)
+  EXPECT_NEAR(slide_to_wall(kCan, at_z(5.0), hidden, hidden_tree, o).translation().z(), 20.0, 0.5);
+}
+
+// Varied stripe scenes (tuning seeds; sim/varied_scene.hpp) where the detector placed the mallet
+// wrongly: seed 7, a head lying with its caps along the sweep, fitted 4 mm short of its wall's
+// end and rejected as continuing past it; seed 28, its shaft 3-4 mm off along its axis; seed 15,
+// a shaft rolled about its axis. Both parts must be the true ones (centre < 3 mm, axis < 5 deg).
+void expect_mallet_found(std::uint64_t seed) {
+  sim::VariedSceneOptions so;
+  so.target = sim::VariedTarget::kMallet;
+  const sim::VariedScene s = sim::make_varied_scene(so, seed);
+  ObjectDetectOptions o;
+  o.seed = seed;
+  o.sensor = s.view;
+  const ObjectDetectResult r = detect_object(s.model, s.cloud.points, o);
+  ASSERT_TRUE(r.found()) << "seed " << seed << ": " << to_string(r.reason);
+  for (std::size_t p = 0; p < s.target_parts.size(); ++p) {
+    const sim::ScenePart& truth = s.parts[static_cast<std::size_t>(s.target_parts[p])];
+    const test::PoseError e = test::pose_error(r.instances[0].parts[p].T_world_part, truth);
+    EXPECT_TRUE(test::true_positive(r.instances[0].parts[p].T_world_part, truth))
+        << "seed " << seed << ", " << truth.name << ": " << e.centre_mm << " mm off";
+  }
+}
+
+TEST(ObjectMallet, PlacedAlongItsAxesWhereItsEndsShowNoPoints) {
+  for (std::uint64_t seed : {7u, 15u, 28u}) expect_mallet_found(seed);
+}
+
+// Varied stripe scenes (tuning seeds) where one part was partly hidden and shows less than
+// min_coverage of what the sensor could have measured of it, the other part fully seen: seed 14,
+// the head under an overhang (0.53); seed 16, the shaft behind a wall (0.50). The object is
+// judged by the coverage of both parts together.
+TEST(ObjectMallet, FoundWithOnePartPartlyHidden) {
+  for (std::uint64_t seed : {14u, 16u}) expect_mallet_found(seed);
+}
+
+}  // namespace
+}  // namespace rangefit
