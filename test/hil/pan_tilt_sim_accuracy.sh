@@ -9,7 +9,7 @@ set -uo pipefail
 build=$(realpath "${1:?usage: pan_tilt_sim_accuracy.sh BUILD_DIR SOURCE_DIR}")
 src=$(realpath "${2:?usage: pan_tilt_sim_accuracy.sh BUILD_DIR SOURCE_DIR}")
 work=$(mktemp -d /tmp/rangefit-pan-tilt-sim.XXXXXX)
-rangefit=$build/daemon/rangefit
+rangefit=$build/daemon/cli/rangefit
 source "$src/test/hil/pan_tilt_checks.sh"
 cp "$src/data/models/cone.toml" "$work/cone.toml"
 export CYCLONEDDS_URI="file://$src/systemd/cyclonedds-loopback.xml"

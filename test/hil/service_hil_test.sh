@@ -140,7 +140,7 @@ mkfifo "$work/peer.in"
   --stripe "$build/test/hil/cell_peer/table_top_fig5_18.profiles" --modbus-port $axis_port \
   --ranger-node 32 \
   --pan-tilt "$build/test/hil/cell_peer/table_top_fig5_18_pan_tilt.profiles" --head-can vcan1 \
-  --pan-half-deg 10 --head-sweep-s 4 < "$work/peer.in" > "$work/peer.log" 2>&1 &
+  --pan-half-deg 10 --head-sweep-s 4 --head-rate-hz 25 < "$work/peer.in" > "$work/peer.log" 2>&1 &
 peer_pid=$!
 exec 7> "$work/peer.in"
 for _ in $(seq 100); do grep -q "pan-tilt head up" "$work/peer.log" && break; sleep 0.1; done

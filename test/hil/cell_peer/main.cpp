@@ -16,12 +16,12 @@
 //                      [--pid 0x0105] [--udc NAME]
 //                      [--stripe FILE.profiles [--modbus-port 1502] [--ranger-node 0x20]]
 //                      [--pan-tilt FILE.profiles [--head-can vcan1] [--pan-node 1]
-//                       [--tilt-node 2] [--head-ranger-node 0x20] [--head-rate-hz 50]
+//                       [--tilt-node 2] [--head-ranger-node 0x20] [--head-rate-hz 25]
 //                       [--pan-half-deg 10] [--head-sweep-s 4]]
 //   rangefit_cell_peer --record FILE --scene bore_plate.toml [--scan-s 6]   (host, no root)
 //   rangefit_cell_peer --record-stripe FILE.profiles --scene table_top_fig5_18.toml   (host)
 //   rangefit_cell_peer --record-pan-tilt FILE.profiles --scene table_top_fig5_18.toml
-//                      [--pan-half-deg 10]   (host)
+//                      [--pan-half-deg 10] [--head-points 512]   (host)
 // Then one command per line on stdin: unplug, replug (the CSS), axis-stop, axis-start,
 // axis-stop-past MM (the stripe cell's Modbus server; the last stops it once the table passes MM
 // moving up), tilt-stop, tilt-start, tilt-stop-mid-stroke (the head's tilt axis stops answering;
@@ -54,7 +54,8 @@ int usage(const std::string& why) {
 struct Args {
   std::string frames, record, scene, can = "vcan0", udc, stripe, record_stripe;
   std::string pan_tilt, record_pan_tilt, head_can = "vcan1";
-  double scan_s = 6.0, head_rate_hz = 50.0, pan_half_deg = 10.0, head_sweep_s = 4.0;
+  double scan_s = 6.0, head_rate_hz = 25.0, pan_half_deg = 10.0, head_sweep_s = 4.0;
+  int head_points = 512;  // the head's ranger (hal::PanTiltGeometry)
   unsigned node = 1, vid = 0x1d6b, pid = 0x0105, ranger_node = 0x20;
   unsigned pan_node = 1, tilt_node = 2, head_ranger_node = 0x20;
   int modbus_port = 1502;
@@ -92,6 +93,8 @@ bool parse(int argc, char** argv, Args& a, std::string& why) {
       a.tilt_node = static_cast<unsigned>(std::strtoul(v.c_str(), nullptr, 0));
     } else if (arg == "--head-ranger-node") {
       a.head_ranger_node = static_cast<unsigned>(std::strtoul(v.c_str(), nullptr, 0));
+    } else if (arg == "--head-points") {
+      a.head_points = std::atoi(v.c_str());
     } else if (arg == "--head-rate-hz") {
       a.head_rate_hz = std::strtod(v.c_str(), nullptr);
     } else if (arg == "--pan-half-deg") {
@@ -128,6 +131,7 @@ bool parse(int argc, char** argv, Args& a, std::string& why) {
       a.tilt_node == a.head_ranger_node) {
     why = "the head's pan, tilt and ranger nodes must differ";
   }
+  if (a.head_points < 2 || a.head_points > 527) why = "--head-points must be within 2..527";
   if (!(a.head_rate_hz >= 1.0 && a.head_rate_hz <= 200.0)) why = "--head-rate-hz must be 1..200";
   if (!(a.pan_half_deg > 0.0 && a.pan_half_deg <= 60.0)) why = "--pan-half-deg must be 0..60";
   if (!(a.head_sweep_s >= 0.5 && a.head_sweep_s <= 60.0)) why = "--head-sweep-s must be 0.5..60";
@@ -163,8 +167,10 @@ int main(int argc, char** argv) {
   }
   if (!a.record_pan_tilt.empty()) {
     if (a.scene.empty()) return usage("--record-pan-tilt needs --scene");
-    const hil::StripeProfiles cast(
-        a.scene, hil::pan_tilt_sweep(hal::PanTiltGeometry{}, a.pan_half_deg * kRadPerDeg));
+    hal::PanTiltGeometry head;
+    head.ranger.points_per_profile = a.head_points;
+    const hil::StripeProfiles cast(a.scene,
+                                   hil::pan_tilt_sweep(head, a.pan_half_deg * kRadPerDeg));
     if (!cast.error().empty()) return usage(cast.error());
     if (!cast.save(a.record_pan_tilt)) return usage("cannot write " + a.record_pan_tilt);
     std::printf("rangefit_cell_peer: %zu pan-tilt profiles of %s in %s\n", cast.size(),

@@ -26,7 +26,7 @@ struct PanTiltHeadOptions {
   std::uint8_t pan_node = 1;  // the drivers' defaults (daemon/service/bus_addresses.hpp)
   std::uint8_t tilt_node = 2;
   std::uint8_t ranger_node = 0x20;
-  double profile_rate_hz = 50.0;
+  double profile_rate_hz = 25.0;
   double pan_zero_rad = 0.0;  // encoder zero, as hal::PanTiltGeometry
   double tilt_rad = 0.0;      // held
   SweepTimeline sweep{.half_rad = 10.0 * 3.14159265358979323846 / 180.0,
