@@ -122,7 +122,7 @@ if command -v dpkg-deb >/dev/null && command -v dpkg-shlibdeps >/dev/null; then
     # scripts run outside it with DPKG_ROOT set): dpkg records the conffiles, postinst creates
     # the group in that root, and purge removes every file but the group's.
     fresh=$work/fresh-root
-    mkdir -p "$fresh/var/lib/dpkg/info" "$fresh/var/lib/dpkg/updates"
+    mkdir -p "$fresh/etc" "$fresh/var/lib/dpkg/info" "$fresh/var/lib/dpkg/updates"
     touch "$fresh/var/lib/dpkg/status"
     dpkg --root="$fresh" --log=/dev/null --force-depends --force-script-chrootless -i "$deb" \
       >"$work/dpkg.log" 2>&1 || { cat "$work/dpkg.log"; fail "dpkg -i into a fresh root failed"; }
@@ -138,7 +138,7 @@ if command -v dpkg-deb >/dev/null && command -v dpkg-shlibdeps >/dev/null; then
     dpkg --root="$fresh" --log=/dev/null --force-script-chrootless --purge rangefit \
       >>"$work/dpkg.log" 2>&1 || fail "dpkg --purge failed"
     left=$(find "$fresh" -type f ! -path "$fresh/var/lib/dpkg/*" \
-      ! -regex "$fresh/etc/\(group\|gshadow\|passwd\|shadow\)-?" | head -n 5)
+      ! -regex "$fresh/etc/\(group\|gshadow\|passwd\|shadow\)-?" ! -path "$fresh/etc/.pwd.lock" | head -n 5)
     [[ -z $left ]] || fail "purge left files: $left"
     echo "   dpkg -i into a fresh root, then --purge: clean"
   else
