@@ -33,7 +33,8 @@ TOML
 }
 
 # The cone of fig. 5.18 from one pan of the head across the table, -10 .. +10 deg at 5 deg/s (the
-# peer's head: rangefit_cell_peer --pan-half-deg 10 --head-sweep-s 4 --head-rate-hz 25): JSON to $1, request id $2.
+# peer's head: rangefit_cell_peer --pan-half-deg 10 --head-sweep-s 4 --head-rate-hz 25): JSON to
+# $1, request id $2.
 head_request() {
   "$rangefit" request object --id "$2" --model cone --sensor head \
     --sweep -0.174533 0.174533 0.0872665 --seed 1 --timeout 120 > "$1" 2> "$1.err"

@@ -151,6 +151,10 @@ log "$(cat "$work/peer.log")"
 t0=$EPOCHREALTIME
 systemctl start rangefitd || die "systemctl start rangefitd failed"
 log "rangefitd active after $(since "$t0") s"
+# The head's traffic (its drives answering every SYNC, its ranger's CAN FD stream) loads the
+# emulated VM's CPUs and moved the stripe cell's profile stamps by ~27 ms (its cone 0.27 mm along
+# the sweep, against 0.005-0.02 mm without the head): the head falls silent until its checks.
+sleep 2; echo head-off >&7
 export CYCLONEDDS_URI="file://$src/systemd/cyclonedds-loopback.xml"
 bore() {  # one bore request for the 12 mm straight bore under the CSS: JSON to $1
   "$rangefit" request bore --id "$2" --position 0.3 -0.2 285.8 --axis 0 0 -1 --radius 6 \
@@ -220,6 +224,8 @@ check "diagnostics reported the axis at ERROR during the outage, then OK" \
 
 # 5c. The pan-tilt head: an object request answered from the head's CAN FD profiles and its two
 # CiA 402 axes while the cell program pans it; then the tilt axis stops answering mid-stroke.
+echo head-on >&7
+sleep 2
 log "object request (pan-tilt head)"
 head_request "$work/head1.json" head-first; rc=$?
 head -40 "$work/head1.json" "$work/head1.json.err"
@@ -247,6 +253,7 @@ check "cone found again within the simulated head's accuracy" head_accurate "$wo
 kill "$watch_pid" 2>/dev/null; wait "$watch_pid" 2>/dev/null
 check "diagnostics reported the head's axes at ERROR while the tilt was silent, then OK" \
   device_diagnostics "$work/watch-head.log" head/angles
+echo head-off >&7
 
 # 6. Journal: the service's lines with their priorities.
 journalctl -u rangefitd --no-pager -o short-monotonic | tail -30

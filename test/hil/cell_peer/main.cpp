@@ -25,7 +25,8 @@
 // Then one command per line on stdin: unplug, replug (the CSS), axis-stop, axis-start,
 // axis-stop-past MM (the stripe cell's Modbus server; the last stops it once the table passes MM
 // moving up), tilt-stop, tilt-start, tilt-stop-mid-stroke (the head's tilt axis stops answering;
-// the last once the pan passes zero on a forward stroke), status, quit (or end of input).
+// the last once the pan passes zero on a forward stroke), head-off, head-on (the whole head
+// switched off: its devices silent), status, quit (or end of input).
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -276,6 +277,8 @@ int main(int argc, char** argv) {
       head->set_tilt_silent(true);
     } else if (head && line == "tilt-start") {
       head->set_tilt_silent(false);
+    } else if (head && (line == "head-off" || line == "head-on")) {
+      head->set_powered(line == "head-on");
     } else if (head && line == "tilt-stop-mid-stroke") {
       head->stop_tilt_mid_stroke();
     } else if (line != "status") {
@@ -290,10 +293,10 @@ int main(int argc, char** argv) {
                   stripe->axis_up() ? "" : " server-down", stripe->axis_fault() ? " fault" : "");
     }
     if (head) {
-      std::printf(" head profiles %llu syncs %llu%s",
+      std::printf(" head profiles %llu syncs %llu%s%s",
                   static_cast<unsigned long long>(head->profiles_sent()),
                   static_cast<unsigned long long>(head->syncs_answered()),
-                  head->tilt_silent() ? " tilt-silent" : "");
+                  head->tilt_silent() ? " tilt-silent" : "", head->powered() ? "" : " off");
     }
     std::printf("\n");
     std::fflush(stdout);

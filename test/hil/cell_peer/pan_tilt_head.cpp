@@ -40,6 +40,15 @@ void PanTiltHeadPeer::set_tilt_silent(bool silent) {
   tilt_silent_ = silent;
 }
 
+void PanTiltHeadPeer::set_powered(bool on) {
+  if (on == powered_) return;
+  stop_armed_ = false;
+  pan_->set_silent(!on);
+  tilt_->set_silent(!on || tilt_silent_);
+  ranger_->set_silent(!on);
+  powered_ = on;
+}
+
 double PanTiltHeadPeer::exposed_at(hal::Timestamp exposure) {
   const double pan = pan_at(exposure);
   if (stop_armed_ && last_pan_ < options_.pan_zero_rad && pan >= options_.pan_zero_rad) {

@@ -51,6 +51,10 @@ class PanTiltHeadPeer {
   // stop when the pan next passes pan_zero moving forward.
   void set_tilt_silent(bool silent);
   void stop_tilt_mid_stroke() { stop_armed_ = true; }
+  // The head's devices fall silent (no heartbeats, TPDOs or profiles; their state is kept) or
+  // answer again, so that its traffic loads the emulated VM only while a test uses the head.
+  void set_powered(bool on);
+  bool powered() const { return powered_; }
   bool tilt_silent() const { return tilt_silent_; }
   std::uint64_t profiles_sent() const { return ranger_->profiles_sent(); }
   std::uint64_t syncs_answered() const { return pan_->syncs_answered(); }
@@ -63,7 +67,7 @@ class PanTiltHeadPeer {
   hal::Timestamp origin_;
   std::shared_ptr<sim::SimCia402Node> pan_, tilt_;
   std::shared_ptr<sim::SimProfileRanger> ranger_;
-  std::atomic<bool> stop_armed_{false}, tilt_silent_{false};
+  std::atomic<bool> stop_armed_{false}, tilt_silent_{false}, powered_{true};
   double last_pan_ = 0.0;  // bus thread only
 };
 
