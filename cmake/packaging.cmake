@@ -103,7 +103,25 @@ set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 # dpkg keeps an administrator's edits of these on upgrade and removes them only on purge.
 set(conffiles ${PROJECT_BINARY_DIR}/debian/conffiles)
 file(WRITE ${conffiles} "${RANGEFITD_CONFIG}\n${RANGEFITD_CONFDIR}/cyclonedds.xml\n")
-set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA ${conffiles})
+# Maintainer scripts (what debhelper's sysusers, udev and systemd steps would add): postinst
+# creates the group rangefit from the installed sysusers.d file, reloads udev's rules and
+# re-triggers USB devices (a CSS already plugged in gets its group), and reloads systemd; prerm
+# stops the service on removal; postrm reloads again and removes the spool on purge. Without
+# them a fresh install has no group rangefit until the next boot, and the service cannot start.
+if(IS_ABSOLUTE ${RANGEFIT_SYSUSERS_DIR})
+  set(RANGEFIT_SYSUSERS_FILE ${RANGEFIT_SYSUSERS_DIR}/rangefitd.conf)
+else()
+  set(RANGEFIT_SYSUSERS_FILE ${CMAKE_INSTALL_PREFIX}/${RANGEFIT_SYSUSERS_DIR}/rangefitd.conf)
+endif()
+set(maintainer_scripts ${conffiles})
+foreach(script postinst prerm postrm)
+  configure_file(${PROJECT_SOURCE_DIR}/systemd/rangefitd.${script}.in
+                 ${PROJECT_BINARY_DIR}/debian/${script} @ONLY
+                 FILE_PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE GROUP_READ GROUP_EXECUTE
+                                  WORLD_READ WORLD_EXECUTE)
+  list(APPEND maintainer_scripts ${PROJECT_BINARY_DIR}/debian/${script})
+endforeach()
+set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA ${maintainer_scripts})
 if(NOT CMAKE_INSTALL_PREFIX STREQUAL "/usr")
   message(STATUS "rangefit: install prefix ${CMAKE_INSTALL_PREFIX}; a Debian package normally "
                  "uses -DCMAKE_INSTALL_PREFIX=/usr (configuration in /etc/rangefitd)")

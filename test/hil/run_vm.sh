@@ -2,7 +2,7 @@
 # Hardware-in-the-loop runner: boots a Debian kernel under qemu (TCG), shares the host root
 # read-only over 9p (tmpfs overlay on top) and the build folder read-write, boots the host's
 # systemd as PID 1 on it (journald, udevd, sysusers: what rangefitd.service runs under on a cell
-# PC) into a target that creates vcan0, loads dummy_hcd/libcomposite/usb_f_fs with configfs
+# PC) into a target that creates vcan0 and vcan1, loads dummy_hcd/libcomposite/usb_f_fs with configfs
 # mounted, and runs the ctest tests labelled `hil`. Exits with their exit code; 124 when the VM
 # timed out, 125 when it never reported one. Facts behind each step: ../shared/HIL.md.
 # Usage: bash test/hil/run_vm.sh BUILD_DIR   (build first: cmake --build BUILD_DIR)
@@ -77,11 +77,30 @@ INIT
 chmod +x "$work/initrd/init"
 (cd "$work/initrd" && find . | cpio -o -H newc --quiet) > "$work/initramfs.cpio"
 
-# The programs, unit, udev rule and data as `cmake --install` lays them out, staged here on the
-# host (cmake's per-file work over 9p under emulation takes minutes); the service test copies the
-# tree into the VM's root.
-if [[ -x $build/daemon/rangefitd/rangefitd && -x $build/daemon/rangefit ]]; then
-  DESTDIR=$work/install cmake --install "$build" > "$work/install.log"
+# The Debian package (`cpack -G DEB`, prefix /usr: the programs in /usr/sbin and /usr/bin, the
+# configuration as conffiles in /etc/rangefitd, unit, udev rule and sysusers file under
+# /usr/lib), built here on the host; the service test installs it with dpkg into the VM's root.
+# A build configured for another prefix (the default /usr/local) gets a sibling build tree
+# BUILD_DIR-deb with prefix /usr and only the two programs; at the same depth as BUILD_DIR, its
+# compiles hit the compiler cache of BUILD_DIR's (only the programs' mains differ).
+if [[ -x $build/daemon/rangefitd/rangefitd && -x $build/daemon/cli/rangefit ]]; then
+  t_deb=$SECONDS
+  cache_of() { sed -n "s|^$1:[A-Z]*=||p" "$build/CMakeCache.txt"; }
+  deb_build=$build
+  if [[ $(cache_of CMAKE_INSTALL_PREFIX) != /usr ]]; then
+    deb_build=$build-deb
+    cmake -S "$src" -B "$deb_build" -DCMAKE_INSTALL_PREFIX=/usr \
+      -DCMAKE_BUILD_TYPE="$(cache_of CMAKE_BUILD_TYPE)" -DRANGEFIT_SANITIZE="$(cache_of RANGEFIT_SANITIZE)" \
+      -DRANGEFIT_WITH_SIM="$(cache_of RANGEFIT_WITH_SIM)" -DRANGEFIT_BUILD_TESTS=OFF \
+      -DRANGEFIT_BUILD_BENCHMARKS=OFF > "$work/deb-configure.log" 2>&1 ||
+      { cat "$work/deb-configure.log"; exit 1; }
+    cmake --build "$deb_build" -j"$(nproc)" --target rangefit rangefitd > "$work/deb-build.log" 2>&1 ||
+      { tail -50 "$work/deb-build.log"; exit 1; }
+  fi
+  (cd "$deb_build" && cpack -G DEB -B "$work/deb") > "$work/cpack.log" 2>&1 ||
+    { cat "$work/cpack.log"; exit 1; }
+  rm -rf "$work/deb/_CPack_Packages"
+  echo "HIL: $(cd "$work/deb" && ls ./*.deb) built from $deb_build in $((SECONDS - t_deb)) s"
 fi
 
 # 3. The command the VM runs (a file in the share: the kernel command line cannot carry spaces),
@@ -114,7 +133,10 @@ cat > "$work/cmd.sh" <<CMD
 set -e
 export PATH=/usr/sbin:/usr/bin:/sbin:/bin
 modprobe vcan; modprobe can_raw
-ip link add dev vcan0 type vcan && ip link set vcan0 mtu 72 && ip link set up vcan0
+# vcan0: the CSS cell's robot joint and the stripe cell; vcan1: the pan-tilt head's own bus.
+for can in vcan0 vcan1; do
+  ip link add dev \$can type vcan && ip link set \$can mtu 72 && ip link set up \$can
+done
 ip link set lo up
 # USB: a dummy host+device controller pair, configfs gadgets with FunctionFS, udevd for hotplug.
 modprobe dummy_hcd; modprobe libcomposite; modprobe usb_f_fs

@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# The product as deployed, in the HIL VM (systemd is PID 1, test/hil/run_vm.sh): the build is
-# installed with `cmake --install`, rangefitd.service starts from the installed unit with
+# The product as deployed, in the HIL VM (systemd is PID 1, test/hil/run_vm.sh): the Debian
+# package is installed with dpkg, rangefitd.service starts from the packaged unit with
 # driver = "real" devices against the simulated cells on the real transports (rangefit_cell_peer:
 # the CSS as a USB gadget on dummy_hcd, the robot's last joint as a CiA 402 node on vcan0; the
 # stripe cell's ranger on CAN FD on vcan0 and its linear axis' Festo drive as a Modbus TCP server
-# on loopback), and a user's checks run against it: a bore request over DDS, the CSS unplugged
-# mid-scan, an object request on the stripe cell, the axis' server stopped mid-sweep, the watchdog
+# on loopback; the pan-tilt head's two CiA 402 axes and CAN FD ranger on vcan1), and a user's
+# checks run against it: a bore request over DDS, the CSS unplugged mid-scan, an object request on
+# the stripe cell, the axis' server stopped mid-sweep, an object request on the pan-tilt head, its
+# tilt axis silent mid-stroke, the watchdog
 # after SIGSTOP, the journal, a broken reload, the sandbox's score, USB devices and writes.
 # Usage (root, in the VM): service_hil_test.sh BUILD_DIR SOURCE_DIR
 set -uo pipefail
@@ -32,29 +34,40 @@ cleanup() {
 }
 trap cleanup EXIT
 
-# 1. Install into the VM's root (a tmpfs overlay over the host's): unit, udev rule, sysusers.
-# run_vm.sh stages `cmake --install` on the host (DESTDIR): cmake's per-file work over 9p under
-# emulation takes minutes, a copy of the staged tree seconds.
-staged=$build/hil-run/install
-if [[ -d $staged ]]; then
-  log "installing $staged (cmake --install, staged by run_vm.sh)"
-  cp -a "$staged/." / || die "copying the staged install failed"
-else
-  log "installing $build"
-  cmake --install "$build" > "$work/install.log" || die "cmake --install failed"
-fi
-systemctl daemon-reload
+# 1. Install the Debian package (cpack -G DEB, built on the host by run_vm.sh) with dpkg into the
+# VM's root (a tmpfs overlay over the host's, where rangefit is not installed and its
+# dependencies are): its postinst creates the group, reloads udev and systemd. The unit is then
+# checked as installed with `systemd-analyze verify`.
+deb=$(ls "$build"/hil-run/deb/rangefit_*.deb 2>/dev/null | head -1)
+[[ -f $deb ]] || die "no Debian package in $build/hil-run/deb (run_vm.sh builds it with cpack -G DEB)"
+! dpkg-query -W rangefit > /dev/null 2>&1 || die "rangefit is already installed in the VM's root"
+t0=$EPOCHREALTIME
+dpkg -i "$deb" > "$work/dpkg.log" 2>&1; rc=$?
+cat "$work/dpkg.log"
+check "dpkg -i $(basename "$deb") into the VM's root (exit $rc, $(since "$t0") s)" test $rc -eq 0
+((rc == 0)) || die "the package did not install"
+check "dpkg: rangefit installed" \
+  test "$(dpkg-query -W -f='${Status}' rangefit)" = "install ok installed"
 unit=$(systemctl show -P FragmentPath rangefitd.service)
 [[ -f $unit ]] || die "rangefitd.service not found after install"
 config=$(sed -n 's/^ExecStart=.* --config \(.*\)$/\1/p' "$unit")
 prefix=$(sed -n 's|^ExecStart=\(.*\)/sbin/rangefitd .*|\1|p' "$unit")
 rangefit=$prefix/bin/rangefit
 confdir=$(dirname "$config")
-rules=$(grep -l rangefit /usr/local/lib/udev/rules.d/*.rules /usr/lib/udev/rules.d/*.rules 2>/dev/null | head -1)
+rules=$(dpkg -L rangefit | grep '/udev/rules.d/.*rangefit')
 log "unit $unit, config $config, udev rule $rules"
-systemd-sysusers || die "systemd-sysusers failed"
-getent group rangefit > /dev/null || die "sysusers did not create the group rangefit"
-udevadm control --reload
+# (Debian's /lib is /usr/lib: systemd may name the unit by either.)
+check "packaged layout: /usr/sbin/rangefitd, /etc/rangefitd/rangefitd.toml, /usr/lib units" \
+  test "$prefix:$config:$(realpath "$unit")" = \
+  "/usr:/etc/rangefitd/rangefitd.toml:/usr/lib/systemd/system/rangefitd.service"
+check "dpkg records the configuration as conffiles" \
+  bash -c "dpkg-query -W -f='\${Conffiles}' rangefit | grep -q '$config'"
+verify=$(systemd-analyze verify "$unit" 2>&1); rc=$?
+[[ -n $verify ]] && echo "$verify"
+check "systemd-analyze verify $unit: clean (exit $rc)" test $rc -eq 0 -a -z "$verify"
+check "postinst created the group rangefit (sysusers)" getent group rangefit
+check "rangefitd.service is known to systemd, not enabled by the package" \
+  test "$(systemctl is-enabled rangefitd 2>/dev/null)" = disabled
 
 # 2. The configuration: the CSS, the robot, the stripe ranger and its axis as real devices;
 # loopback-only DDS (the VM has no other interface). The shipped Cyclone configuration is replaced
@@ -62,6 +75,8 @@ udevadm control --reload
 cp "$src/systemd/cyclonedds-loopback.xml" "$confdir/cyclonedds.xml"
 cp "$src/data/models/cone.toml" "$confdir/cone.toml"
 axis_port=1502
+source "$src/test/hil/stripe_checks.sh"
+source "$src/test/hil/pan_tilt_checks.sh"
 cat > "$config" <<TOML
 [service]
 scan_timeout_s = 30.0
@@ -110,6 +125,9 @@ name = "axis"
 kind = "axis"
 driver = "real"
 transport = "127.0.0.1:$axis_port"
+# The pan-tilt head over the same table top (pan_tilt_checks.sh).
+$(head_device)
+$(head_fusion)
 [[objects]]
 model = "cone.toml"
 TOML
@@ -120,17 +138,23 @@ mkfifo "$work/peer.in"
 "$build/test/hil/cell_peer/rangefit_cell_peer" --frames "$build/test/hil/cell_peer/bore_plate_css_6s.frames" \
   --can vcan0 --node 1 --scan-s 6 \
   --stripe "$build/test/hil/cell_peer/table_top_fig5_18.profiles" --modbus-port $axis_port \
-  --ranger-node 32 < "$work/peer.in" > "$work/peer.log" 2>&1 &
+  --ranger-node 32 \
+  --pan-tilt "$build/test/hil/cell_peer/table_top_fig5_18_pan_tilt.profiles" --head-can vcan1 \
+  --pan-half-deg 10 --head-sweep-s 4 --head-rate-hz 25 < "$work/peer.in" > "$work/peer.log" 2>&1 &
 peer_pid=$!
 exec 7> "$work/peer.in"
-for _ in $(seq 100); do grep -q "stripe cell up" "$work/peer.log" && break; sleep 0.1; done
-grep -q "stripe cell up" "$work/peer.log" || die "cell peer did not come up: $(cat "$work/peer.log")"
+for _ in $(seq 100); do grep -q "pan-tilt head up" "$work/peer.log" && break; sleep 0.1; done
+grep -q "pan-tilt head up" "$work/peer.log" || die "cell peer did not come up: $(cat "$work/peer.log")"
 log "$(cat "$work/peer.log")"
 
 # 4. Start the service from the shipped unit (Type=notify: start returns after READY=1).
 t0=$EPOCHREALTIME
 systemctl start rangefitd || die "systemctl start rangefitd failed"
 log "rangefitd active after $(since "$t0") s"
+# The head's traffic (its drives answering every SYNC, its ranger's CAN FD stream) loads the
+# emulated VM's CPUs and moved the stripe cell's profile stamps by ~27 ms (its cone 0.27 mm along
+# the sweep, against 0.005-0.02 mm without the head): the head falls silent until its checks.
+sleep 2; echo head-off >&7
 export CYCLONEDDS_URI="file://$src/systemd/cyclonedds-loopback.xml"
 bore() {  # one bore request for the 12 mm straight bore under the CSS: JSON to $1
   "$rangefit" request bore --id "$2" --position 0.3 -0.2 285.8 --axis 0 0 -1 --radius 6 \
@@ -170,7 +194,6 @@ check "request after replug succeeds (exit $rc)" test $rc -eq 0
 # 5b. The stripe cell: an object request answered from the ranger's CAN FD profiles while the
 # service drives the table through the laser plane over Modbus TCP; then the axis' server stops
 # mid-sweep.
-source "$src/test/hil/stripe_checks.sh"
 log "object request (stripe cell)"
 object_request "$work/cone1.json" cone-first; rc=$?
 head -40 "$work/cone1.json" "$work/cone1.json.err"
@@ -197,7 +220,40 @@ check "object request after the axis came back succeeds (exit $rc)" test $rc -eq
 check "cone found again within the simulated cell's accuracy" cone_accurate "$work/cone2.json"
 kill "$watch_pid" 2>/dev/null; wait "$watch_pid" 2>/dev/null
 check "diagnostics reported the axis at ERROR during the outage, then OK" \
-  axis_diagnostics "$work/watch.log"
+  device_diagnostics "$work/watch.log" axis
+
+# 5c. The pan-tilt head: an object request answered from the head's CAN FD profiles and its two
+# CiA 402 axes while the cell program pans it; then the tilt axis stops answering mid-stroke.
+echo head-on >&7
+sleep 2
+log "object request (pan-tilt head)"
+head_request "$work/head1.json" head-first; rc=$?
+head -40 "$work/head1.json" "$work/head1.json.err"
+check "pan-tilt object request over DDS answered (exit $rc)" test $rc -eq 0
+check "cone found from the real-driver pan-tilt scan within the simulated head's accuracy" \
+  head_accurate "$work/head1.json"
+
+"$rangefit" watch --seconds 90 > "$work/watch-head.log" 2>&1 & watch_pid=$!
+echo tilt-stop-mid-stroke >&7
+head_request "$work/head-fault.json" head-tilt-lost; rc=$?
+echo status >&7
+sleep 0.5
+log "after the request: $(grep -o 'head profiles.*' "$work/peer.log" | tail -1); the tilt axis answers again"
+echo tilt-start >&7
+head -20 "$work/head-fault.json" "$work/head-fault.json.err"
+check "request while the tilt axis is silent gives an error result (exit $rc)" test $rc -eq 1
+check "the error result names the head" grep -q '"reason": "[^"]*head' "$work/head-fault.json"
+head_request "$work/head2.json" head-after; rc=$?
+if ((rc != 0)); then
+  log "after the tilt axis came back: $(grep -o '"reason": "[^"]*"' "$work/head2.json"); asking once more"
+  head_request "$work/head2.json" head-after-2; rc=$?
+fi
+check "pan-tilt request after the tilt axis came back succeeds (exit $rc)" test $rc -eq 0
+check "cone found again within the simulated head's accuracy" head_accurate "$work/head2.json"
+kill "$watch_pid" 2>/dev/null; wait "$watch_pid" 2>/dev/null
+check "diagnostics reported the head's axes at ERROR while the tilt was silent, then OK" \
+  device_diagnostics "$work/watch-head.log" head/angles
+echo head-off >&7
 
 # 6. Journal: the service's lines with their priorities.
 journalctl -u rangefitd --no-pager -o short-monotonic | tail -30

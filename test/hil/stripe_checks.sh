@@ -26,9 +26,10 @@ axis_status() {
   grep -o 'axis [-0-9.]* mm.*' "$work/peer.log" | tail -1
 }
 
-# rangefit watch's lines in $1 show the axis at ERROR (level 2) and, later, OK again (level 0).
-axis_diagnostics() {
-  python3 - "$1" <<'PY'
+# rangefit watch's lines in $1 show device $2 (a driver's name: "axis", "head/angles") at ERROR
+# (level 2) and, later, OK again (level 0).
+device_diagnostics() {
+  python3 - "$1" "$2" <<'PY'
 import json, sys
 levels = []
 for line in open(sys.argv[1]):
@@ -37,10 +38,10 @@ for line in open(sys.argv[1]):
     except ValueError:
         continue
     for s in j.get("diagnostics", []):
-        if s["name"] == "rangefitd: device axis":
+        if s["name"] == "rangefitd: device " + sys.argv[2]:
             if not levels or levels[-1][0] != s["level"]:
                 levels.append((s["level"], s["message"]))
-print("  axis diagnostics:", levels)
+print("  %s diagnostics:" % sys.argv[2], levels)
 error = next((i for i, (l, _) in enumerate(levels) if l == 2), None)
 sys.exit(0 if error is not None and any(l == 0 for l, _ in levels[error:]) else 1)
 PY

@@ -114,21 +114,31 @@ if command -v dpkg-deb >/dev/null && command -v dpkg-shlibdeps >/dev/null; then
     for dep in $(tr ',' '\n' <<<"$depends" | sed 's/ *(.*//; s/^ *//'); do
       grep -qx -- "$dep" <<<"$installed" || fail "dependency $dep is not an installed Debian package"
     done
+    for script in postinst prerm postrm; do
+      [[ -x $work/control/$script ]] || fail "the package has no executable $script"
+    done
     # Installed by dpkg into a fresh root (an empty dpkg database; the dependencies are the
-    # host's, hence --force-depends): dpkg records the conffiles, and purge removes every file.
+    # host's, hence --force-depends; the root has no shell to chroot into, so the maintainer
+    # scripts run outside it with DPKG_ROOT set): dpkg records the conffiles, postinst creates
+    # the group in that root, and purge removes every file but the group's.
     fresh=$work/fresh-root
-    mkdir -p "$fresh/var/lib/dpkg/info" "$fresh/var/lib/dpkg/updates"
+    mkdir -p "$fresh/etc" "$fresh/var/lib/dpkg/info" "$fresh/var/lib/dpkg/updates"
     touch "$fresh/var/lib/dpkg/status"
-    dpkg --root="$fresh" --log=/dev/null --force-depends -i "$deb" >"$work/dpkg.log" 2>&1 ||
-      { cat "$work/dpkg.log"; fail "dpkg -i into a fresh root failed"; }
+    dpkg --root="$fresh" --log=/dev/null --force-depends --force-script-chrootless -i "$deb" \
+      >"$work/dpkg.log" 2>&1 || { cat "$work/dpkg.log"; fail "dpkg -i into a fresh root failed"; }
+    if command -v systemd-sysusers >/dev/null; then
+      grep -q '^rangefit:' "$fresh/etc/group" 2>/dev/null ||
+        fail "postinst did not create the group rangefit in the fresh root"
+    fi
     status=$(dpkg-query --admindir="$fresh/var/lib/dpkg" -W -f='${Status}' rangefit)
     [[ $status == "install ok installed" ]] || fail "dpkg status in the fresh root: $status"
     dpkg-query --admindir="$fresh/var/lib/dpkg" -W -f='${Conffiles}\n' rangefit |
       grep -q "$(confdir_of "$prefix")/rangefitd.toml" || fail "dpkg records no conffile"
     check_root "$fresh" "$prefix" yes
-    dpkg --root="$fresh" --log=/dev/null --purge rangefit >>"$work/dpkg.log" 2>&1 ||
-      fail "dpkg --purge failed"
-    left=$(find "$fresh" -type f ! -path "$fresh/var/lib/dpkg/*" | head -n 5)
+    dpkg --root="$fresh" --log=/dev/null --force-script-chrootless --purge rangefit \
+      >>"$work/dpkg.log" 2>&1 || fail "dpkg --purge failed"
+    left=$(find "$fresh" -type f ! -path "$fresh/var/lib/dpkg/*" \
+      ! -regex "$fresh/etc/\(group\|gshadow\|passwd\|shadow\)-?" ! -path "$fresh/etc/.pwd.lock" | head -n 5)
     [[ -z $left ]] || fail "purge left files: $left"
     echo "   dpkg -i into a fresh root, then --purge: clean"
   else

@@ -1,7 +1,8 @@
 #include "test/hil/cell_peer/css_sweep.hpp"
 
-#include <algorithm>
 #include <cmath>
+
+#include "test/hil/cell_peer/sweep_timeline.hpp"
 
 namespace rangefit::hil {
 
@@ -14,19 +15,13 @@ CssSweep::CssSweep(const RevolutionSource& forward, CssSweepOptions options, hal
 }
 
 double CssSweep::omega_at(hal::Timestamp t) const {
-  const double delta = options_.deflection_rad;
-  const double since = static_cast<double>((t - origin_).count()) * 1e-9;
-  if (since < 0.0) return -delta;
-  const double tau = std::fmod(since, cycle_s());
-  if (tau < options_.scan_s) {
-    // Eq. 4.21: omega = -delta + v t / R, with v chosen so that 2 delta R takes scan_s.
-    return std::min(delta, -delta + 2.0 * delta * tau / options_.scan_s);
-  }
-  // The robot stops at +delta (so that every SYNC master sees the end), then returns.
-  const double back = tau - options_.scan_s - options_.end_dwell_s;
-  if (back < 0.0) return delta;
-  if (back < options_.return_s) return delta - 2.0 * delta * back / options_.return_s;
-  return -delta;
+  // Eq. 4.21: omega = -delta + v t / R, with v chosen so that 2 delta R takes scan_s.
+  const SweepTimeline line{.half_rad = options_.deflection_rad,
+                           .forward_s = options_.scan_s,
+                           .end_dwell_s = options_.end_dwell_s,
+                           .return_s = options_.return_s,
+                           .dwell_s = options_.dwell_s};
+  return line.angle_at(static_cast<double>((t - origin_).count()) * 1e-9, cycle_s());
 }
 
 bool CssSweep::revolution(

@@ -7,15 +7,26 @@
 // stripe cell too (stripe_cell.hpp): the linear axis' Festo drive as a Modbus TCP server on
 // 127.0.0.1:--modbus-port and the laser-stripe ranger on the same CAN bus (node --ranger-node),
 // its profiles those the simulated cell casts at the table's position (recorded on the host by
-// --record-stripe). Needs root, vcan and the gadget modules (test/hil/run_vm.sh).
+// --record-stripe). With --pan-tilt, the pan-tilt head too (pan_tilt_head.hpp): its pan and
+// tilt axes (CiA 402 nodes --pan-node, --tilt-node) and its ranger (CAN FD, --head-ranger-node)
+// on their own bus --head-can, the head panning +-(--pan-half-deg) about zero in --head-sweep-s
+// and back, for ever; the profiles those the simulated head casts at each pan (recorded on the
+// host by --record-pan-tilt). Needs root, vcan and the gadget modules (test/hil/run_vm.sh).
 //   rangefit_cell_peer --frames FILE [--can vcan0] [--node 1] [--scan-s 6] [--vid 0x1d6b]
 //                      [--pid 0x0105] [--udc NAME]
 //                      [--stripe FILE.profiles [--modbus-port 1502] [--ranger-node 0x20]]
+//                      [--pan-tilt FILE.profiles [--head-can vcan1] [--pan-node 1]
+//                       [--tilt-node 2] [--head-ranger-node 0x20] [--head-rate-hz 25]
+//                       [--pan-half-deg 10] [--head-sweep-s 4]]
 //   rangefit_cell_peer --record FILE --scene bore_plate.toml [--scan-s 6]   (host, no root)
 //   rangefit_cell_peer --record-stripe FILE.profiles --scene table_top_fig5_18.toml   (host)
+//   rangefit_cell_peer --record-pan-tilt FILE.profiles --scene table_top_fig5_18.toml
+//                      [--pan-half-deg 10] [--head-points 512]   (host)
 // Then one command per line on stdin: unplug, replug (the CSS), axis-stop, axis-start,
 // axis-stop-past MM (the stripe cell's Modbus server; the last stops it once the table passes MM
-// moving up), status, quit (or end of input).
+// moving up), tilt-stop, tilt-start, tilt-stop-mid-stroke (the head's tilt axis stops answering;
+// the last once the pan passes zero on a forward stroke), head-off, head-on (the whole head
+// switched off: its devices silent), status, quit (or end of input).
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -24,6 +35,7 @@
 
 #include "drivers/can/socketcan_transport.hpp"
 #include "test/hil/cell_peer/css_sweep.hpp"
+#include "test/hil/cell_peer/pan_tilt_head.hpp"
 #include "test/hil/cell_peer/stripe_cell.hpp"
 #include "test/hil/css_gadget/css_gadget.hpp"
 #include "test/support/can_bus.hpp"
@@ -33,6 +45,8 @@ namespace {
 
 using namespace rangefit;
 
+constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0;
+
 int usage(const std::string& why) {
   std::fprintf(stderr, "rangefit_cell_peer: %s\n(see test/hil/cell_peer/main.cpp)\n", why.c_str());
   return 2;
@@ -40,8 +54,11 @@ int usage(const std::string& why) {
 
 struct Args {
   std::string frames, record, scene, can = "vcan0", udc, stripe, record_stripe;
-  double scan_s = 6.0;
+  std::string pan_tilt, record_pan_tilt, head_can = "vcan1";
+  double scan_s = 6.0, head_rate_hz = 25.0, pan_half_deg = 10.0, head_sweep_s = 4.0;
+  int head_points = 512;  // the head's ranger (hal::PanTiltGeometry)
   unsigned node = 1, vid = 0x1d6b, pid = 0x0105, ranger_node = 0x20;
+  unsigned pan_node = 1, tilt_node = 2, head_ranger_node = 0x20;
   int modbus_port = 1502;
 };
 
@@ -65,6 +82,26 @@ bool parse(int argc, char** argv, Args& a, std::string& why) {
       a.modbus_port = std::atoi(v.c_str());
     } else if (arg == "--ranger-node") {
       a.ranger_node = static_cast<unsigned>(std::strtoul(v.c_str(), nullptr, 0));
+    } else if (arg == "--pan-tilt") {
+      a.pan_tilt = v;
+    } else if (arg == "--record-pan-tilt") {
+      a.record_pan_tilt = v;
+    } else if (arg == "--head-can") {
+      a.head_can = v;
+    } else if (arg == "--pan-node") {
+      a.pan_node = static_cast<unsigned>(std::strtoul(v.c_str(), nullptr, 0));
+    } else if (arg == "--tilt-node") {
+      a.tilt_node = static_cast<unsigned>(std::strtoul(v.c_str(), nullptr, 0));
+    } else if (arg == "--head-ranger-node") {
+      a.head_ranger_node = static_cast<unsigned>(std::strtoul(v.c_str(), nullptr, 0));
+    } else if (arg == "--head-points") {
+      a.head_points = std::atoi(v.c_str());
+    } else if (arg == "--head-rate-hz") {
+      a.head_rate_hz = std::strtod(v.c_str(), nullptr);
+    } else if (arg == "--pan-half-deg") {
+      a.pan_half_deg = std::strtod(v.c_str(), nullptr);
+    } else if (arg == "--head-sweep-s") {
+      a.head_sweep_s = std::strtod(v.c_str(), nullptr);
     } else if (arg == "--scene") {
       a.scene = v;
     } else if (arg == "--can") {
@@ -88,8 +125,20 @@ bool parse(int argc, char** argv, Args& a, std::string& why) {
   if (a.node < 1 || a.node > 127) why = "--node must be within 1..127";
   if (a.ranger_node < 1 || a.ranger_node > 127) why = "--ranger-node must be within 1..127";
   if (a.modbus_port < 1 || a.modbus_port > 65535) why = "--modbus-port must be within 1..65535";
-  if (a.record.empty() && a.record_stripe.empty() && a.frames.empty()) {
-    why = "--frames, --record or --record-stripe is required";
+  for (const unsigned n : {a.pan_node, a.tilt_node, a.head_ranger_node}) {
+    if (n < 1 || n > 127) why = "--pan-node, --tilt-node, --head-ranger-node must be within 1..127";
+  }
+  if (a.pan_node == a.tilt_node || a.pan_node == a.head_ranger_node ||
+      a.tilt_node == a.head_ranger_node) {
+    why = "the head's pan, tilt and ranger nodes must differ";
+  }
+  if (a.head_points < 2 || a.head_points > 527) why = "--head-points must be within 2..527";
+  if (!(a.head_rate_hz >= 1.0 && a.head_rate_hz <= 200.0)) why = "--head-rate-hz must be 1..200";
+  if (!(a.pan_half_deg > 0.0 && a.pan_half_deg <= 60.0)) why = "--pan-half-deg must be 0..60";
+  if (!(a.head_sweep_s >= 0.5 && a.head_sweep_s <= 60.0)) why = "--head-sweep-s must be 0.5..60";
+  if (a.record.empty() && a.record_stripe.empty() && a.record_pan_tilt.empty() &&
+      a.frames.empty()) {
+    why = "--frames, --record, --record-stripe or --record-pan-tilt is required";
   }
   return why.empty();
 }
@@ -115,6 +164,18 @@ int main(int argc, char** argv) {
     if (!cast.save(a.record_stripe)) return usage("cannot write " + a.record_stripe);
     std::printf("rangefit_cell_peer: %zu stripe profiles of %s in %s\n", cast.size(),
                 a.scene.c_str(), a.record_stripe.c_str());
+    return 0;
+  }
+  if (!a.record_pan_tilt.empty()) {
+    if (a.scene.empty()) return usage("--record-pan-tilt needs --scene");
+    hal::PanTiltGeometry head;
+    head.ranger.points_per_profile = a.head_points;
+    const hil::StripeProfiles cast(a.scene,
+                                   hil::pan_tilt_sweep(head, a.pan_half_deg * kRadPerDeg));
+    if (!cast.error().empty()) return usage(cast.error());
+    if (!cast.save(a.record_pan_tilt)) return usage("cannot write " + a.record_pan_tilt);
+    std::printf("rangefit_cell_peer: %zu pan-tilt profiles of %s in %s\n", cast.size(),
+                a.scene.c_str(), a.record_pan_tilt.c_str());
     return 0;
   }
   const hil::RevolutionSource forward(a.frames);
@@ -146,6 +207,31 @@ int main(int argc, char** argv) {
     if (const hal::Status s = stripe->start_axis(); !s) return usage(s.message);
     bus.add(stripe->ranger());
   }
+  // The head on its own bus: its driver is that bus' SYNC master, as the robot joint's is vcan0's.
+  std::unique_ptr<hil::StripeProfiles> head_profiles;
+  std::unique_ptr<hil::PanTiltHeadPeer> head;
+  std::unique_ptr<sim::SimCanBus> head_bus;
+  if (!a.pan_tilt.empty()) {
+    head_profiles = std::make_unique<hil::StripeProfiles>(a.pan_tilt);
+    if (!head_profiles->error().empty()) return usage(head_profiles->error());
+    hil::PanTiltHeadOptions ho;
+    ho.pan_node = static_cast<std::uint8_t>(a.pan_node);
+    ho.tilt_node = static_cast<std::uint8_t>(a.tilt_node);
+    ho.ranger_node = static_cast<std::uint8_t>(a.head_ranger_node);
+    ho.profile_rate_hz = a.head_rate_hz;
+    ho.sweep.half_rad = a.pan_half_deg * kRadPerDeg;
+    ho.sweep.forward_s = a.head_sweep_s;
+    head = std::make_unique<hil::PanTiltHeadPeer>(*head_profiles, ho,
+                                                  hal::monotonic_now() + std::chrono::seconds(1));
+    drivers::can::SocketCanConfig hc;
+    hc.interface = a.head_can;
+    hc.fd = true;
+    auto head_transport = std::make_unique<drivers::can::SocketCanTransport>(hc);
+    if (const hal::Status s = head_transport->open(); !s) return usage(a.head_can + ": " + s.message);
+    head_bus = std::make_unique<sim::SimCanBus>(std::move(head_transport));
+    head->add_to(*head_bus);
+    head_bus->start();
+  }
   bus.start();
 
   hil::CssGadgetOptions go;
@@ -166,6 +252,13 @@ int main(int argc, char** argv) {
         "node %u on %s\n",
         profiles->size(), a.modbus_port, a.ranger_node, a.can.c_str());
   }
+  if (head) {
+    std::printf(
+        "rangefit_cell_peer: pan-tilt head up: %zu profiles, pan +-%.1f deg in %.1f s (cycle "
+        "%.1f s), pan node %u, tilt node %u, ranger node %u on %s\n",
+        head_profiles->size(), a.pan_half_deg, a.head_sweep_s, head->cycle_s(), a.pan_node,
+        a.tilt_node, a.head_ranger_node, a.head_can.c_str());
+  }
   std::fflush(stdout);
   for (std::string line; std::getline(std::cin, line) && line != "quit";) {
     if (line == "unplug") {
@@ -180,6 +273,14 @@ int main(int argc, char** argv) {
       if (const hal::Status s = stripe->start_axis(); !s) {
         std::fprintf(stderr, "rangefit_cell_peer: %s\n", s.message.c_str());
       }
+    } else if (head && line == "tilt-stop") {
+      head->set_tilt_silent(true);
+    } else if (head && line == "tilt-start") {
+      head->set_tilt_silent(false);
+    } else if (head && (line == "head-off" || line == "head-on")) {
+      head->set_powered(line == "head-on");
+    } else if (head && line == "tilt-stop-mid-stroke") {
+      head->stop_tilt_mid_stroke();
     } else if (line != "status") {
       std::fprintf(stderr, "rangefit_cell_peer: unknown command %s\n", line.c_str());
     }
@@ -191,9 +292,16 @@ int main(int argc, char** argv) {
                   static_cast<unsigned long long>(stripe->profiles_sent()), stripe->position_mm(),
                   stripe->axis_up() ? "" : " server-down", stripe->axis_fault() ? " fault" : "");
     }
+    if (head) {
+      std::printf(" head profiles %llu syncs %llu%s%s",
+                  static_cast<unsigned long long>(head->profiles_sent()),
+                  static_cast<unsigned long long>(head->syncs_answered()),
+                  head->tilt_silent() ? " tilt-silent" : "", head->powered() ? "" : " off");
+    }
     std::printf("\n");
     std::fflush(stdout);
   }
+  if (head_bus) head_bus->stop();
   bus.stop();
   return 0;
 }
