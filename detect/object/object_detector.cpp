@@ -606,6 +606,290 @@ void refine_jointly(const HypothesisContext& ctx, const ObjectModel& model,
   }
 }
 
+// The scan without non-finite points (they cannot be fitted: dropped rather than fail), and
+// what is left of it after 5.1.1's dominant plane removal.
+struct Scan {
+  std::vector<Eigen::Vector3d> finite;  // the whole scan; empty when the plane is kept
+  std::vector<Eigen::Vector3d> cloud;   // the points the search fits
+  std::span<const Eigen::Vector3d> whole() const {
+    return finite.empty() ? std::span<const Eigen::Vector3d>(cloud) : finite;
+  }
+};
+
+Scan prepare_scan(std::span<const Eigen::Vector3d> points, const ObjectDetectOptions& options,
+                  ObjectDetectResult& result) {
+  Scan scan;
+  scan.finite.reserve(points.size());
+  for (const Eigen::Vector3d& p : points) {
+    if (p.allFinite()) scan.finite.push_back(p);
+  }
+  if (scan.finite.empty()) return scan;
+  const Clock::time_point t0 = Clock::now();
+  if (options.remove_plane) {
+    result.plane = remove_dominant_plane(scan.finite, options.plane);
+    scan.cloud.reserve(result.plane.remaining.size());
+    for (std::uint32_t i : result.plane.remaining) scan.cloud.push_back(scan.finite[i]);
+  } else {
+    scan.cloud = std::move(scan.finite);
+    scan.finite.clear();
+  }
+  result.time.plane_ms = ms_since(t0);
+  return scan;
+}
+
+// What the coverage checks know: the sensor (or a viewpoint), the scan's occupancy and the
+// removed plane, oriented towards the objects (they rest on it, the sensor looks from their side).
+CoverageOptions coverage_options(const ObjectDetectOptions& options,
+                                 const PlaneRemovalResult& plane,
+                                 std::span<const Eigen::Vector3d> cloud,
+                                 const OccupancyGrid& occupancy) {
+  CoverageOptions cover;
+  cover.sensor = options.sensor;
+  if (cover.sensor.kind == SensorView::Kind::kUnknown && options.viewpoint) {
+    cover.sensor.kind = SensorView::Kind::kPoint;
+    cover.sensor.origin = *options.viewpoint;
+  }
+  cover.occupancy = &occupancy;
+  if (plane.removed()) {
+    pca::Plane up = plane.plane;
+    up.normal.normalize();
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d& p : cloud) mean += p;
+    mean /= static_cast<double>(cloud.size());
+    if (up.normal.dot(mean - up.point) < 0.0) up.normal = -up.normal;
+    cover.removed_plane = up;
+  }
+  cover.plane_margin_mm = options.plane_margin_mm;
+  return cover;
+}
+
+// 5.1.2: m hypotheses per part. The plausible ones go to the vote (a compound part's only when
+// seen as claimed, the best 40); the valid rest stay to say why nothing passed.
+struct Hypotheses {
+  std::vector<std::vector<PartHypothesis>> plausible, unfit;
+  std::vector<Judged> judged;  // single-part models: places the search judged
+  std::vector<Rejection> prefiltered;
+  int evaluated = 0;
+  bool any_valid = false, all_confirmed = true;
+};
+
+Hypotheses search_parts(const HypothesisContext& ctx, const ObjectModel& model,
+                        const CoverageOptions& cover, double noise_mm) {
+  const ObjectDetectOptions& options = *ctx.options;
+  const bool single = model.parts.size() == 1;
+  Hypotheses out;
+  out.plausible.resize(model.parts.size());
+  out.unfit.resize(model.parts.size());
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    std::vector<Judged> judged_here;
+    std::vector<PartHypothesis> all =
+        search_part(ctx, model.parts[p].shape, p, !single, cover, noise_mm, judged_here);
+    if (single) out.judged = std::move(judged_here);
+    out.evaluated += static_cast<int>(all.size());
+    std::vector<PartHypothesis>& kept = out.plausible[p];
+    for (PartHypothesis& h : all) {
+      out.any_valid = out.any_valid || h.valid;
+      if (plausible(h, options)) {
+        kept.push_back(std::move(h));
+      } else if (h.valid) {
+        out.unfit[p].push_back(std::move(h));
+      }
+    }
+    if (!single) {
+      kept = seen_as_claimed(ctx, model.parts[p].shape, p, std::move(kept), cover, noise_mm,
+                             out.prefiltered);
+      kept = best_of(std::move(kept), options.selection, 40);
+    }
+    out.all_confirmed = out.all_confirmed && !kept.empty();
+  }
+  return out;
+}
+
+// The instance a combination of the vote picks, its parts at the hypotheses' poses.
+DetectedInstance instance_of(const ObjectModel& model, const Hypotheses& hyps,
+                             const Combination& c) {
+  DetectedInstance inst;
+  inst.rank_sum = c.rank_sum;
+  inst.link_angle_error_rad = c.a;
+  inst.link_distance_error_mm = c.d;
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    const PartHypothesis& h = hyps.plausible[p][c.pick[p]];
+    DetectedPart part;
+    part.name = model.parts[p].name;
+    part.T_world_part = h.T_world_part;
+    part.scores = h.scores;
+    part.scores.rank_sum = c.rank_sum;
+    inst.parts.push_back(std::move(part));
+  }
+  return inst;
+}
+
+// The links once more after the joint refinement, tighter than the vote's gate: parts that only
+// roughly fit the link (a head-sized drum 30 mm off the shaft's end) drift apart when each is
+// refined on its own points, a mallet's parts stay within a few millimetres.
+std::optional<Rejection> refined_links(const ObjectModel& model, const DetectedInstance& inst,
+                                       double noise_mm) {
+  for (std::size_t l = 0; l < model.links.size(); ++l) {
+    const double limit = kRefinedLinkShare * model.links[l].distance_mm + 3.0 * noise_mm + 1.0;
+    const double a = inst.link_angle_error_rad[l], d = inst.link_distance_error_mm[l];
+    const Eigen::Vector3d centre = inst.parts[model.links[l].first].center();
+    if (a > kRefinedLinkAngleRad) {
+      return Rejection{model.links[l].first, Check::kLink, a, kRefinedLinkAngleRad, centre};
+    }
+    if (d > limit) return Rejection{model.links[l].first, Check::kLink, d, limit, centre};
+  }
+  return std::nullopt;
+}
+
+// Eq. 5.2-5.4 and the coverage checks on every part of a candidate instance (its scores
+// updated), then a compound object's measurable share, coverage and rest on the table over all
+// its parts. `before`: a single part's place the search judged already, its verdict reused.
+std::optional<Rejection> confirm(const HypothesisContext& ctx, const ObjectModel& model,
+                                 const CoverageOptions& cover, double noise_mm,
+                                 const Judged* before, DetectedInstance& inst) {
+  const ObjectDetectOptions& options = *ctx.options;
+  const bool single = model.parts.size() == 1;
+  if (before) {
+    if (before->why) return before->why;
+    const int rank_sum = inst.parts[0].scores.rank_sum;
+    inst.parts[0].scores = before->scores;
+    inst.parts[0].scores.rank_sum = rank_sum;
+    return std::nullopt;
+  }
+  if (std::optional<Rejection> why = refined_links(model, inst, noise_mm)) return why;
+  double lowest = INFINITY, lowest_size = 0.0;
+  std::size_t lowest_part = 0;
+  int facing = 0, measurable = 0;
+  double covered = 0.0;  // measurable samples with scan points, over all parts
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    DetectedPart& part = inst.parts[p];
+    std::vector<PlacedPart> others;
+    for (std::size_t q = 0; q < model.parts.size(); ++q) {
+      if (q != p) others.push_back({model.parts[q].shape, inst.parts[q].T_world_part});
+    }
+    SurfaceCoverage seen;
+    std::optional<Rejection> why = judge_part(ctx, model.parts[p].shape, part.T_world_part,
+                                              others, cover, noise_mm, single, &part.scores, &seen);
+    if (why) {
+      why->part = p;
+      return why;
+    }
+    if (seen.lowest_mm < lowest) {
+      lowest = seen.lowest_mm, lowest_size = model.parts[p].shape.max_size(), lowest_part = p;
+    }
+    facing += seen.facing, measurable += seen.measurable;
+    covered += seen.covered * seen.measurable;
+  }
+  if (single) return std::nullopt;
+  if (measurable < options.min_measurable_share * facing) {
+    return Rejection{0, Check::kHidden,
+                     facing > 0 ? static_cast<double>(measurable) / facing : 0.0,
+                     options.min_measurable_share, inst.parts[0].center()};
+  }
+  const double min_cover = cover.sensor.kind != SensorView::Kind::kUnknown
+                               ? options.min_coverage
+                               : options.min_coverage_unknown_sensor;
+  if (measurable > 0 && covered < min_cover * measurable) {
+    return Rejection{0, Check::kCoverage, covered / measurable, min_cover, inst.parts[0].center()};
+  }
+  std::optional<Rejection> why =
+      floating(lowest, lowest_size, cover.removed_plane.has_value(), noise_mm, options);
+  if (why) why->part = lowest_part, why->centre = inst.parts[lowest_part].center();
+  return why;
+}
+
+// The place a single part's search judged already, if the candidate is at it.
+const Judged* judged_before(const ObjectModel& model, const Hypotheses& hyps,
+                            const DetectedInstance& inst) {
+  if (model.parts.size() != 1) return nullptr;
+  const Eigen::Isometry3d& T = inst.parts[0].T_world_part;
+  for (const Judged& j : hyps.judged) {
+    if (j.why ? same_place(j.T, T, model.parts[0].shape) : j.T.matrix() == T.matrix()) return &j;
+  }
+  return nullptr;
+}
+
+// Selection: the ranked vote's combinations (5.1.2, extended by the links, 5.1.3) confirmed in
+// rank order until K distinct instances stand. Candidates already checked are kept by their part
+// centres: a rejected place is not checked again, and no part of a new instance may sit where a
+// part of an accepted one does.
+void select_instances(const HypothesisContext& ctx, const ObjectModel& model,
+                      const CoverageOptions& cover, double noise_mm, const Hypotheses& hyps,
+                      ObjectDetectResult& result) {
+  const ObjectDetectOptions& options = *ctx.options;
+  const std::vector<Combination> combos = vote(model, hyps.plausible, options);
+  std::vector<std::vector<Eigen::Vector3d>> rejected, accepted;
+  const auto overlaps = [&](const std::vector<Eigen::Vector3d>& a,
+                            const std::vector<Eigen::Vector3d>& b, bool any) {
+    bool all_same = true, any_same = false;
+    for (std::size_t p = 0; p < a.size(); ++p) {
+      const double r = 0.5 * model.parts[p].shape.min_size();
+      all_same = all_same && (a[p] - b[p]).norm() < r;
+      for (const Eigen::Vector3d& q : b) any_same = any_same || (a[p] - q).norm() < r;
+    }
+    return any ? any_same : all_same;
+  };
+  for (const Combination& c : combos) {
+    if (static_cast<int>(result.instances.size()) >= options.instances) break;
+    std::vector<Eigen::Vector3d> centres;
+    for (std::size_t p = 0; p < model.parts.size(); ++p) {
+      centres.push_back(hyps.plausible[p][c.pick[p]].T_world_part.translation());
+    }
+    const auto same = [&](const std::vector<Eigen::Vector3d>& x) {
+      return overlaps(centres, x, false);
+    };
+    const auto clash = [&](const std::vector<Eigen::Vector3d>& x) {
+      return overlaps(centres, x, true);
+    };
+    if (std::any_of(accepted.begin(), accepted.end(), clash) ||
+        std::any_of(rejected.begin(), rejected.end(), same)) {
+      continue;
+    }
+    if (static_cast<int>(rejected.size() + accepted.size()) >= options.max_candidates) break;
+    DetectedInstance inst = instance_of(model, hyps, c);
+    if (model.parts.size() > 1) refine_jointly(ctx, model, cover, inst);
+    if (std::optional<Rejection> why =
+            confirm(ctx, model, cover, noise_mm, judged_before(model, hyps, inst), inst)) {
+      result.rejections.push_back(*why);
+      rejected.push_back(std::move(centres));
+      continue;
+    }
+    for (std::size_t p = 0; p < model.parts.size(); ++p) centres.push_back(inst.parts[p].center());
+    accepted.push_back(std::move(centres));
+    result.instances.push_back(std::move(inst));
+  }
+}
+
+// Why nothing was found, the failed checks named (thesis 5.1: a reason for every answer).
+void explain_not_found(const ObjectModel& model, const ObjectDetectOptions& options,
+                       Hypotheses& hyps, ObjectDetectResult& result) {
+  const bool single = model.parts.size() == 1;
+  if (!hyps.any_valid) {
+    result.reason = DetectReason::kNoHypothesis;
+    return;
+  }
+  if (hyps.all_confirmed && !single && result.rejections.empty()) {
+    result.reason = DetectReason::kNotLinked;  // plausible parts, but no linked combination
+    return;
+  }
+  result.reason = DetectReason::kNotConfirmed;
+  if (result.rejections.empty()) result.rejections = std::move(hyps.prefiltered);
+  if (!result.rejections.empty()) return;
+  // No hypothesis passed eq. 5.2-5.4: say which check the best-fitting ones failed.
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    if (!hyps.plausible[p].empty()) continue;
+    const PartHypothesis* best = nullptr;
+    for (const PartHypothesis& h : hyps.unfit[p]) {
+      if (!best || h.scores.measure < best->scores.measure) best = &h;
+    }
+    if (!best) continue;
+    if (std::optional<Rejection> r = implausible(*best, options)) {
+      r->part = p;
+      result.rejections.push_back(*r);
+    }
+  }
+}
+
 }  // namespace
 
 const char* to_string(Check check) {
@@ -672,250 +956,39 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
     result.reason = DetectReason::kInvalidOptions;
     return result;
   }
-  // Non-finite points cannot be fitted; drop them rather than fail.
-  std::vector<Eigen::Vector3d> finite;
-  finite.reserve(points.size());
-  for (const Eigen::Vector3d& p : points) {
-    if (p.allFinite()) finite.push_back(p);
-  }
-  if (finite.empty()) {
-    result.reason = DetectReason::kEmptyCloud;
-    return result;
-  }
-  // 5.1.1: dominant plane removal.
-  Clock::time_point t0 = Clock::now();
-  std::vector<Eigen::Vector3d> cloud;
-  if (options.remove_plane) {
-    result.plane = remove_dominant_plane(finite, options.plane);
-    cloud.reserve(result.plane.remaining.size());
-    for (std::uint32_t i : result.plane.remaining) cloud.push_back(finite[i]);
-  } else {
-    cloud = std::move(finite);
-  }
-  result.time.plane_ms = ms_since(t0);
-  if (cloud.empty()) {
+  const Scan scan = prepare_scan(points, options, result);  // 5.1.1
+  if (scan.cloud.empty()) {
     result.reason = DetectReason::kEmptyCloud;
     result.time.total_ms = ms_since(t_start);
     return result;
   }
-  t0 = Clock::now();
-  const KdTree tree(cloud);
+  Clock::time_point t0 = Clock::now();
+  const KdTree tree(scan.cloud);
   // The whole scan, plane included: lines of sight that pass a claimed surface mostly end on the
   // table.
-  const OccupancyGrid occupancy(options.remove_plane ? std::span<const Eigen::Vector3d>(finite)
-                                                     : std::span<const Eigen::Vector3d>(cloud),
-                                occupancy_cell_mm(cloud, tree));
+  const OccupancyGrid occupancy(scan.whole(), occupancy_cell_mm(scan.cloud, tree));
   result.time.search_index_ms = ms_since(t0);
-
-  CoverageOptions cover;
-  cover.sensor = options.sensor;
-  if (cover.sensor.kind == SensorView::Kind::kUnknown && options.viewpoint) {
-    cover.sensor.kind = SensorView::Kind::kPoint;
-    cover.sensor.origin = *options.viewpoint;
-  }
-  cover.occupancy = &occupancy;
-  if (result.plane.removed()) {
-    // Oriented towards the objects: they rest on the plane, the sensor looks from their side.
-    pca::Plane up = result.plane.plane;
-    up.normal.normalize();
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (const Eigen::Vector3d& p : cloud) mean += p;
-    mean /= static_cast<double>(cloud.size());
-    if (up.normal.dot(mean - up.point) < 0.0) up.normal = -up.normal;
-    cover.removed_plane = up;
-  }
-  cover.plane_margin_mm = options.plane_margin_mm;
+  const CoverageOptions cover = coverage_options(options, result.plane, scan.cloud, occupancy);
   // The scan's range noise, as the table shows it (0 without a plane: the floor alone).
   const double noise_mm = result.plane.removed() ? result.plane.plane.rms : 0.0;
 
-  // 5.1.2: m hypotheses per part.
   t0 = Clock::now();
-  HypothesisContext ctx{cloud, &tree, &options, {}, std::nullopt, 0.0};
+  HypothesisContext ctx{scan.cloud, &tree, &options, {}, std::nullopt, 0.0};
   if (options.rest_on_plane && cover.removed_plane) {
     ctx.table = cover.removed_plane;
     ctx.table_noise_mm = noise_mm;
   }
-  const bool single = model.parts.size() == 1;
-  std::vector<std::vector<PartHypothesis>> hyps(model.parts.size()), unfit(model.parts.size());
-  bool any_valid = false, all_confirmed = true;
-  std::vector<Judged> judged;  // single-part models: places the search judged
-  std::vector<Rejection> prefiltered;
-  for (std::size_t p = 0; p < model.parts.size(); ++p) {
-    std::vector<Judged> judged_here;
-    std::vector<PartHypothesis> all =
-        search_part(ctx, model.parts[p].shape, p, !single, cover, noise_mm, judged_here);
-    if (single) judged = std::move(judged_here);
-    result.hypotheses_evaluated += static_cast<int>(all.size());
-    for (PartHypothesis& h : all) {
-      any_valid = any_valid || h.valid;
-      if (plausible(h, options)) {
-        hyps[p].push_back(std::move(h));
-      } else if (h.valid) {
-        unfit[p].push_back(std::move(h));
-      }
-    }
-    if (!single) {
-      hyps[p] = seen_as_claimed(ctx, model.parts[p].shape, p, std::move(hyps[p]), cover, noise_mm,
-                                prefiltered);
-      hyps[p] = best_of(std::move(hyps[p]), options.selection, 40);
-    }
-    all_confirmed = all_confirmed && !hyps[p].empty();
-  }
+  Hypotheses hyps = search_parts(ctx, model, cover, noise_mm);  // 5.1.2
+  result.hypotheses_evaluated = hyps.evaluated;
   result.time.hypotheses_ms = ms_since(t0);
 
-  // Selection: ranked vote (5.1.2) extended by the links (5.1.3), then K distinct instances.
   t0 = Clock::now();
-  const std::vector<Combination> combos = vote(model, hyps, options);
-  // Candidates already checked, by part centres: a rejected place is not checked again, and no
-  // part of a new instance may sit where a part of an accepted one does.
-  std::vector<std::vector<Eigen::Vector3d>> rejected, accepted;
-  const auto overlaps = [&](const std::vector<Eigen::Vector3d>& a,
-                            const std::vector<Eigen::Vector3d>& b, bool any) {
-    bool all_same = true, any_same = false;
-    for (std::size_t p = 0; p < a.size(); ++p) {
-      const double r = 0.5 * model.parts[p].shape.min_size();
-      all_same = all_same && (a[p] - b[p]).norm() < r;
-      for (const Eigen::Vector3d& q : b) any_same = any_same || (a[p] - q).norm() < r;
-    }
-    return any ? any_same : all_same;
-  };
-  for (const Combination& c : combos) {
-    if (static_cast<int>(result.instances.size()) >= options.instances) break;
-    std::vector<Eigen::Vector3d> centres;
-    for (std::size_t p = 0; p < model.parts.size(); ++p) {
-      centres.push_back(hyps[p][c.pick[p]].T_world_part.translation());
-    }
-    const auto same = [&](const std::vector<Eigen::Vector3d>& x) {
-      return overlaps(centres, x, false);
-    };
-    const auto clash = [&](const std::vector<Eigen::Vector3d>& x) {
-      return overlaps(centres, x, true);
-    };
-    if (std::any_of(accepted.begin(), accepted.end(), clash) ||
-        std::any_of(rejected.begin(), rejected.end(), same)) {
-      continue;
-    }
-    if (static_cast<int>(rejected.size() + accepted.size()) >= options.max_candidates) break;
-    DetectedInstance inst;
-    inst.rank_sum = c.rank_sum;
-    inst.link_angle_error_rad = c.a;
-    inst.link_distance_error_mm = c.d;
-    for (std::size_t p = 0; p < model.parts.size(); ++p) {
-      const PartHypothesis& h = hyps[p][c.pick[p]];
-      DetectedPart part;
-      part.name = model.parts[p].name;
-      part.T_world_part = h.T_world_part;
-      part.scores = h.scores;
-      part.scores.rank_sum = c.rank_sum;
-      inst.parts.push_back(std::move(part));
-    }
-    if (!single) refine_jointly(ctx, model, cover, inst);
-    std::optional<Rejection> why;
-    // A single part's place judged by the search already: the same verdict, not judged again.
-    const Judged* before = nullptr;
-    if (single) {
-      for (const Judged& j : judged) {
-        const Eigen::Isometry3d& T = inst.parts[0].T_world_part;
-        const bool here =
-            j.why ? same_place(j.T, T, model.parts[0].shape) : j.T.matrix() == T.matrix();
-        if (here) before = &j;
-        if (here) break;
-      }
-    }
-    if (before && before->why) {
-      result.rejections.push_back(*before->why);
-      rejected.push_back(std::move(centres));
-      continue;
-    }
-    // The links once more after the joint refinement, tighter than the vote's gate: parts that
-    // only roughly fit the link (a head-sized drum 30 mm off the shaft's end) drift apart when
-    // each is refined on its own points, a mallet's parts stay within a few millimetres.
-    for (std::size_t l = 0; l < model.links.size() && !why; ++l) {
-      const double limit = kRefinedLinkShare * model.links[l].distance_mm + 3.0 * noise_mm + 1.0;
-      const double a = inst.link_angle_error_rad[l], d = inst.link_distance_error_mm[l];
-      if (a > kRefinedLinkAngleRad) {
-        why = Rejection{model.links[l].first, Check::kLink, a, kRefinedLinkAngleRad,
-                        inst.parts[model.links[l].first].center()};
-      } else if (d > limit) {
-        why = Rejection{model.links[l].first, Check::kLink, d, limit,
-                        inst.parts[model.links[l].first].center()};
-      }
-    }
-    double lowest = INFINITY, lowest_size = 0.0;
-    std::size_t lowest_part = 0;
-    int facing = 0, measurable = 0;
-    double covered = 0.0;  // measurable samples with scan points, over all parts
-    for (std::size_t p = 0; p < model.parts.size() && !why; ++p) {
-      DetectedPart& part = inst.parts[p];
-      std::vector<PlacedPart> others;
-      for (std::size_t q = 0; q < model.parts.size(); ++q) {
-        if (q != p) others.push_back({model.parts[q].shape, inst.parts[q].T_world_part});
-      }
-      SurfaceCoverage seen;
-      if (before) {
-        part.scores = before->scores;
-        part.scores.rank_sum = c.rank_sum;
-        continue;
-      }
-      why = judge_part(ctx, model.parts[p].shape, part.T_world_part, others, cover, noise_mm,
-                       single, &part.scores, &seen);
-      if (why) why->part = p;
-      if (seen.lowest_mm < lowest) {
-        lowest = seen.lowest_mm, lowest_size = model.parts[p].shape.max_size(), lowest_part = p;
-      }
-      facing += seen.facing, measurable += seen.measurable;
-      covered += seen.covered * seen.measurable;
-    }
-    // A compound object's measurable share, coverage and rest on the table, over all its parts.
-    if (!why && !single && measurable < options.min_measurable_share * facing) {
-      why =
-          Rejection{0, Check::kHidden, facing > 0 ? static_cast<double>(measurable) / facing : 0.0,
-                    options.min_measurable_share, inst.parts[0].center()};
-    }
-    const double min_cover = cover.sensor.kind != SensorView::Kind::kUnknown
-                                 ? options.min_coverage
-                                 : options.min_coverage_unknown_sensor;
-    if (!why && !single && measurable > 0 && covered < min_cover * measurable) {
-      why = Rejection{0, Check::kCoverage, covered / measurable, min_cover, inst.parts[0].center()};
-    }
-    if (!why && !single) {
-      why = floating(lowest, lowest_size, cover.removed_plane.has_value(), noise_mm, options);
-      if (why) why->part = lowest_part, why->centre = inst.parts[lowest_part].center();
-    }
-    if (why) {
-      result.rejections.push_back(*why);
-      rejected.push_back(std::move(centres));
-      continue;
-    }
-    for (std::size_t p = 0; p < model.parts.size(); ++p) centres.push_back(inst.parts[p].center());
-    accepted.push_back(std::move(centres));
-    result.instances.push_back(std::move(inst));
-  }
+  select_instances(ctx, model, cover, noise_mm, hyps, result);
   result.time.vote_ms = ms_since(t0);
   if (!result.instances.empty()) {
     result.reason = DetectReason::kFound;
-  } else if (!any_valid) {
-    result.reason = DetectReason::kNoHypothesis;
-  } else if (all_confirmed && !single && result.rejections.empty()) {
-    result.reason = DetectReason::kNotLinked;  // plausible parts, but no linked combination
   } else {
-    result.reason = DetectReason::kNotConfirmed;
-    if (result.rejections.empty()) result.rejections = std::move(prefiltered);
-    if (result.rejections.empty()) {
-      // No hypothesis passed eq. 5.2-5.4: say which check the best-fitting ones failed.
-      for (std::size_t p = 0; p < model.parts.size(); ++p) {
-        if (!hyps[p].empty()) continue;
-        const PartHypothesis* best = nullptr;
-        for (const PartHypothesis& h : unfit[p]) {
-          if (!best || h.scores.measure < best->scores.measure) best = &h;
-        }
-        if (!best) continue;
-        if (std::optional<Rejection> r = implausible(*best, options)) {
-          r->part = p;
-          result.rejections.push_back(*r);
-        }
-      }
-    }
+    explain_not_found(model, options, hyps, result);
   }
   result.time.total_ms = ms_since(t_start);
   return result;
