@@ -1,6 +1,7 @@
 #include "detect/object/object_coverage.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -118,6 +119,110 @@ double lowest_height(const Superquadric& sq, const Eigen::Isometry3d& T, const p
   return best;
 }
 
+// What the scan says of a surface sample q (part frame) of the part posed at T.
+class SampleJudge {
+ public:
+  SampleJudge(const SuperquadricMetric& m, const Eigen::Isometry3d& T,
+              std::span<const Eigen::Vector3d> points, const KdTree& tree,
+              const CoverageOptions& o, double tol, const FarEyes& far)
+      : m_(m), T_(T), points_(points), tree_(tree), o_(o), tol_(tol), far_(far),
+        // Lines of sight start this far from the surface: its own points and its pose error stay
+        // out (along an oblique line of sight, farther from the sample).
+        clearance_(o.occupancy ? tol + o.occupancy->cell_mm() : tol) {}
+
+  Sample operator()(const Eigen::Vector3d& q) {
+    Eigen::Vector3d grad;
+    m_.value_and_gradient(q, grad);
+    if (grad.squaredNorm() == 0.0) return Sample::kNoEvidence;
+    const Eigen::Vector3d p = T_ * q;
+    if (o_.removed_plane && o_.removed_plane->valid) {
+      const double h = o_.removed_plane->normal.dot(p - o_.removed_plane->point);
+      if (std::abs(h) < o_.plane_margin_mm + tol_) return Sample::kNoEvidence;
+    }
+    Eyes eyes;
+    if (o_.sensor.kind != SensorView::Kind::kUnknown) {
+      eyes = sensor_eyes(o_.sensor, p);
+    } else {
+      eyes.count = far_.count;
+      for (int k = 0; k < far_.count; ++k) eyes.at[k] = p + kFarEye * far_.dir[k];
+    }
+    if (eyes.count == 0) return Sample::kNoEvidence;  // outside the sweep
+    const Eigen::Vector3d un = (T_.linear() * grad).normalized();
+    std::array<double, 2> skip{clearance_, clearance_};
+    for (int k = 0; k < eyes.count; ++k) {
+      const double incidence = un.dot((eyes.at[k] - p).normalized());
+      // In the part's own shadow, or seen too obliquely to judge.
+      if (incidence <= kMinIncidenceCosine) return Sample::kNoEvidence;
+      skip[k] = clearance_ / incidence;
+    }
+    for (int k = 0; k < eyes.count && o_.occupancy; ++k) {
+      if (o_.occupancy->first_hit(p, eyes.at[k], skip[k]) >= 0.0) return Sample::kHidden;
+    }
+    tree_.knn_search(p, 1, nbr_);
+    const double nearest = nbr_.empty() ? INFINITY : (points_[nbr_[0]] - p).norm();
+    if (nearest <= tol_) return Sample::kCovered;
+    // The first eye (the laser, or the only one) lit everything along its ray until the first
+    // surface: a measured cell beyond the sample means the light went through it. A sample
+    // between scan lines (grazing surface, coarse step) is not: it has points within a cell.
+    if (o_.occupancy && nearest > tol_ + o_.occupancy->cell_mm()) {
+      const Eigen::Vector3d beyond = p + kFarEye * (p - eyes.at[0]).normalized();
+      if (o_.occupancy->first_hit(p, beyond, skip[0]) >= 0.0) return Sample::kSeenThrough;
+    }
+    return Sample::kUncovered;
+  }
+
+ private:
+  const SuperquadricMetric& m_;
+  const Eigen::Isometry3d& T_;
+  std::span<const Eigen::Vector3d> points_;
+  const KdTree& tree_;
+  const CoverageOptions& o_;
+  double tol_;
+  const FarEyes& far_;
+  double clearance_;
+  std::vector<std::uint32_t> nbr_;
+};
+
+// The side wall by each flat end, densely: end_rings rings at even steps over end_strip of the
+// half-length from the cap, and as many farther in. An end is judged when the inner rings show
+// the side wall (at least kEndReference of their measurable samples covered): then the scan
+// would have shown it on to the cap, and the share of the outer rings' measurable samples with
+// no scan points near them is how much of the end is missing. A true part whose end the scan
+// does not show for another reason (grazed, behind a wall) shows little of the inner rings
+// either. Per end (-z, +z); 0 where not judged.
+std::array<double, 2> open_ends(const Superquadric& sq, const CoverageOptions& o,
+                                SampleJudge& judge) {
+  std::array<double, 2> open_at{0.0, 0.0};
+  if (sq.eps1 > kFlatEdgeExponent || sq.kx != 0.0 || sq.ky != 0.0 || o.end_rings <= 0) {
+    return open_at;
+  }
+  const double step = o.end_strip / o.end_rings;  // of the half-length
+  for (double side : {-1.0, 1.0}) {
+    int outer = 0, open = 0, inner = 0, inner_covered = 0;
+    for (int k = 0; k < 2 * o.end_rings; ++k) {
+      const double u = 1.0 - (k + 0.5) * step;  // z / a3
+      const double eta = side * std::asin(std::pow(u, 1.0 / sq.eps1));
+      for (int j = 0; j < o.end_ring_samples; ++j) {
+        const double omega = 2.0 * std::numbers::pi * (j + 0.5) / o.end_ring_samples;
+        const Sample v = judge(surface_point(sq, eta, omega));
+        const bool seen = measurable(v);
+        if (k < o.end_rings) {
+          outer += seen;
+          open += seen && v != Sample::kCovered;
+        } else {
+          inner += seen;
+          inner_covered += v == Sample::kCovered;
+        }
+      }
+    }
+    if (outer >= o.min_end_samples && inner >= o.min_end_samples &&
+        inner_covered >= kEndReference * inner) {
+      open_at[side > 0.0] = static_cast<double>(open) / outer;
+    }
+  }
+  return open_at;
+}
+
 }  // namespace
 
 SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d& T,
@@ -130,58 +235,7 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
   const FarEyes far =
       known ? FarEyes{} : far_eyes(m, T, 1.2 * sq.max_size(), points, tree, o.removed_plane);
   if (!known && far.count == 0) return {};
-  // Lines of sight start this far from the surface: its own points and its pose error stay out
-  // (along an oblique line of sight, farther from the sample).
-  const double clearance = o.occupancy ? tol + o.occupancy->cell_mm() : tol;
-  std::vector<std::uint32_t> nbr;
-  double below = 0.0, lowest = INFINITY;
-  // What the scan says of the surface point q (part frame).
-  const auto judge = [&](const Eigen::Vector3d& q) {
-    Eigen::Vector3d grad;
-    m.value_and_gradient(q, grad);
-    if (grad.squaredNorm() == 0.0) return Sample::kNoEvidence;
-    const Eigen::Vector3d p = T * q;
-    const Eigen::Vector3d n = T.linear() * grad;
-    if (o.removed_plane && o.removed_plane->valid) {
-      const double h = o.removed_plane->normal.dot(p - o.removed_plane->point);
-      below = std::max(below, -h);
-      lowest = std::min(lowest, h);
-      if (std::abs(h) < o.plane_margin_mm + tol) return Sample::kNoEvidence;
-    }
-    Eyes eyes;
-    if (known) {
-      eyes = sensor_eyes(o.sensor, p);
-    } else {
-      eyes.count = far.count;
-      for (int k = 0; k < far.count; ++k) eyes.at[k] = p + kFarEye * far.dir[k];
-    }
-    if (eyes.count == 0) return Sample::kNoEvidence;  // outside the sweep
-    bool faces = true, hidden = false;
-    const Eigen::Vector3d un = n.normalized();
-    std::array<double, 2> skip{clearance, clearance};
-    for (int k = 0; k < eyes.count; ++k) {
-      const double incidence = un.dot((eyes.at[k] - p).normalized());
-      faces = faces && incidence > kMinIncidenceCosine;
-      skip[k] = clearance / std::max(incidence, kMinIncidenceCosine);
-    }
-    // In the part's own shadow, or seen too obliquely to judge.
-    if (!faces) return Sample::kNoEvidence;
-    for (int k = 0; k < eyes.count && o.occupancy && !hidden; ++k) {
-      hidden = o.occupancy->first_hit(p, eyes.at[k], skip[k]) >= 0.0;
-    }
-    if (hidden) return Sample::kHidden;
-    tree.knn_search(p, 1, nbr);
-    const double nearest = nbr.empty() ? INFINITY : (points[nbr[0]] - p).norm();
-    if (nearest <= tol) return Sample::kCovered;
-    // The first eye (the laser, or the only one) lit everything along its ray until the first
-    // surface: a measured cell beyond the sample means the light went through it. A sample
-    // between scan lines (grazing surface, coarse step) is not: it has points within a cell.
-    if (o.occupancy && nearest > tol + o.occupancy->cell_mm()) {
-      const Eigen::Vector3d beyond = p + kFarEye * (p - eyes.at[0]).normalized();
-      if (o.occupancy->first_hit(p, beyond, skip[0]) >= 0.0) return Sample::kSeenThrough;
-    }
-    return Sample::kUncovered;
-  };
+  SampleJudge judge(m, T, points, tree, o, tol, far);
   const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
   int facing = 0, measured = 0, covered = 0, seen_through = 0;
   for (int i = 0; i < o.samples; ++i) {
@@ -196,42 +250,9 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
     covered += v == Sample::kCovered;
     seen_through += v == Sample::kSeenThrough;
   }
-  // The side wall by each flat end, densely: end_rings rings at even steps over end_strip of the
-  // half-length from the cap, and as many farther in. An end is judged when the inner rings show
-  // the side wall (at least kEndReference of their measurable samples covered): then the scan
-  // would have shown it on to the cap, and the share of the outer rings' measurable samples with
-  // no scan points near them is how much of the end is missing. A true part whose end the scan
-  // does not show for another reason (grazed, behind a wall) shows little of the inner rings
-  // either.
-  double open_end = 0.0, open_end_at[2] = {0.0, 0.0};
-  if (sq.eps1 <= kFlatEdgeExponent && sq.kx == 0.0 && sq.ky == 0.0 && o.end_rings > 0) {
-    const double step = o.end_strip / o.end_rings;  // of the half-length
-    for (double side : {-1.0, 1.0}) {
-      int outer = 0, open = 0, inner = 0, inner_covered = 0;
-      for (int k = 0; k < 2 * o.end_rings; ++k) {
-        const double u = 1.0 - (k + 0.5) * step;  // z / a3
-        const double eta = side * std::asin(std::pow(u, 1.0 / sq.eps1));
-        for (int j = 0; j < o.end_ring_samples; ++j) {
-          const double omega = 2.0 * std::numbers::pi * (j + 0.5) / o.end_ring_samples;
-          const Sample v = judge(surface_point(sq, eta, omega));
-          const bool seen = measurable(v);
-          if (k < o.end_rings) {
-            outer += seen;
-            open += seen && v != Sample::kCovered;
-          } else {
-            inner += seen;
-            inner_covered += v == Sample::kCovered;
-          }
-        }
-      }
-      if (outer >= o.min_end_samples && inner >= o.min_end_samples &&
-          inner_covered >= kEndReference * inner) {
-        open_end_at[side > 0.0] = static_cast<double>(open) / outer;
-        open_end = std::max(open_end, open_end_at[side > 0.0]);
-      }
-    }
-  }
+  const std::array<double, 2> open_at = open_ends(sq, o, judge);
   SurfaceCoverage c;
+  double below = 0.0, lowest = INFINITY;
   if (o.removed_plane && o.removed_plane->valid) {
     // Sinking is judged on the model itself and standing above the table on its sharp hull: a
     // flat-faced part's rounded edges (eps 0.1) lie a few per cent inside the real object's
@@ -247,8 +268,8 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
   c.min_size_mm = sq.min_size();
   c.max_size_mm = sq.max_size();
   c.facing = facing;
-  c.open_end = open_end;
-  c.open_end_at[0] = open_end_at[0], c.open_end_at[1] = open_end_at[1];
+  c.open_end = std::max(open_at[0], open_at[1]);
+  c.open_end_at[0] = open_at[0], c.open_end_at[1] = open_at[1];
   if (measured == 0) return c;
   c.measurable = measured;
   c.covered = static_cast<double>(covered) / measured;
