@@ -35,32 +35,49 @@ Eigen::Matrix3d z_along(const Eigen::Matrix3d& axes, int zi) {
 
 }  // namespace
 
-std::vector<PosedSuperquadric> learn_starts(std::span<const Eigen::Vector3d> points,
-                                            const std::optional<pca::Plane>& plane,
-                                            std::span<const StartShape> shapes) {
-  std::vector<PosedSuperquadric> out;
-  if (points.size() < 3) return out;
-  const Eigen::Vector3d c = pca::centroid(points);
+namespace {
+
+// The frame of the points' moments and their extents in it. On a plane: z along its normal
+// towards the object, x and y the horizontal moments' axes, and the part reaching down to it.
+struct MomentFrame {
   Eigen::Matrix3d axes;
   Eigen::Vector3d lo, hi;
+};
+
+MomentFrame moment_frame(std::span<const Eigen::Vector3d> points,
+                         const std::optional<pca::Plane>& plane) {
+  MomentFrame f;
+  const Eigen::Vector3d c = pca::centroid(points);
   if (plane && plane->valid) {
-    // Normal towards the object; horizontal axes from the moments of the projected points.
     Eigen::Vector3d n = plane->normal.normalized();
     if (n.dot(c - plane->point) < 0.0) n = -n;
     Eigen::Matrix3d cov = pca::covariance(points, c);
     const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - n * n.transpose();
     const pca::Eigen3 e = pca::eigen_symmetric(P * cov * P);
-    axes.col(0) = e.vectors.col(2);  // largest horizontal moment
-    axes.col(1) = n.cross(axes.col(0)).normalized();
-    axes.col(2) = n;
-    extents(points, axes, lo, hi);
-    lo.z() = n.dot(plane->point);  // the part reaches down to the plane
+    f.axes.col(0) = e.vectors.col(2);  // largest horizontal moment
+    f.axes.col(1) = n.cross(f.axes.col(0)).normalized();
+    f.axes.col(2) = n;
+    extents(points, f.axes, f.lo, f.hi);
+    f.lo.z() = n.dot(plane->point);  // the part reaches down to the plane
   } else {
     const pca::Eigen3 e = pca::eigen_symmetric(pca::covariance(points, c));
-    axes = e.vectors;
-    if (axes.determinant() < 0.0) axes.col(0) = -axes.col(0);
-    extents(points, axes, lo, hi);
+    f.axes = e.vectors;
+    if (f.axes.determinant() < 0.0) f.axes.col(0) = -f.axes.col(0);
+    extents(points, f.axes, f.lo, f.hi);
   }
+  return f;
+}
+
+}  // namespace
+
+std::vector<PosedSuperquadric> learn_starts(std::span<const Eigen::Vector3d> points,
+                                            const std::optional<pca::Plane>& plane,
+                                            std::span<const StartShape> shapes) {
+  std::vector<PosedSuperquadric> out;
+  if (points.size() < 3) return out;
+  const MomentFrame moments = moment_frame(points, plane);
+  const Eigen::Matrix3d& axes = moments.axes;
+  const Eigen::Vector3d &lo = moments.lo, &hi = moments.hi;
   const bool on_plane = plane && plane->valid;
   const double h0 = hi.x() - lo.x(), h1 = hi.y() - lo.y();
   // The starts of one frame; turned: z along the plane normal only, round sections (untapered

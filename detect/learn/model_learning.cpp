@@ -81,6 +81,56 @@ LearntPart describe(const std::string& name, const ShapeFitResult& fit,
   return p;
 }
 
+void refit_diamond_as_square(std::span<const Eigen::Vector3d> fine, const LearnOptions& options,
+                             double v0, const std::optional<Eigen::Vector4d>& support,
+                             ShapeFitResult& fit) {
+  // A section near eps2 = 2 is a diamond: a square turned by 45 deg (eps2 = 2 exactly is
+  // |x|/a + |y|/a = 1, the square of half side a / sqrt 2). The fit reaches it when it starts
+  // 45 deg off a square object; try the square the other way and keep the better.
+  constexpr double kDiamondEps = 1.5;
+  if (!fit.ok || fit.part.shape.eps2 <= kDiamondEps) return;
+  PosedSuperquadric square = fit.part;
+  const double half = 0.5 * (square.shape.a1 + square.shape.a2) / std::numbers::sqrt2;
+  square.shape.a1 = square.shape.a2 = half;
+  square.shape.eps2 = std::max(2.0 - square.shape.eps2, 0.1);
+  square.T_world_part.linear() =
+      square.T_world_part.linear() *
+      Eigen::AngleAxisd(0.25 * std::numbers::pi, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const ShapeFitResult f =
+      fit_superquadric(fine, square, fit_options(options, v0, options.iterations, support));
+  if (f.ok && f.cost < fit.cost) fit = f;
+}
+
+void refit_apex_taper(std::span<const Eigen::Vector3d> fine, const LearnOptions& options,
+                      double v0, const std::optional<Eigen::Vector4d>& support,
+                      ShapeFitResult& fit) {
+  // A taper near its bound narrows the part to (nearly) a point at that end: a cone's apex.
+  // There the surface has next to no area, so next to no points: the side surface fixes a3 / |k|
+  // (where the sides meet), but a3 and the taper slide along that valley held only by the few
+  // points at the tip, and with noise the fit ends a few percent short with the taper off the
+  // bound (a cone from two views: a3 1.3 % short, taper -0.975, the centre 0.5 mm low; exact on
+  // noise-free points). Refit with the taper on the bound and keep it when the points cannot
+  // tell the two apart: the cost rises by less than chi^2_2(0.95) = 5.99 times the residual
+  // variance (a likelihood-ratio test of the two tapers given up).
+  constexpr double kApexTaper = 0.9, kChi2TwoDof95 = 5.99;
+  const Superquadric& b = fit.part.shape;
+  if (fit.ok && options.fit_taper &&
+      std::max(std::abs(b.kx), std::abs(b.ky)) > kApexTaper * options.max_taper) {
+    PosedSuperquadric apex = fit.part;
+    if (std::abs(b.kx) > kApexTaper * options.max_taper) {
+      apex.shape.kx = std::copysign(options.max_taper, b.kx);
+    }
+    if (std::abs(b.ky) > kApexTaper * options.max_taper) {
+      apex.shape.ky = std::copysign(options.max_taper, b.ky);
+    }
+    ShapeFitOptions f = fit_options(options, v0, options.iterations, support);
+    f.fit_taper = false;
+    const ShapeFitResult a = fit_superquadric(fine, apex, f);
+    const double variance = 2.0 * fit.cost / static_cast<double>(fine.size());
+    if (a.ok && 2.0 * (a.cost - fit.cost) < kChi2TwoDof95 * variance) fit = a;
+  }
+}
+
 }  // namespace
 
 const char* to_string(LearnReason reason) {
@@ -186,47 +236,8 @@ PartFit learn_part(std::span<const Eigen::Vector3d> object_points,
           options.retry_residual_mm) {
     finish(kept, n);
   }
-  // A section near eps2 = 2 is a diamond: a square turned by 45 deg (eps2 = 2 exactly is
-  // |x|/a + |y|/a = 1, the square of half side a / sqrt 2). The fit reaches it when it starts
-  // 45 deg off a square object; try the square the other way and keep the better.
-  constexpr double kDiamondEps = 1.5;
-  if (out.fit.ok && out.fit.part.shape.eps2 > kDiamondEps) {
-    PosedSuperquadric square = out.fit.part;
-    const double half = 0.5 * (square.shape.a1 + square.shape.a2) / std::numbers::sqrt2;
-    square.shape.a1 = square.shape.a2 = half;
-    square.shape.eps2 = std::max(2.0 - square.shape.eps2, 0.1);
-    square.T_world_part.linear() =
-        square.T_world_part.linear() *
-        Eigen::AngleAxisd(0.25 * std::numbers::pi, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-    const ShapeFitResult f =
-        fit_superquadric(fine, square, fit_options(options, v0, options.iterations, support));
-    if (f.ok && f.cost < out.fit.cost) out.fit = f;
-  }
-  // A taper near its bound narrows the part to (nearly) a point at that end: a cone's apex.
-  // There the surface has next to no area, so next to no points: the side surface fixes a3 / |k|
-  // (where the sides meet), but a3 and the taper slide along that valley held only by the few
-  // points at the tip, and with noise the fit ends a few percent short with the taper off the
-  // bound (a cone from two views: a3 1.3 % short, taper -0.975, the centre 0.5 mm low; exact on
-  // noise-free points). Refit with the taper on the bound and keep it when the points cannot
-  // tell the two apart: the cost rises by less than chi^2_2(0.95) = 5.99 times the residual
-  // variance (a likelihood-ratio test of the two tapers given up).
-  constexpr double kApexTaper = 0.9, kChi2TwoDof95 = 5.99;
-  const Superquadric& b = out.fit.part.shape;
-  if (out.fit.ok && options.fit_taper &&
-      std::max(std::abs(b.kx), std::abs(b.ky)) > kApexTaper * options.max_taper) {
-    PosedSuperquadric apex = out.fit.part;
-    if (std::abs(b.kx) > kApexTaper * options.max_taper) {
-      apex.shape.kx = std::copysign(options.max_taper, b.kx);
-    }
-    if (std::abs(b.ky) > kApexTaper * options.max_taper) {
-      apex.shape.ky = std::copysign(options.max_taper, b.ky);
-    }
-    ShapeFitOptions f = fit_options(options, v0, options.iterations, support);
-    f.fit_taper = false;
-    const ShapeFitResult a = fit_superquadric(fine, apex, f);
-    const double variance = 2.0 * out.fit.cost / static_cast<double>(fine.size());
-    if (a.ok && 2.0 * (a.cost - out.fit.cost) < kChi2TwoDof95 * variance) out.fit = a;
-  }
+  refit_diamond_as_square(fine, options, v0, support, out.fit);
+  refit_apex_taper(fine, options, v0, support, out.fit);
   return out;
 }
 
