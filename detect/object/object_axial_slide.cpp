@@ -14,13 +14,6 @@ constexpr double kFlatExponent = 0.5;
 // eps <= 0.5 its G along that axis is (z / (10 a))^(2 / eps) <= 1.25^4 / 10^4 within the reach.
 constexpr double kEndless = 10.0;
 
-double surface_distance(const SuperquadricMetric& m, const Eigen::Vector3d& q) {
-  Eigen::Vector3d grad;
-  const double g = m.value_and_gradient(q, grad);
-  const double norm = grad.norm();
-  return norm > 0.0 ? (g - 1.0) / norm : q.norm();
-}
-
 // The shift along one axis of half size `a` that puts the contiguous run of wall coordinates
 // `u` (sorted) that starts within the part inside [-a, a], closest to `prefer`; 0 when no shift
 // does.

@@ -13,14 +13,6 @@ constexpr double kSiblingGate = 1.6;
 // wall along its axis: eps1; a box's sides across it: eps2).
 constexpr double kFlatExponent = 0.5;
 
-// Distance from the surface to first order, (G - 1) / |grad G| (mm); accurate near it.
-double surface_distance(const SuperquadricMetric& m, const Eigen::Vector3d& q) {
-  Eigen::Vector3d grad;
-  const double g = m.value_and_gradient(q, grad);
-  const double norm = grad.norm();
-  return norm > 0.0 ? (g - 1.0) / norm : q.norm();
-}
-
 // One way of extending the part: its sizes stretched by `stretch`, and how far out along the
 // stretch a part-frame point is, in units of the part's size there (1: on the face being
 // extended past).

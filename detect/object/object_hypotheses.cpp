@@ -217,16 +217,6 @@ PartScores verify_pose(const HypothesisContext& ctx, const Superquadric& part,
   return s;
 }
 
-// Distance of a part-frame point from the surface to first order, (G - 1) / |grad G| (mm). The
-// radial distance |x| (1 - G^-1/2) of thesis 2.1.3 grows without bound along a thin part (a
-// point on a shaft's side far from its centre is reached by a ray that grazes the surface).
-double surface_distance(const SuperquadricMetric& m, const Eigen::Vector3d& q) {
-  Eigen::Vector3d grad;
-  const double g = m.value_and_gradient(q, grad);
-  const double norm = grad.norm();
-  return norm > 0.0 ? (g - 1.0) / norm : q.norm();
-}
-
 namespace {
 
 // Mean squared distance (mm^2) of the points from the surface of the posed part.

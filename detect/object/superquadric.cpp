@@ -135,4 +135,11 @@ Eigen::AlignedBox3d part_bounds(const Superquadric& sq) {
   return Eigen::AlignedBox3d(Eigen::Vector3d(-bx, -by, -sq.a3), Eigen::Vector3d(bx, by, sq.a3));
 }
 
+double surface_distance(const SuperquadricMetric& m, const Eigen::Vector3d& p_part) {
+  Eigen::Vector3d grad;
+  const double g = m.value_and_gradient(p_part, grad);
+  const double norm = grad.norm();
+  return norm > 0.0 ? (g - 1.0) / norm : p_part.norm();
+}
+
 }  // namespace rangefit

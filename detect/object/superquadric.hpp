@@ -73,6 +73,12 @@ class SuperquadricMetric {
 // the part frame, mm. Finite for every finite input; G < 1 inside, = 1 on the surface.
 double metric(const Superquadric& sq, const Eigen::Vector3d& p_part);
 
+// Distance of a part-frame point from the surface to first order, (G - 1) / |grad G| (mm);
+// accurate near it. The radial distance |x| (1 - G^-1/2) of thesis 2.1.3 grows without bound
+// along a thin part (a point on a shaft's side far from its centre is reached by a ray that
+// grazes the surface).
+double surface_distance(const SuperquadricMetric& m, const Eigen::Vector3d& p_part);
+
 // G and its gradient dG/dp_part (1/mm). The gradient is finite everywhere (zero at the centre).
 double metric_and_gradient(const Superquadric& sq, const Eigen::Vector3d& p_part,
                            Eigen::Vector3d& gradient);
