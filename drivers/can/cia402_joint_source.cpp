@@ -59,7 +59,9 @@ Cia402JointSource::Identity Cia402JointSource::identity(std::uint8_t node) const
 // the link was down), so its serial is asked again and reported only once it answered.
 void Cia402JointSource::start_node(Node& n, hal::Timestamp now) {
   n.identity = Identity::kUnknown;
-  n.identity_wanted = config_.read_identity;
+  // The node's default SDO channel belongs to the master that manages it: a driver that leaves
+  // the nodes to another master (start_nodes = false) does not talk on it.
+  n.identity_wanted = config_.read_identity && config_.start_nodes;
   n.sdo = SdoPending::kNone;  // a transfer in progress died with the node's (or our) reset
   if (config_.start_nodes) {
     if (config_.heartbeat_producer_ms > 0 &&

@@ -38,7 +38,9 @@ struct Cia402Config {
   bool start_nodes = true;                    // NMT start (and again after boot-up)
   std::uint16_t heartbeat_producer_ms = 100;  // written to 0x1017; 0 = leave as is
   hal::Duration heartbeat_timeout = std::chrono::milliseconds(300);
-  bool read_identity = true;  // SDO upload of 0x1018:04 at start-up and after a node's boot-up
+  // SDO upload of 0x1018:04 at start-up and after a node's boot-up (only with start_nodes: the
+  // default SDO channel is the managing master's).
+  bool read_identity = true;
   hal::Duration sdo_timeout = std::chrono::milliseconds(200);  // per expedited SDO transfer
   std::size_t queue_capacity = 4096;
   LoopConfig loop;
