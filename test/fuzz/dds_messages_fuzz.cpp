@@ -4,11 +4,15 @@
 // dds_stream_normalize_data, dropped when that fails, then read into the sample by
 // dds_stream_read), and on to the project's decoding: the PointCloud2, Detection and
 // DiagnosticArray that `rangefit watch` and `rangefit request` read, and the DetectRequest that
-// rangefitd reads and validates against its configuration before logging or queueing it. The
-// first input byte picks the message; the rest is the serialized sample. The seeds
+// rangefitd reads and validates against its configuration before logging or queueing it, from
+// the topic or as a ROS 2 service request (rq/rangefit/detectRequest: rmw_cyclonedds's request
+// header, the caller's 64-bit writer id and sequence number, then the same fields). The first
+// input byte picks the message; the rest is the serialized sample. The seeds
 // (corpus/dds_messages) are such samples of CloudOut, RequestOut, DetectionOut and DiagnosticsOut
-// as Cyclone's dds_stream_write serializes them, in both byte orders, and the PointCloud2 of
-// width = height = 2^31 that once made `rangefit watch` exit.
+// as Cyclone's dds_stream_write serializes them, in both byte orders, the PointCloud2 of
+// width = height = 2^31 that once made `rangefit watch` exit, and service requests (service_*):
+// topic request seeds with the 16-byte header in front (the fields keep their alignment), with
+// and without an id, one without an id and with a NaN in the target pose.
 #include <dds/dds.h>
 #include <dds/ddsi/ddsi_cdrstream.h>
 
@@ -18,10 +22,13 @@
 #include <cstdlib>
 #include <cstring>
 #include <span>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "daemon/dds/cloud_msg_guard.hpp"
 #include "daemon/dds/messages.hpp"
+#include "daemon/dds/service_request.hpp"
 #include "daemon/service/config.hpp"
 #include "daemon/service/log_escape.hpp"
 #include "daemon/service/request_validation.hpp"
@@ -117,12 +124,9 @@ void diagnostics(std::span<const std::uint8_t> bytes) {
   if (msg.get() != nullptr) (void)from_msg(*msg.get());
 }
 
-void request(std::span<const std::uint8_t> bytes) {
-  const WireSample<rangefit_msgs_msg_dds__DetectRequest_> msg(
-      rangefit_msgs_msg_dds__DetectRequest__desc, bytes);
-  if (msg.get() == nullptr) return;
-  std::string error;
-  ScanRequest req = from_msg(*msg.get(), &error);
+// What rangefitd does with a decoded request (either way it came): validate it, log a rejected
+// one's id escaped, queue an accepted one.
+void check_request(ScanRequest req, std::string error) {
   if (error.empty()) error = validate_request(req, daemon_config());
   // A rejected request's id is logged escaped: printable ASCII only may reach the log.
   for (const char ch : log_escape(req.id)) {
@@ -136,12 +140,36 @@ void request(std::span<const std::uint8_t> bytes) {
   if (!(std::abs(req.sweep_start) <= 1e4 && std::abs(req.sweep_end) <= 1e4)) std::abort();
 }
 
+void request(std::span<const std::uint8_t> bytes) {
+  const WireSample<rangefit_msgs_msg_dds__DetectRequest_> msg(
+      rangefit_msgs_msg_dds__DetectRequest__desc, bytes);
+  if (msg.get() == nullptr) return;
+  std::string error;
+  ScanRequest req = from_msg(*msg.get(), &error);
+  check_request(std::move(req), std::move(error));
+}
+
+void service_request(std::span<const std::uint8_t> bytes) {
+  const WireSample<rangefit_msgs_srv_dds__Detect_Request_> msg(
+      rangefit_msgs_srv_dds__Detect_Request__desc, bytes);
+  if (msg.get() == nullptr) return;
+  const auto& m = *msg.get();
+  std::string error;
+  ScanRequest req = from_service_request(m, &error);
+  // A call without an id is named after the caller, so its answer can find it.
+  if ((m.request_id == nullptr || m.request_id[0] == '\0') && req.id != service_call_id(m)) {
+    std::abort();
+  }
+  if (req.id.empty()) std::abort();
+  check_request(std::move(req), std::move(error));
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
   const std::span<const std::uint8_t> sample(data + 1, size - 1);
-  switch (data[0] % 4) {
+  switch (data[0] % 5) {
     case 0:
       cloud(sample);
       break;
@@ -151,8 +179,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     case 2:
       detection(sample);
       break;
-    default:
+    case 3:
       diagnostics(sample);
+      break;
+    default:
+      service_request(sample);
       break;
   }
   return 0;
