@@ -12,7 +12,9 @@
 // as Cyclone's dds_stream_write serializes them, in both byte orders, the PointCloud2 of
 // width = height = 2^31 that once made `rangefit watch` exit, and service requests (service_*):
 // topic request seeds with the 16-byte header in front (the fields keep their alignment), with
-// and without an id, one without an id and with a NaN in the target pose.
+// and without an id, one without an id and with a NaN in the target pose; and a request and a
+// service request whose NaN bore_major_axis (unused without bore_radius2) was accepted
+// (crash-*-nan-major-axis-accepted): an accepted request has only finite numbers on the wire.
 #include <dds/dds.h>
 #include <dds/ddsi/ddsi_cdrstream.h>
 
@@ -124,9 +126,27 @@ void diagnostics(std::span<const std::uint8_t> bytes) {
   if (msg.get() != nullptr) (void)from_msg(*msg.get());
 }
 
+// Every number of a request on the wire (topic and service share the field names).
+template <class Msg>
+bool wire_numbers_finite(const Msg& m) {
+  const auto point = [](const auto& p) {
+    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+  };
+  const auto& q = m.target_pose.orientation;
+  return point(m.bore_position) && point(m.bore_axis) && std::isfinite(m.bore_radius) &&
+         std::isfinite(m.sweep_start) && std::isfinite(m.sweep_end) &&
+         std::isfinite(m.sweep_speed) && point(m.bore_plane_normal) &&
+         std::isfinite(m.bore_outer_radius) && std::isfinite(m.bore_normal_keep) &&
+         point(m.view_dir) && point(m.sensor_position) && std::isfinite(m.target_edge) &&
+         std::isfinite(m.target_bar) && point(m.target_pose.position) && std::isfinite(q.x) &&
+         std::isfinite(q.y) && std::isfinite(q.z) && std::isfinite(q.w) &&
+         std::isfinite(m.bore_half_angle) && std::isfinite(m.bore_cylinder_radius) &&
+         std::isfinite(m.bore_radius2) && point(m.bore_major_axis);
+}
+
 // What rangefitd does with a decoded request (either way it came): validate it, log a rejected
-// one's id escaped, queue an accepted one.
-void check_request(ScanRequest req, std::string error) {
+// one's id escaped, queue an accepted one. Returns whether it was accepted.
+bool check_request(ScanRequest req, std::string error) {
   if (error.empty()) error = validate_request(req, daemon_config());
   // A rejected request's id is logged escaped: printable ASCII only may reach the log.
   for (const char ch : log_escape(req.id)) {
@@ -134,10 +154,11 @@ void check_request(ScanRequest req, std::string error) {
       std::abort();
     }
   }
-  if (!error.empty()) return;
+  if (!error.empty()) return false;
   // What validation lets through is bounded: a printable id and a sweep within one turn / 10 m.
   if (!check_name(req.id, "request_id", kMaxRequestIdLength).empty()) std::abort();
   if (!(std::abs(req.sweep_start) <= 1e4 && std::abs(req.sweep_end) <= 1e4)) std::abort();
+  return true;
 }
 
 void request(std::span<const std::uint8_t> bytes) {
@@ -146,7 +167,10 @@ void request(std::span<const std::uint8_t> bytes) {
   if (msg.get() == nullptr) return;
   std::string error;
   ScanRequest req = from_msg(*msg.get(), &error);
-  check_request(std::move(req), std::move(error));
+  // A non-finite number is refused, never dropped or replaced by a default and accepted.
+  if (check_request(std::move(req), std::move(error)) && !wire_numbers_finite(*msg.get())) {
+    std::abort();
+  }
 }
 
 void service_request(std::span<const std::uint8_t> bytes) {
@@ -161,7 +185,7 @@ void service_request(std::span<const std::uint8_t> bytes) {
     std::abort();
   }
   if (req.id.empty()) std::abort();
-  check_request(std::move(req), std::move(error));
+  if (check_request(std::move(req), std::move(error)) && !wire_numbers_finite(m)) std::abort();
 }
 
 }  // namespace
