@@ -60,6 +60,12 @@ TEST(ServiceRequest, NonFiniteNumbersAreRefusedAlsoWhenTheIdIsLeftToTheCall) {
     m.bore_major_axis.x = nan;  // unused without bore_radius2, still not a number to accept
     (void)from_service_request(m, &error);
     EXPECT_EQ(error, "non-finite number in request") << "id \"" << id << "\"";
+    m = bore_call(id);
+    m.kind = text("object");
+    m.model = text("box");
+    m.bore_half_angle = nan;  // a bore field in an object request: unused, still refused
+    (void)from_service_request(m, &error);
+    EXPECT_EQ(error, "non-finite number in request") << "id \"" << id << "\"";
   }
 }
 

@@ -14,7 +14,9 @@
 // topic request seeds with the 16-byte header in front (the fields keep their alignment), with
 // and without an id, one without an id and with a NaN in the target pose; and a request and a
 // service request whose NaN bore_major_axis (unused without bore_radius2) was accepted
-// (crash-*-nan-major-axis-accepted): an accepted request has only finite numbers on the wire.
+// (crash-*-nan-major-axis-accepted), and the object service request with a NaN bore_half_angle
+// this harness found accepted (crash-service-request-object-nan-bore-half-angle-accepted): an
+// accepted request has only finite numbers on the wire.
 #include <dds/dds.h>
 #include <dds/ddsi/ddsi_cdrstream.h>
 
