@@ -287,7 +287,10 @@ ScanRequest from_msg(const rangefit_msgs_msg_dds__DetectRequest_& msg, std::stri
                       n.allFinite() && std::isfinite(req.bore.outer_radius_mm) &&
                       std::isfinite(req.bore.normal_keep) && v.allFinite() && sp.allFinite() &&
                       std::isfinite(req.target.edge_mm) && std::isfinite(req.target.bar_mm) &&
-                      req.target.T_table_target.matrix().allFinite() && tq.coeffs().allFinite();
+                      req.target.T_table_target.matrix().allFinite() && tq.coeffs().allFinite() &&
+                      std::isfinite(req.bore.half_angle_rad) &&
+                      std::isfinite(req.bore.cylinder_radius_mm) &&
+                      std::isfinite(req.bore.radius2_mm) && ma.allFinite();
   if (error->empty() && !finite) *error = "non-finite number in request";
   return req;
 }

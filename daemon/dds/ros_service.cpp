@@ -1,8 +1,7 @@
 #include "daemon/dds/ros_service.hpp"
 
-#include <fmt/format.h>
-
 #include "daemon/dds/messages.hpp"
+#include "daemon/dds/service_request.hpp"
 #include "daemon/dds/topics.hpp"
 
 namespace rangefit::daemon {
@@ -10,43 +9,6 @@ namespace {
 
 // Callers waiting for an answer; every request is answered, so this only bounds a flood.
 constexpr std::size_t kMaxWaiting = 4096;
-
-// The service request minus its header, as the topic's type (the fields are the same, in order).
-rangefit_msgs_msg_dds__DetectRequest_ as_topic_request(
-    const rangefit_msgs_srv_dds__Detect_Request_& m) {
-  rangefit_msgs_msg_dds__DetectRequest_ r{};
-  r.request_id = m.request_id;
-  r.kind = m.kind;
-  r.model = m.model;
-  r.bore_position = m.bore_position;
-  r.bore_axis = m.bore_axis;
-  r.bore_radius = m.bore_radius;
-  r.sensor = m.sensor;
-  r.sweep_start = m.sweep_start;
-  r.sweep_end = m.sweep_end;
-  r.sweep_speed = m.sweep_speed;
-  r.bore_plane_normal = m.bore_plane_normal;
-  r.instances = m.instances;
-  r.hypotheses = m.hypotheses;
-  r.trials = m.trials;
-  r.seed = m.seed;
-  r.bore_outer_radius = m.bore_outer_radius;
-  r.bore_walls = m.bore_walls;
-  r.bore_normal_keep = m.bore_normal_keep;
-  r.view_dir = m.view_dir;
-  r.sensor_position_given = m.sensor_position_given;
-  r.sensor_position = m.sensor_position;
-  r.parts = m.parts;
-  r.target = m.target;
-  r.target_edge = m.target_edge;
-  r.target_bar = m.target_bar;
-  r.target_pose = m.target_pose;
-  r.bore_half_angle = m.bore_half_angle;
-  r.bore_cylinder_radius = m.bore_cylinder_radius;
-  r.bore_radius2 = m.bore_radius2;
-  r.bore_major_axis = m.bore_major_axis;
-  return r;
-}
 
 }  // namespace
 
@@ -62,14 +24,8 @@ RosDetectService::RosDetectService(dds::Participant& participant, const std::str
 
 int RosDetectService::take(const std::function<void(ScanRequest, const std::string&)>& handle) {
   return requests_.take_each([&](const rangefit_msgs_srv_dds__Detect_Request_& m) {
-    const auto topic_request = as_topic_request(m);
     std::string error;
-    ScanRequest req = from_msg(topic_request, &error);
-    // `ros2 service call` users need not invent ids: the call's identity is one.
-    if (req.id.empty()) {
-      req.id = fmt::format("ros-{:016x}-{}", m.rmw_client_guid, m.rmw_sequence_number);
-      if (error == "request_id is empty") error.clear();
-    }
+    ScanRequest req = from_service_request(m, &error);
     {
       std::lock_guard lock(mutex_);
       if (waiting_count_ >= kMaxWaiting) return;  // a flood: no one can be answered in time

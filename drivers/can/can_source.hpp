@@ -62,8 +62,10 @@ class CanSource : public hal::SampleSource<Sample>, protected CanLoopHandler {
   }
 
   hal::DeviceHealth health() const override {
-    return compose_health(started_, loop_, devices_faulted(), problem_.load(), problem_node_.load(),
-                          counters());
+    hal::DeviceHealth h = compose_health(started_, loop_, devices_faulted(), problem_.load(),
+                                         problem_node_.load(), counters());
+    h.hardware_id = hardware_id();
+    return h;
   }
 
   CanCounters counters() const {
@@ -86,6 +88,9 @@ class CanSource : public hal::SampleSource<Sample>, protected CanLoopHandler {
   virtual void on_start(hal::Timestamp now) = 0;
   // A device is lost or faulted (health() turns kFault); read from any thread.
   virtual bool devices_faulted() const = 0;
+  // The devices' own identity (serial numbers) as far as they told it; empty when none did or
+  // the protocol has none. Called by health() from the caller's thread, never the receive thread.
+  virtual std::string hardware_id() const { return {}; }
 
   // Receive thread helpers.
   void report(Problem p, std::uint8_t node = 0) {

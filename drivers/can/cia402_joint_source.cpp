@@ -2,6 +2,9 @@
 
 #include <algorithm>
 
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
 namespace rangefit::drivers::can {
 
 using namespace cia402;  // NOLINT: codec names read better unqualified here
@@ -45,12 +48,105 @@ std::uint8_t Cia402JointSource::node_state(std::uint8_t node) const {
   return 0xFF;
 }
 
-void Cia402JointSource::start_node(std::uint8_t node) {
-  if (!config_.start_nodes) return;
-  if (config_.heartbeat_producer_ms > 0) {
-    send(encode_sdo_download(node, 0x1017, 0, config_.heartbeat_producer_ms, 2));
+Cia402JointSource::Identity Cia402JointSource::identity(std::uint8_t node) const {
+  for (const auto& n : nodes_) {
+    if (n->config.node == node) return n->identity.load();
   }
-  send(encode_nmt(kNmtStart, node));
+  return Identity::kUnknown;
+}
+
+// At open and after a boot-up: the node may be another device now (swapped while off or while
+// the link was down), so its serial is asked again and reported only once it answered.
+void Cia402JointSource::start_node(Node& n, hal::Timestamp now) {
+  n.identity = Identity::kUnknown;
+  // The node's default SDO channel belongs to the master that manages it: a driver that leaves
+  // the nodes to another master (start_nodes = false) does not talk on it.
+  n.identity_wanted = config_.read_identity && config_.start_nodes;
+  n.sdo = SdoPending::kNone;  // a transfer in progress died with the node's (or our) reset
+  if (config_.start_nodes) {
+    if (config_.heartbeat_producer_ms > 0 &&
+        send(encode_sdo_download(n.config.node, 0x1017, 0, config_.heartbeat_producer_ms, 2)) ==
+            TxResult::kOk) {
+      n.sdo = SdoPending::kHeartbeat;
+      n.sdo_sent = now;
+    }
+    send(encode_nmt(kNmtStart, n.config.node));
+  }
+  if (n.sdo == SdoPending::kNone && n.identity_wanted) ask_identity(n, now);
+}
+
+void Cia402JointSource::ask_identity(Node& n, hal::Timestamp now) {
+  // Not sent (tx queue full, link down): asked again from the next tick.
+  if (send(encode_sdo_upload_request(n.config.node, 0x1018, 4)) != TxResult::kOk) return;
+  n.identity_wanted = false;
+  n.sdo = SdoPending::kIdentity;
+  n.sdo_sent = now;
+}
+
+// Frees the node's SDO channel when its transfer found no answer in time (the node then has no
+// serial to report) and starts the next transfer that waits for the channel.
+void Cia402JointSource::expire_sdo(Node& n, hal::Timestamp now) {
+  if (n.sdo != SdoPending::kNone && now - n.sdo_sent > config_.sdo_timeout) {
+    if (n.sdo == SdoPending::kIdentity && n.identity != Identity::kKnown) {
+      n.identity = Identity::kNoAnswer;
+    }
+    n.sdo = SdoPending::kNone;
+  }
+  if (n.sdo == SdoPending::kNone && n.identity_wanted) ask_identity(n, now);
+}
+
+void Cia402JointSource::take_sdo_response(Node& n, const Message& m) {
+  const bool identity_reply = m.sdo_index == 0x1018 && m.sdo_subindex == 4;
+  if (identity_reply && sdo_is_upload_reply(m.sdo_command)) {
+    if ((m.sdo_command & 0x02) != 0) {  // expedited: the value is in the frame
+      // Size indicated (bit 0): 4 - n data bytes, n = bits 2-3; the rest is not data.
+      const unsigned unused = (m.sdo_command & 0x01) != 0 ? (m.sdo_command >> 2) & 0x03 : 0;
+      n.serial = unused == 0 ? m.sdo_data : m.sdo_data & ((1u << (8 * (4 - unused))) - 1);
+      n.identity = Identity::kKnown;
+    } else {
+      n.abort_code = 0;  // a segmented upload of a U32: not a serial this driver reads
+      n.identity = Identity::kAborted;
+    }
+  } else if (identity_reply && m.sdo_command == kSdoAbort) {
+    // Sub-index 4 is optional (CiA 301 7.5.2.27): no serial, not a fault.
+    n.abort_code = m.sdo_data;
+    n.identity = Identity::kAborted;
+  } else if (m.sdo_command == kSdoAbort) {
+    bump(Counter::kFaults);
+  }
+  const bool ends_transfer = (n.sdo == SdoPending::kIdentity && identity_reply) ||
+                             (n.sdo == SdoPending::kHeartbeat && m.sdo_index == 0x1017);
+  if (ends_transfer) {
+    n.sdo = SdoPending::kNone;
+    if (n.identity_wanted) ask_identity(n, hal::monotonic_now());
+  }
+}
+
+// One node: its serial in decimal (as CANopen tools print 0x1018:04). Several nodes (pan-tilt):
+// "node:serial" of each node that told it, space separated. A node that gave none is logged
+// once here, on the caller's thread (the receive path never logs).
+std::string Cia402JointSource::hardware_id() const {
+  std::string id;
+  const bool several = nodes_.size() > 1;
+  for (const auto& n : nodes_) {
+    const Identity state = n->identity.load();
+    if (state == Identity::kKnown) {
+      if (!id.empty()) id += ' ';
+      if (several) id += std::to_string(n->config.node) + ':';
+      id += std::to_string(n->serial.load());
+    } else if (state != Identity::kUnknown && !n->miss_logged.exchange(true)) {
+      spdlog::warn("{}: node {} gave no serial number (0x1018:04 {}); diagnostics name it '{}'",
+                   config_.name, n->config.node,
+                   state == Identity::kAborted
+                       ? fmt::format("refused, SDO abort 0x{:08X}", n->abort_code.load())
+                       : fmt::format("not answered within {} ms",
+                                     std::chrono::duration_cast<std::chrono::milliseconds>(
+                                         config_.sdo_timeout)
+                                         .count()),
+                   config_.name);
+    }
+  }
+  return id;
 }
 
 void Cia402JointSource::on_link(bool up) {
@@ -61,7 +157,7 @@ void Cia402JointSource::on_link(bool up) {
   const hal::Timestamp now = hal::monotonic_now();
   for (auto& n : nodes_) {
     n->last_heartbeat = now;  // fresh grace period after (re)opening
-    start_node(n->config.node);
+    start_node(*n, now);
   }
   pending_echo_ = false;
 }
@@ -82,6 +178,7 @@ hal::Timestamp Cia402JointSource::on_tick(hal::Timestamp now) {
       report(Problem::kNodeLost, n->config.node);
     }
     lost = lost || !n->alive;
+    expire_sdo(*n, now);
   }
   any_node_lost_ = lost;
   hal::Timestamp next = now + std::chrono::milliseconds(10);
@@ -198,7 +295,7 @@ void Cia402JointSource::on_frame(const CanFrame& f) {
       if (m.nmt_state == kBootUp) {
         bump(Counter::kReboots);
         report(Problem::kNodeReboot, n->config.node);
-        start_node(n->config.node);
+        start_node(*n, hal::monotonic_now());
       }
       break;
     case Kind::kEmcy:
@@ -208,7 +305,7 @@ void Cia402JointSource::on_frame(const CanFrame& f) {
       }
       break;
     case Kind::kSdoResponse:
-      if (m.sdo_command == kSdoAbort) bump(Counter::kFaults);
+      take_sdo_response(*n, m);
       break;
     default:
       bump(Counter::kUnknownIds);

@@ -1,5 +1,6 @@
 // The CiA 402 joint driver against simulated CiA 402 drives speaking the wire protocol over the
-// in-process transport: values and stamps, start-up (NMT, SDO), and the CAN fault list.
+// in-process transport: values and stamps, start-up (NMT, SDO, the nodes' serial numbers), and the
+// CAN fault list.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -7,6 +8,9 @@
 #include <map>
 #include <memory>
 #include <thread>
+
+#include <spdlog/sinks/ringbuffer_sink.h>
+#include <spdlog/spdlog.h>
 
 #include "drivers/can/cia402_joint_source.hpp"
 #include "drivers/can/cia402_pan_tilt_source.hpp"
@@ -22,9 +26,30 @@ using test::eventually;
 
 constexpr double kOmega = 1.0;  // rad/s of the simulated joints
 
+// Captures what the driver logs while it lives (the default logger's sink, restored after).
+class LogCapture {
+ public:
+  LogCapture()
+      : sink_(std::make_shared<spdlog::sinks::ringbuffer_sink_mt>(64)),
+        previous_(spdlog::default_logger()) {
+    spdlog::set_default_logger(std::make_shared<spdlog::logger>("capture", sink_));
+  }
+  ~LogCapture() { spdlog::set_default_logger(previous_); }
+  int count(const std::string& text) const {
+    const auto lines = sink_->last_formatted();
+    return static_cast<int>(std::count_if(lines.begin(), lines.end(), [&](const auto& l) {
+      return l.find(text) != std::string::npos;
+    }));
+  }
+
+ private:
+  std::shared_ptr<spdlog::sinks::ringbuffer_sink_mt> sink_;
+  std::shared_ptr<spdlog::logger> previous_;
+};
+
 class Cia402Driver : public ::testing::Test {
  protected:
-  void start(bool master = true) {
+  void start(bool master = true, sim::SimIdentityReply node2_identity = sim::SimIdentityReply::kSerial) {
     config_.sync_master = master;
     config_.joints = {{1, 5, 1e-6, 0.0}, {2, 6, 1e-6, 0.0}};
     t0_ = hal::monotonic_now();
@@ -36,6 +61,7 @@ class Cia402Driver : public ::testing::Test {
     n1.heartbeat_ms = 1000;  // the driver configures 100 ms by SDO
     sim::SimCia402Config n2 = n1;
     n2.node = 2;
+    n2.identity = node2_identity;
     node1_ = std::make_shared<sim::SimCia402Node>(n1, angle);
     node2_ = std::make_shared<sim::SimCia402Node>(n2, angle);
     if (master) {
@@ -92,6 +118,61 @@ TEST_F(Cia402Driver, StartsNodesConfiguresHeartbeatAndStreamsJointAnglesAtSyncSt
   }
   EXPECT_GE(joint5, 40);
   EXPECT_EQ(driver_->health().state, hal::DeviceState::kStreaming);
+}
+
+TEST_F(Cia402Driver, ReportsEachNodesSerialAsHardwareIdOnceTheNodesAnswered) {
+  start();
+  // The simulated drives hold 402001 and 402002 in 0x1018:04.
+  ASSERT_TRUE(eventually([&] { return driver_->health().hardware_id == "1:402001 2:402002"; }))
+      << driver_->health().hardware_id;
+  EXPECT_EQ(driver_->identity(1), Cia402JointSource::Identity::kKnown);
+  EXPECT_EQ(node1_->identity_requests(), 1u) << "asked once, after the heartbeat was configured";
+  EXPECT_EQ(node1_->heartbeat_ms(), 100);
+  EXPECT_EQ(count(Counter::kFaults), 0u);
+}
+
+TEST_F(Cia402Driver, NodeThatNeverAnswersTheSerialKeepsItsNameIsLoggedOnceAndStreams) {
+  LogCapture log;
+  start(/*master=*/true, sim::SimIdentityReply::kSilent);
+  ASSERT_TRUE(eventually([&] {
+    return driver_->identity(2) == Cia402JointSource::Identity::kNoAnswer &&
+           driver_->identity(1) == Cia402JointSource::Identity::kKnown;
+  }));
+  EXPECT_EQ(node2_->identity_requests(), 1u);
+  for (int i = 0; i < 5; ++i) {
+    const hal::DeviceHealth h = driver_->health();
+    EXPECT_EQ(h.hardware_id, "1:402001") << "only the node that answered";
+    EXPECT_EQ(h.state, hal::DeviceState::kStreaming);
+  }
+  EXPECT_EQ(log.count("node 2 gave no serial number (0x1018:04 not answered within 200 ms)"), 1);
+  EXPECT_EQ(log.count("node 1 gave no serial"), 0);
+  std::vector<hal::JointSample> out;
+  EXPECT_TRUE(eventually([&] {
+    driver_->read(out, 10ms);
+    return std::count_if(out.begin(), out.end(), [](const auto& s) { return s.joint == 6; }) >= 20;
+  })) << "the silent node's joint keeps streaming";
+}
+
+TEST_F(Cia402Driver, NodeWithoutSerialObjectIsNotAFault) {
+  LogCapture log;
+  start(/*master=*/true, sim::SimIdentityReply::kAbort);
+  ASSERT_TRUE(eventually(
+      [&] { return driver_->identity(2) == Cia402JointSource::Identity::kAborted; }));
+  ASSERT_TRUE(eventually([&] { return driver_->health().hardware_id == "1:402001"; }));
+  EXPECT_EQ(log.count("node 2 gave no serial number (0x1018:04 refused, SDO abort 0x06090011)"), 1);
+  collect(20);
+  EXPECT_EQ(count(Counter::kFaults), 0u);
+  EXPECT_EQ(driver_->health().state, hal::DeviceState::kStreaming);
+}
+
+TEST_F(Cia402Driver, SwappedNodeIsNamedByTheNewSerialAfterItsBootUp) {
+  start();
+  ASSERT_TRUE(eventually([&] { return driver_->health().hardware_id == "1:402001 2:402002"; }));
+  node1_->set_serial(77001);
+  node1_->reboot();
+  ASSERT_TRUE(eventually([&] { return driver_->health().hardware_id == "1:77001 2:402002"; }))
+      << driver_->health().hardware_id;
+  EXPECT_EQ(node1_->identity_requests(), 2u);
 }
 
 TEST_F(Cia402Driver, BothJointsOfOneSyncShareItsStamp) {
@@ -209,6 +290,22 @@ TEST_F(Cia402Driver, FollowerCountsSyncGapsDuplicatesAndReordering) {
   EXPECT_EQ(count(Counter::kGaps), 1u);
 }
 
+TEST(Cia402OneJoint, HardwareIdIsTheNodesSerialAlone) {
+  Cia402Config config;
+  config.name = "robot.j3";
+  config.joints = {{7, 3, 1e-6, 0.0}};
+  sim::SimCia402Config n;
+  n.node = 7;
+  n.serial = 123456789;
+  auto node = std::make_shared<sim::SimCia402Node>(n);
+  test::InProcessRig<Cia402JointSource> rig;
+  rig.wire(config, cia402_filter(config), {node});
+  rig.bus->start();
+  ASSERT_TRUE(rig.driver->start().ok);
+  EXPECT_TRUE(eventually([&] { return rig.driver->health().hardware_id == "123456789"; }))
+      << rig.driver->health().hardware_id;
+}
+
 TEST(Cia402PanTilt, PairsPanAndTiltOfTheSameSync) {
   PanTiltConfig config;
   config.pan = {3, 1, 1e-6, 0.0};
@@ -222,6 +319,8 @@ TEST(Cia402PanTilt, PairsPanAndTiltOfTheSameSync) {
   rig.bus->start();
   ASSERT_TRUE(rig.driver->start().ok);
   const auto out = test::collect(*rig.driver, 10);
+  EXPECT_TRUE(eventually([&] { return rig.driver->health().hardware_id == "3:402003 4:402004"; }))
+      << rig.driver->health().hardware_id;
   rig.stop();
   ASSERT_GE(out.size(), 10u);
   for (const auto& s : out) {

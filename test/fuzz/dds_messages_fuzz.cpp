@@ -4,11 +4,19 @@
 // dds_stream_normalize_data, dropped when that fails, then read into the sample by
 // dds_stream_read), and on to the project's decoding: the PointCloud2, Detection and
 // DiagnosticArray that `rangefit watch` and `rangefit request` read, and the DetectRequest that
-// rangefitd reads and validates against its configuration before logging or queueing it. The
-// first input byte picks the message; the rest is the serialized sample. The seeds
+// rangefitd reads and validates against its configuration before logging or queueing it, from
+// the topic or as a ROS 2 service request (rq/rangefit/detectRequest: rmw_cyclonedds's request
+// header, the caller's 64-bit writer id and sequence number, then the same fields). The first
+// input byte picks the message; the rest is the serialized sample. The seeds
 // (corpus/dds_messages) are such samples of CloudOut, RequestOut, DetectionOut and DiagnosticsOut
-// as Cyclone's dds_stream_write serializes them, in both byte orders, and the PointCloud2 of
-// width = height = 2^31 that once made `rangefit watch` exit.
+// as Cyclone's dds_stream_write serializes them, in both byte orders, the PointCloud2 of
+// width = height = 2^31 that once made `rangefit watch` exit, and service requests (service_*):
+// topic request seeds with the 16-byte header in front (the fields keep their alignment), with
+// and without an id, one without an id and with a NaN in the target pose; and a request and a
+// service request whose NaN bore_major_axis (unused without bore_radius2) was accepted
+// (crash-*-nan-major-axis-accepted), and the object service request with a NaN bore_half_angle
+// this harness found accepted (crash-service-request-object-nan-bore-half-angle-accepted): an
+// accepted request has only finite numbers on the wire.
 #include <dds/dds.h>
 #include <dds/ddsi/ddsi_cdrstream.h>
 
@@ -18,10 +26,13 @@
 #include <cstdlib>
 #include <cstring>
 #include <span>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "daemon/dds/cloud_msg_guard.hpp"
 #include "daemon/dds/messages.hpp"
+#include "daemon/dds/service_request.hpp"
 #include "daemon/service/config.hpp"
 #include "daemon/service/log_escape.hpp"
 #include "daemon/service/request_validation.hpp"
@@ -117,12 +128,27 @@ void diagnostics(std::span<const std::uint8_t> bytes) {
   if (msg.get() != nullptr) (void)from_msg(*msg.get());
 }
 
-void request(std::span<const std::uint8_t> bytes) {
-  const WireSample<rangefit_msgs_msg_dds__DetectRequest_> msg(
-      rangefit_msgs_msg_dds__DetectRequest__desc, bytes);
-  if (msg.get() == nullptr) return;
-  std::string error;
-  ScanRequest req = from_msg(*msg.get(), &error);
+// Every number of a request on the wire (topic and service share the field names).
+template <class Msg>
+bool wire_numbers_finite(const Msg& m) {
+  const auto point = [](const auto& p) {
+    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+  };
+  const auto& q = m.target_pose.orientation;
+  return point(m.bore_position) && point(m.bore_axis) && std::isfinite(m.bore_radius) &&
+         std::isfinite(m.sweep_start) && std::isfinite(m.sweep_end) &&
+         std::isfinite(m.sweep_speed) && point(m.bore_plane_normal) &&
+         std::isfinite(m.bore_outer_radius) && std::isfinite(m.bore_normal_keep) &&
+         point(m.view_dir) && point(m.sensor_position) && std::isfinite(m.target_edge) &&
+         std::isfinite(m.target_bar) && point(m.target_pose.position) && std::isfinite(q.x) &&
+         std::isfinite(q.y) && std::isfinite(q.z) && std::isfinite(q.w) &&
+         std::isfinite(m.bore_half_angle) && std::isfinite(m.bore_cylinder_radius) &&
+         std::isfinite(m.bore_radius2) && point(m.bore_major_axis);
+}
+
+// What rangefitd does with a decoded request (either way it came): validate it, log a rejected
+// one's id escaped, queue an accepted one. Returns whether it was accepted.
+bool check_request(ScanRequest req, std::string error) {
   if (error.empty()) error = validate_request(req, daemon_config());
   // A rejected request's id is logged escaped: printable ASCII only may reach the log.
   for (const char ch : log_escape(req.id)) {
@@ -130,10 +156,38 @@ void request(std::span<const std::uint8_t> bytes) {
       std::abort();
     }
   }
-  if (!error.empty()) return;
+  if (!error.empty()) return false;
   // What validation lets through is bounded: a printable id and a sweep within one turn / 10 m.
   if (!check_name(req.id, "request_id", kMaxRequestIdLength).empty()) std::abort();
   if (!(std::abs(req.sweep_start) <= 1e4 && std::abs(req.sweep_end) <= 1e4)) std::abort();
+  return true;
+}
+
+void request(std::span<const std::uint8_t> bytes) {
+  const WireSample<rangefit_msgs_msg_dds__DetectRequest_> msg(
+      rangefit_msgs_msg_dds__DetectRequest__desc, bytes);
+  if (msg.get() == nullptr) return;
+  std::string error;
+  ScanRequest req = from_msg(*msg.get(), &error);
+  // A non-finite number is refused, never dropped or replaced by a default and accepted.
+  if (check_request(std::move(req), std::move(error)) && !wire_numbers_finite(*msg.get())) {
+    std::abort();
+  }
+}
+
+void service_request(std::span<const std::uint8_t> bytes) {
+  const WireSample<rangefit_msgs_srv_dds__Detect_Request_> msg(
+      rangefit_msgs_srv_dds__Detect_Request__desc, bytes);
+  if (msg.get() == nullptr) return;
+  const auto& m = *msg.get();
+  std::string error;
+  ScanRequest req = from_service_request(m, &error);
+  // A call without an id is named after the caller, so its answer can find it.
+  if ((m.request_id == nullptr || m.request_id[0] == '\0') && req.id != service_call_id(m)) {
+    std::abort();
+  }
+  if (req.id.empty()) std::abort();
+  if (check_request(std::move(req), std::move(error)) && !wire_numbers_finite(m)) std::abort();
 }
 
 }  // namespace
@@ -141,7 +195,7 @@ void request(std::span<const std::uint8_t> bytes) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
   const std::span<const std::uint8_t> sample(data + 1, size - 1);
-  switch (data[0] % 4) {
+  switch (data[0] % 5) {
     case 0:
       cloud(sample);
       break;
@@ -151,8 +205,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     case 2:
       detection(sample);
       break;
-    default:
+    case 3:
       diagnostics(sample);
+      break;
+    default:
+      service_request(sample);
       break;
   }
   return 0;

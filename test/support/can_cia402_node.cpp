@@ -9,7 +9,10 @@ using drivers::can::CanFrame;
 using drivers::can::CanTransport;
 
 SimCia402Node::SimCia402Node(SimCia402Config config, std::function<double(hal::Timestamp)> angle)
-    : config_(config), angle_(std::move(angle)), heartbeat_ms_(config.heartbeat_ms) {}
+    : config_(config),
+      angle_(std::move(angle)),
+      heartbeat_ms_(config.heartbeat_ms),
+      serial_(config.serial != 0 ? config.serial : 402000u + config.node) {}
 
 void SimCia402Node::boot(CanTransport& bus) {
   state_ = kBootUp;
@@ -63,7 +66,15 @@ void SimCia402Node::answer_sdo(const Message& m, CanTransport& bus) {
       (void)bus.send(encode_sdo_abort(config_.node, m.sdo_index, m.sdo_subindex, 0x06020000));
     }
   } else if (m.sdo_command == kSdoUploadRequest) {
-    if (m.sdo_index == 0x1017) {
+    if (m.sdo_index == 0x1018 && m.sdo_subindex == 4) {
+      ++identity_requests_;
+      if (config_.identity == SimIdentityReply::kSerial) {
+        (void)bus.send(encode_sdo_upload_reply(config_.node, 0x1018, 4, serial_));
+      } else if (config_.identity == SimIdentityReply::kAbort) {
+        // 0x06090011: sub-index does not exist (CiA 301 abort codes).
+        (void)bus.send(encode_sdo_abort(config_.node, 0x1018, 4, 0x06090011));
+      }
+    } else if (m.sdo_index == 0x1017) {
       (void)bus.send(encode_sdo_upload_reply(config_.node, 0x1017, 0, heartbeat_ms_));
     } else {
       (void)bus.send(encode_sdo_abort(config_.node, m.sdo_index, m.sdo_subindex, 0x06020000));
