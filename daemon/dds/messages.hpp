@@ -77,9 +77,9 @@ class RequestOut {
 };
 
 // Decodes a request; on a malformed one (unknown kind, non-finite numbers) returns the reason in
-// *error and a request carrying at least the id. Zero vectors and counts are "not given".
-// *error and a request carrying at least the id. Sweep values are converted with linear_sweep
-// (metres → mm) only once the sensor is known, see convert_sweep_units().
+// *error and a request carrying at least the id. Zero vectors and counts are "not given". Sweep
+// values are converted with linear_sweep (metres → mm) only once the sensor is known, see
+// convert_sweep_units().
 ScanRequest from_msg(const rangefit_msgs_msg_dds__DetectRequest_& msg, std::string* error);
 
 class StateOut {

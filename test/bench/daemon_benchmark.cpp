@@ -1,4 +1,4 @@
-// rangefitd benchmarks on loopback DDS (random domain, loopback-only Cyclone config):
+// rangefitd benchmarks on loopback DDS (a reserved domain, loopback-only Cyclone config):
 //   BM_CloudConvertOnly        baseline: building the PointCloud2 of 140,000 points
 //   BM_PublishCloud140k        write + receive of that cloud through DDS (p50/p99 counters)
 //   BM_BoreRequestToResult     DetectRequest → Detection through the service, replayed bore scan
@@ -13,29 +13,20 @@
 #include <atomic>
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <thread>
 
 #include "daemon/cell/sim_cell.hpp"
 #include "daemon/dds/client.hpp"
 #include "daemon/rangefitd/service.hpp"
 #include "io/ply.hpp"
+#include "test/daemon/dds_test_env.hpp"
 #include "test/support/synthetic_bore.hpp"
 
 namespace {
 using namespace rangefit;
 using Clock = std::chrono::steady_clock;
 
-std::uint32_t domain() {
-  static const std::uint32_t d = [] {
-    setenv(
-        "CYCLONEDDS_URI",
-        (std::string("file://") + RANGEFIT_SOURCE_DIR + "/systemd/cyclonedds-loopback.xml").c_str(),
-        1);
-    return static_cast<std::uint32_t>(1 + std::random_device{}() % 200);
-  }();
-  return d;
-}
+std::uint32_t domain() { return test::dds_test_domain(); }
 
 double rss_mb() {
   std::ifstream in("/proc/self/status");

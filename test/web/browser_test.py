@@ -8,6 +8,7 @@ around its centre, where the view puts the fitted bore, after.
 Exit 0 passed, 1 failed, 77 skipped (no chromium/chromedriver, or a build without the page)."""
 import argparse
 import base64
+import fcntl
 import json
 import os
 import shutil
@@ -35,6 +36,26 @@ def free_port():
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         return s.getsockname()[1]
+
+
+_domain_lock = None  # open for the life of this process: the DDS domain reservation
+
+
+def reserve_dds_domain():
+    """A DDS domain id no other test process holds (the same lock files as the C++ tests)."""
+    global _domain_lock
+    first = int.from_bytes(os.urandom(2), "little") % 200
+    for i in range(200):
+        domain = 1 + (first + i) % 200
+        lock = open(os.path.join(tempfile.gettempdir(), f"rangefit-dds-domain-{domain}.lock"), "a")
+        try:
+            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            lock.close()
+            continue
+        _domain_lock = lock
+        return domain
+    return 1 + first
 
 
 def http(method, url, body=None, timeout=60):
@@ -154,7 +175,7 @@ object_sensor = "stripe"
 listen = "127.0.0.1:{http_port}"
 token = "{TOKEN}"
 [dds]
-domain_id = {1 + os.getpid() % 200}
+domain_id = {reserve_dds_domain()}
 [spool]
 directory = "{tmp}/spool"
 [sim]

@@ -1,6 +1,6 @@
 #pragma once
 // rangefitd as a separate process on the simulated cell with its HTTP and TCP interfaces on
-// loopback ports chosen free, DDS on loopback (a random domain), a temporary spool.
+// loopback ports chosen free, DDS on loopback (a domain reserved for this process), a temporary spool.
 #include <arpa/inet.h>
 #include <fcntl.h>
 #include <netinet/in.h>
@@ -13,12 +13,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include <httplib.h>
+
+#include "test/daemon/dds_test_env.hpp"
 
 namespace rangefit::test {
 
@@ -47,7 +48,6 @@ class WebDaemon {
     fs::create_directories(dir_);
     http_port_ = free_port();
     tcp_port_ = free_port();
-    std::random_device rd;
     const std::string scenes = std::string(RANGEFIT_SOURCE_DIR) + "/data/scenes/";
     std::ofstream(dir_ / "rangefitd.toml")
         << "[service]\nbore_sensor = \"css\"\nobject_sensor = \"stripe\"\n"
@@ -55,7 +55,7 @@ class WebDaemon {
         << kToken << "\"\n"
         << "max_request_bytes = 4096\n"
         << "[tcp]\nlisten = \"127.0.0.1:" << tcp_port_ << "\"\ntoken = \"" << kToken << "\"\n"
-        << "[dds]\ndomain_id = " << 1 + rd() % 200 << "\ndiagnostics_period_s = 0.2\n"
+        << "[dds]\ndomain_id = " << dds_test_domain() << "\ndiagnostics_period_s = 0.2\n"
         << "[spool]\ndirectory = \"" << (dir_ / "spool").string() << "\"\n"
         << "[sim]\ntime_scale = " << time_scale << "\nseed = 3\n"
         << "[[devices]]\nname = \"css\"\nkind = \"css\"\ndriver = \"sim\"\nscene = \"" << scenes
