@@ -54,7 +54,9 @@ DdsService::DdsService(const DdsConfig& config)
                                         state_.get(), diagnostics_.get(), poses_.get(),
                                         tf_.get(), tf_static_.get(), models_.get(),
                                         detections3d_.get(), markers_.get(),
-                                        service_.writer()}}),
+                                        service_.writer()}},
+                 config.ros_distro == "humble" ? RosGidLayout::kHumble
+                                               : RosGidLayout::kIronOrLater),
       frame_prefix_(config.ros_namespace.empty() ? "" : config.ros_namespace + "/") {
   requests_.also_wake_on(service_.reader());
 }

@@ -3,17 +3,20 @@
 // participants on ros_discovery_info (rmw_dds_common/msg/ParticipantEntitiesInfo; no rt/ prefix;
 // reliable, transient-local, depth 1), so that `ros2 node list` shows /rangefitd (or
 // /<namespace>/rangefitd) and `ros2 node info` gives it its topics and its service. A Gid is the
-// DDS GUID of the participant, reader or writer (16 bytes, the Gid of Iron and later).
+// DDS GUID of the participant, reader or writer: 16 bytes from Iron on, 24 (the GUID and 8 zero
+// bytes) in Humble, whose graph reads only its own layout under the same type name.
 
 #include <dds/dds.h>
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "daemon/dds/dds.hpp"
 #include "rmw_dds_common.h"
+#include "rmw_dds_common_humble.h"
 
 namespace rangefit::daemon {
 
@@ -33,6 +36,13 @@ struct RosNode {
   std::vector<dds_entity_t> readers, writers;
 };
 
+// Which ROS 2 graph reads ros_discovery_info: Humble's 24-byte Gid or the 16 bytes of Iron on.
+enum class RosGidLayout { kIronOrLater, kHumble };
+
+// Humble's ParticipantEntitiesInfo under the DDS type name both layouts share (without XTypes
+// type information: Humble's rmw_cyclonedds matches by name).
+const dds_topic_descriptor_t* humble_discovery_descriptor();
+
 // The ROS node name space of a rangefit ROS namespace ("" -> "/", "cell1" -> "/cell1").
 std::string ros_node_namespace(const std::string& ros_namespace);
 
@@ -40,11 +50,15 @@ std::string ros_node_namespace(const std::string& ros_namespace);
 // Throws dds::DdsError when the writer cannot be created (start-up only).
 class RosDiscovery {
  public:
-  RosDiscovery(dds::Participant& participant, const RosNode& node);
+  RosDiscovery(dds::Participant& participant, const RosNode& node,
+               RosGidLayout layout = RosGidLayout::kIronOrLater);
   bool published() const { return published_; }
 
  private:
-  dds::Writer<rmw_dds_common_msg_dds__ParticipantEntitiesInfo_> writer_;
+  using Iron = rmw_dds_common_msg_dds__ParticipantEntitiesInfo_;
+  using Humble = rmw_dds_common_humble_msg_dds__ParticipantEntitiesInfo_;
+  std::optional<dds::Writer<Iron>> iron_;
+  std::optional<dds::Writer<Humble>> humble_;
   bool published_ = false;
 };
 

@@ -312,6 +312,8 @@ void read_ros(FieldReader& r, DdsConfig& d) {
   if (!d.ros_namespace.empty()) {
     if (auto why = check_ros_namespace(d.ros_namespace); !why.empty()) r.fail("namespace", why);
   }
+  r.read("distro", d.ros_distro);
+  if (auto why = check_ros_distro(d.ros_distro); !why.empty()) r.fail("distro", why);
   r.reject_unknown();
 }
 
@@ -396,6 +398,17 @@ void resolve_domain(const toml::table& root, std::string_view source_name, DdsCo
   }
 }
 
+// The ROS 2 release: ros.distro when set, else ROS_DISTRO as a sourced ROS 2 shell sets it.
+void resolve_ros_distro(const toml::table& root, std::string_view source_name, DdsConfig& dds) {
+  const toml::table* t = root["ros"].as_table();
+  if (t != nullptr && t->contains("distro")) return;
+  try {
+    dds.ros_distro = ros_distro_from_env().value_or(dds.ros_distro);
+  } catch (const std::invalid_argument& e) {
+    throw io::TomlError(source_name, 0, std::string("ros.distro (not set): ") + e.what());
+  }
+}
+
 DaemonConfig read_root(const toml::table& root, std::string_view source_name,
                        const std::filesystem::path& base_dir) {
   DaemonConfig c;
@@ -416,6 +429,7 @@ DaemonConfig read_root(const toml::table& root, std::string_view source_name,
   optional_table(r, "dds", [&](FieldReader& sub) { read_dds(sub, c.dds); });
   optional_table(r, "ros", [&](FieldReader& sub) { read_ros(sub, c.dds); });
   resolve_domain(root, source_name, c.dds);
+  resolve_ros_distro(root, source_name, c.dds);
   for (const auto& [key, path] : DdsSecurityConfig::documents(c.dds.security)) {
     *path = resolve(*path, base_dir);
   }

@@ -135,6 +135,10 @@ struct DdsConfig {
   // /cell1/rangefit/cloud, /cell1/rangefit/detect) and the prefix of its frame ids
   // ("cell1/world"); no leading or trailing '/' once read. Empty: none.
   std::string ros_namespace;
+  // [ros] distro, else ROS_DISTRO, else "jazzy": the ROS 2 release whose graph lists the node.
+  // "humble" publishes ros_discovery_info with Humble's 24-byte Gid; the others (iron, jazzy,
+  // kilted, rolling) with the 16-byte Gid of Iron and later.
+  std::string ros_distro = "jazzy";
 };
 
 struct SpoolConfig {

@@ -23,6 +23,23 @@ std::optional<std::uint32_t> ros_domain_id() {
   return value;
 }
 
+std::string check_ros_distro(std::string_view distro) {
+  for (std::string_view known : {"humble", "iron", "jazzy", "kilted", "rolling"}) {
+    if (distro == known) return "";
+  }
+  return "must be one of humble, iron, jazzy, kilted, rolling";
+}
+
+std::optional<std::string> ros_distro_from_env() {
+  const char* text = std::getenv("ROS_DISTRO");
+  if (text == nullptr || *text == '\0') return std::nullopt;
+  const std::string distro(text);
+  if (auto why = check_ros_distro(distro); !why.empty()) {
+    throw std::invalid_argument("ROS_DISTRO: " + why + ", got \"" + distro.substr(0, 16) + "\"");
+  }
+  return distro;
+}
+
 std::string check_ros_namespace(std::string_view ns) {
   if (ns.empty()) return "must not be empty";
   if (ns.size() > 200) return "longer than 200 characters";

@@ -114,21 +114,16 @@ void refit_apex_taper(std::span<const Eigen::Vector3d> fine, const LearnOptions&
   // variance (a likelihood-ratio test of the two tapers given up).
   constexpr double kApexTaper = 0.9, kChi2TwoDof95 = 5.99;
   const Superquadric& b = fit.part.shape;
-  if (fit.ok && options.fit_taper &&
-      std::max(std::abs(b.kx), std::abs(b.ky)) > kApexTaper * options.max_taper) {
-    PosedSuperquadric apex = fit.part;
-    if (std::abs(b.kx) > kApexTaper * options.max_taper) {
-      apex.shape.kx = std::copysign(options.max_taper, b.kx);
-    }
-    if (std::abs(b.ky) > kApexTaper * options.max_taper) {
-      apex.shape.ky = std::copysign(options.max_taper, b.ky);
-    }
-    ShapeFitOptions f = fit_options(options, v0, options.iterations, support);
-    f.fit_taper = false;
-    const ShapeFitResult a = fit_superquadric(fine, apex, f);
-    const double variance = 2.0 * fit.cost / static_cast<double>(fine.size());
-    if (a.ok && 2.0 * (a.cost - fit.cost) < kChi2TwoDof95 * variance) fit = a;
-  }
+  const double bound = kApexTaper * options.max_taper;
+  if (!fit.ok || !options.fit_taper || std::max(std::abs(b.kx), std::abs(b.ky)) <= bound) return;
+  PosedSuperquadric apex = fit.part;
+  if (std::abs(b.kx) > bound) apex.shape.kx = std::copysign(options.max_taper, b.kx);
+  if (std::abs(b.ky) > bound) apex.shape.ky = std::copysign(options.max_taper, b.ky);
+  ShapeFitOptions f = fit_options(options, v0, options.iterations, support);
+  f.fit_taper = false;
+  const ShapeFitResult a = fit_superquadric(fine, apex, f);
+  const double variance = 2.0 * fit.cost / static_cast<double>(fine.size());
+  if (a.ok && 2.0 * (a.cost - fit.cost) < kChi2TwoDof95 * variance) fit = a;
 }
 
 }  // namespace

@@ -193,6 +193,13 @@ const Official kOfficial[] = {
      "Gid[] writer_gid_seq\n"},
     {"rmw_dds_common", "ParticipantEntitiesInfo", "rmw_dds_common.idl",
      "Gid gid\nNodeEntitiesInfo[] node_entities_info_seq\n"},
+    // ros2/rmw_dds_common, branch humble, in the module of rmw_dds_common_humble.idl.
+    {"rmw_dds_common_humble", "Gid", "rmw_dds_common_humble.idl", "char[24] data\n"},
+    {"rmw_dds_common_humble", "NodeEntitiesInfo", "rmw_dds_common_humble.idl",
+     "string<=256 node_namespace\nstring<=256 node_name\nGid[] reader_gid_seq\n"
+     "Gid[] writer_gid_seq\n"},
+    {"rmw_dds_common_humble", "ParticipantEntitiesInfo", "rmw_dds_common_humble.idl",
+     "Gid gid\nNodeEntitiesInfo[] node_entities_info_seq\n"},
 };
 
 void PrintTo(const Official& o, std::ostream* os) { *os << o.pkg << "/" << o.name; }
@@ -212,7 +219,9 @@ TEST_P(OfficialDefinition, OurIdlDeclaresTheOfficialFieldsInOrder) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Ros2, OfficialDefinition, ::testing::ValuesIn(kOfficial),
-                         [](const auto& p) { return std::string(p.param.name); });
+                         [](const auto& p) {
+                           return std::string(p.param.pkg) + "_" + p.param.name;
+                         });
 
 // The parser must be able to fail: a field out of order, a missing fixed array size and a
 // sequence taken for a single value are all differences.

@@ -1,6 +1,7 @@
 // The ROS 2 side of the configuration: [frames] names the world and sensor frames (checked as
 // tf2 frame ids), ROS_DOMAIN_ID picks the domain when the config names none, [ros] namespace and
-// [dds] partition separate cells (checked as ROS namespaces and plain partition names).
+// [dds] partition separate cells (checked as ROS namespaces and plain partition names), [ros]
+// distro (else ROS_DISTRO) picks the ROS 2 release's discovery layout.
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
@@ -26,6 +27,48 @@ class RosDomainEnv {
   }
   ~RosDomainEnv() { unsetenv("ROS_DOMAIN_ID"); }
 };
+
+// Sets (or, with nullptr, clears) ROS_DISTRO for one test.
+class RosDistroEnv {
+ public:
+  explicit RosDistroEnv(const char* value) {
+    if (value == nullptr) {
+      unsetenv("ROS_DISTRO");
+    } else {
+      setenv("ROS_DISTRO", value, 1);
+    }
+  }
+  ~RosDistroEnv() { unsetenv("ROS_DISTRO"); }
+};
+
+TEST(RosConfig, DistroComesFromTheConfigElseRosDistroElseJazzy) {
+  {
+    RosDistroEnv env(nullptr);
+    auto plain = parse_config(kDevice);
+    ASSERT_TRUE(plain.config) << plain.error;
+    EXPECT_EQ(plain.config->dds.ros_distro, "jazzy");
+  }
+  RosDistroEnv env("humble");
+  auto from_env = parse_config(kDevice);
+  ASSERT_TRUE(from_env.config) << from_env.error;
+  EXPECT_EQ(from_env.config->dds.ros_distro, "humble");
+  auto from_config = parse_config(kDevice + "[ros]\ndistro = \"kilted\"\n");
+  ASSERT_TRUE(from_config.config) << from_config.error;
+  EXPECT_EQ(from_config.config->dds.ros_distro, "kilted");
+}
+
+TEST(RosConfig, AnUnknownDistroIsAnErrorNamingTheKnownOnes) {
+  RosDistroEnv clear(nullptr);
+  auto typo = parse_config(kDevice + "[ros]\ndistro = \"humbel\"\n");
+  EXPECT_FALSE(typo.config);
+  EXPECT_NE(typo.error.find("ros.distro"), std::string::npos) << typo.error;
+  EXPECT_NE(typo.error.find("humble, iron, jazzy, kilted, rolling"), std::string::npos)
+      << typo.error;
+  RosDistroEnv env("foxy");
+  auto from_env = parse_config(kDevice);
+  EXPECT_FALSE(from_env.config);
+  EXPECT_NE(from_env.error.find("ROS_DISTRO"), std::string::npos) << from_env.error;
+}
 
 TEST(RosConfig, FramesNameTheWorldAndEachSensorAndDefaultToWorldAndTheDeviceName) {
   auto plain = parse_config(kDevice);

@@ -185,6 +185,7 @@ Guid guid_bytes(const dds_guid_t& g) {
 
 struct Endpoint {
   Guid key, participant;
+  std::string type_name;
 };
 
 // The endpoint on `topic` that built-in discovery (DCPSPublication or DCPSSubscription) reports.
@@ -200,7 +201,8 @@ std::optional<Endpoint> discovered(dds_entity_t participant, dds_entity_t builti
     for (dds_return_t i = 0; i < n; ++i) {
       const auto* e = static_cast<const dds_builtintopic_endpoint_t*>(samples[i]);
       if (infos[i].valid_data && e->topic_name != nullptr && topic == e->topic_name) {
-        found = Endpoint{guid_bytes(e->key), guid_bytes(e->participant_key)};
+        found = Endpoint{guid_bytes(e->key), guid_bytes(e->participant_key),
+                         e->type_name != nullptr ? e->type_name : ""};
       }
     }
     if (n > 0) dds_return_loan(r, samples, n);
@@ -210,11 +212,19 @@ std::optional<Endpoint> discovered(dds_entity_t participant, dds_entity_t builti
   return found;
 }
 
-std::vector<Guid> gid_seq(Cdr& cdr) {
-  std::vector<Guid> out(cdr.get<std::uint32_t>());
-  for (Guid& g : out) {
-    for (unsigned char& c : g) c = cdr.get<std::uint8_t>();
+// A Gid of `size` bytes (16 from Iron on, 24 in Humble): the GUID, then zeros.
+Guid gid(Cdr& cdr, std::size_t size = 16) {
+  Guid g;
+  for (unsigned char& c : g) c = cdr.get<std::uint8_t>();
+  for (std::size_t i = g.size(); i < size; ++i) {
+    EXPECT_EQ(cdr.get<std::uint8_t>(), 0) << "byte " << i << " of a Gid after the GUID";
   }
+  return g;
+}
+
+std::vector<Guid> gid_seq(Cdr& cdr, std::size_t size = 16) {
+  std::vector<Guid> out(cdr.get<std::uint32_t>());
+  for (Guid& g : out) g = gid(cdr, size);
   return out;
 }
 
@@ -226,8 +236,7 @@ TEST_F(RosInterfacesTest, TheDaemonIsARosNodeWhoseEndpointsAreItsDiscoveredGuids
   const auto bytes = take_bytes(info->get(), seconds(20));
   ASSERT_TRUE(bytes);
   Cdr cdr{*bytes};
-  Guid participant;
-  for (unsigned char& c : participant) c = cdr.get<std::uint8_t>();
+  const Guid participant = gid(cdr);
   ASSERT_EQ(cdr.get<std::uint32_t>(), 1u);  // one node
   EXPECT_EQ(cdr.str(), "/");
   EXPECT_EQ(cdr.str(), "rangefitd");
@@ -255,6 +264,47 @@ TEST_F(RosInterfacesTest, TheDaemonIsARosNodeWhoseEndpointsAreItsDiscoveredGuids
   }
   EXPECT_EQ(readers.size(), 2u);    // the request topic and the service's request
   EXPECT_EQ(writers.size(), 13u);   // every topic of the table, the reply and this one
+}
+
+// A Humble graph: Humble's rmw_dds_common Gid is 24 bytes (the GUID and 8 zeros) under the same
+// type name, and its rmw_cyclonedds matches by that name. With the Humble layout the node's
+// sample carries 24-byte Gids and its writer announces the ROS type name.
+TEST(RosDiscoveryHumble, GidsAreTheGuidsInTwentyFourBytesUnderTheRosTypeName) {
+  dds::Participant node_participant(test::dds_test_domain());
+  dds::Participant graph(test::dds_test_domain());
+  dds::Writer<geometry_msgs_msg_dds__PoseArray_> poses(node_participant, topics::kPoses,
+                                                       &geometry_msgs_msg_dds__PoseArray__desc,
+                                                       topics::latched_qos());
+  const RosDiscovery discovery(node_participant, RosNode{"rangefitd", "/cell1", {}, {poses.get()}},
+                               RosGidLayout::kHumble);
+  ASSERT_TRUE(discovery.published());
+  using Humble = rmw_dds_common_humble_msg_dds__ParticipantEntitiesInfo_;
+  dds::Reader<Humble> info(graph, topics::kRosDiscovery, humble_discovery_descriptor(),
+                           topics::ros_discovery_qos());
+  EXPECT_EQ(type_name(info.get()), "rmw_dds_common::msg::dds_::ParticipantEntitiesInfo_");
+  const auto bytes = take_bytes(info.get(), seconds(20));
+  ASSERT_TRUE(bytes);
+  EXPECT_EQ(bytes->size(), 4u + 24 + 4 + (4 + 7) + 1 + (4 + 10) + 2 + 4 + 4 + 2 * 24)
+      << "header, Gid, one node: \"/cell1\", \"rangefitd\", padding, no reader, two writers";
+  Cdr cdr{*bytes};
+  const Guid participant = gid(cdr, 24);
+  ASSERT_EQ(cdr.get<std::uint32_t>(), 1u);
+  EXPECT_EQ(cdr.str(), "/cell1");
+  EXPECT_EQ(cdr.str(), "rangefitd");
+  EXPECT_TRUE(gid_seq(cdr, 24).empty());
+  const std::vector<Guid> writers = gid_seq(cdr, 24);
+  EXPECT_TRUE(cdr.done());
+  dds_guid_t node_guid, poses_guid;
+  ASSERT_EQ(dds_get_guid(node_participant.get(), &node_guid), DDS_RETCODE_OK);
+  ASSERT_EQ(dds_get_guid(poses.get(), &poses_guid), DDS_RETCODE_OK);
+  EXPECT_EQ(participant, guid_bytes(node_guid));
+  ASSERT_EQ(writers.size(), 2u);  // the poses writer and the discovery writer itself
+  EXPECT_EQ(writers[0], guid_bytes(poses_guid));
+  const auto announced = discovered(graph.get(), DDS_BUILTIN_TOPIC_DCPSPUBLICATION,
+                                    topics::kRosDiscovery);
+  ASSERT_TRUE(announced);
+  EXPECT_EQ(announced->key, writers[1]);
+  EXPECT_EQ(announced->type_name, "rmw_dds_common::msg::dds_::ParticipantEntitiesInfo_");
 }
 
 }  // namespace
