@@ -1,6 +1,7 @@
 #include "daemon/dds/ros_service.hpp"
 
 #include "daemon/dds/messages.hpp"
+#include "daemon/dds/service_body.hpp"
 #include "daemon/dds/service_request.hpp"
 #include "daemon/dds/topics.hpp"
 
@@ -48,26 +49,8 @@ void RosDetectService::answer(const DetectionResult& result, const std::string& 
     --waiting_count_;
   }
   const DetectionOut out(result, frame);
-  const auto& d = out.msg();
-  rangefit_msgs_srv_dds__Detect_Response_ reply{};
-  reply.rmw_client_guid = caller.client;
-  reply.rmw_sequence_number = caller.sequence;
-  reply.header = d.header;
-  reply.request_id = d.request_id;
-  reply.kind = d.kind;
-  reply.found = d.found;
-  reply.reason = d.reason;
-  reply.model = d.model;
-  reply.part_names = d.part_names;
-  reply.poses = d.poses;
-  reply.bore_radius = d.bore_radius;
-  reply.scores = d.scores;
-  reply.num_points = d.num_points;
-  reply.scan_seconds = d.scan_seconds;
-  reply.detect_seconds = d.detect_seconds;
-  reply.spool_entry = d.spool_entry;
-  reply.part_instances = d.part_instances;
-  reply.details = d.details;
+  const auto reply = service_sample<rangefit_msgs_srv_dds__Detect_Response_>(
+      caller.client, caller.sequence, out.msg());
   if (!replies_.write(reply)) ++write_failures_;
 }
 

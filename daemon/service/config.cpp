@@ -387,25 +387,18 @@ void read_objects(FieldReader& r, DaemonConfig& c, const std::filesystem::path& 
   }
 }
 
-// The DDS domain: dds.domain_id when set, else ROS_DOMAIN_ID as a ROS 2 node would.
-void resolve_domain(const toml::table& root, std::string_view source_name, DdsConfig& dds) {
-  const toml::table* t = root["dds"].as_table();
-  if (t != nullptr && t->contains("domain_id")) return;
+// A field the config leaves out takes its value from ROS 2's environment, as a ROS 2 node would
+// (dds.domain_id from ROS_DOMAIN_ID, ros.distro from ROS_DISTRO); a bad variable is an error.
+template <class T, class FromEnv>
+void from_ros_env(const toml::table& root, const char* table, const char* key,
+                  std::string_view source_name, T& field, FromEnv from_env) {
+  const toml::table* t = root[table].as_table();
+  if (t != nullptr && t->contains(key)) return;
   try {
-    dds.domain_id = ros_domain_id().value_or(dds.domain_id);
+    field = from_env().value_or(field);
   } catch (const std::invalid_argument& e) {
-    throw io::TomlError(source_name, 0, std::string("dds.domain_id (not set): ") + e.what());
-  }
-}
-
-// The ROS 2 release: ros.distro when set, else ROS_DISTRO as a sourced ROS 2 shell sets it.
-void resolve_ros_distro(const toml::table& root, std::string_view source_name, DdsConfig& dds) {
-  const toml::table* t = root["ros"].as_table();
-  if (t != nullptr && t->contains("distro")) return;
-  try {
-    dds.ros_distro = ros_distro_from_env().value_or(dds.ros_distro);
-  } catch (const std::invalid_argument& e) {
-    throw io::TomlError(source_name, 0, std::string("ros.distro (not set): ") + e.what());
+    throw io::TomlError(source_name, 0,
+                        std::string(table) + "." + key + " (not set): " + e.what());
   }
 }
 
@@ -428,8 +421,8 @@ DaemonConfig read_root(const toml::table& root, std::string_view source_name,
   }
   optional_table(r, "dds", [&](FieldReader& sub) { read_dds(sub, c.dds); });
   optional_table(r, "ros", [&](FieldReader& sub) { read_ros(sub, c.dds); });
-  resolve_domain(root, source_name, c.dds);
-  resolve_ros_distro(root, source_name, c.dds);
+  from_ros_env(root, "dds", "domain_id", source_name, c.dds.domain_id, ros_domain_id);
+  from_ros_env(root, "ros", "distro", source_name, c.dds.ros_distro, ros_distro_from_env);
   for (const auto& [key, path] : DdsSecurityConfig::documents(c.dds.security)) {
     *path = resolve(*path, base_dir);
   }

@@ -121,6 +121,22 @@ TEST_P(MsgIdlAgreement, MsgAndIdlDeclareTheSameFieldsInOrder) {
 INSTANTIATE_TEST_SUITE_P(RangefitMsgs, MsgIdlAgreement,
                          ::testing::Values("Detection", "DetectRequest", "State", "Models"));
 
+// The ROS 2 service /rangefit/detect carries the topic types after rmw_cyclonedds's call header
+// (daemon/dds/service_body.hpp copies the body as one block, so the order must agree too).
+TEST(MsgIdlAgreement, ServiceTypesAreTheTopicTypesAfterTheCallHeader) {
+  const std::string srvs = read("daemon/dds/idl/rangefit_srvs.idl");
+  const std::string msgs = read("daemon/dds/idl/rangefit_msgs.idl");
+  const Fields header{"uint64 rmw_client_guid", "int64 rmw_sequence_number"};
+  for (const auto& [service, topic] : {std::pair{"Detect_Request_", "DetectRequest_"},
+                                       std::pair{"Detect_Response_", "Detection_"}}) {
+    Fields expected = header;
+    const Fields body = idl_struct(msgs, topic);
+    ASSERT_FALSE(body.empty()) << topic;
+    expected.insert(expected.end(), body.begin(), body.end());
+    EXPECT_EQ(idl_struct(srvs, service), expected) << service << " vs " << topic;
+  }
+}
+
 TEST(MsgIdlAgreement, AMissingStructIsNoMatch) {
   EXPECT_TRUE(idl_struct(read("daemon/dds/idl/rangefit_msgs.idl"), "Nope_").empty());
 }

@@ -15,30 +15,29 @@ namespace {
 const std::string kDevice =
     "[[devices]]\nname = \"css\"\nkind = \"css\"\ndriver = \"replay\"\nreplay_file = \"x.ply\"\n";
 
-// Sets (or, with nullptr, clears) ROS_DOMAIN_ID for one test.
-class RosDomainEnv {
+// Sets (or, with nullptr, clears) an environment variable for one test.
+class EnvVar {
  public:
-  explicit RosDomainEnv(const char* value) {
+  EnvVar(const char* name, const char* value) : name_(name) {
     if (value == nullptr) {
-      unsetenv("ROS_DOMAIN_ID");
+      unsetenv(name);
     } else {
-      setenv("ROS_DOMAIN_ID", value, 1);
+      setenv(name, value, 1);
     }
   }
-  ~RosDomainEnv() { unsetenv("ROS_DOMAIN_ID"); }
+  ~EnvVar() { unsetenv(name_); }
+  EnvVar(const EnvVar&) = delete;
+  EnvVar& operator=(const EnvVar&) = delete;
+
+ private:
+  const char* name_;
 };
 
-// Sets (or, with nullptr, clears) ROS_DISTRO for one test.
-class RosDistroEnv {
- public:
-  explicit RosDistroEnv(const char* value) {
-    if (value == nullptr) {
-      unsetenv("ROS_DISTRO");
-    } else {
-      setenv("ROS_DISTRO", value, 1);
-    }
-  }
-  ~RosDistroEnv() { unsetenv("ROS_DISTRO"); }
+struct RosDomainEnv : EnvVar {
+  explicit RosDomainEnv(const char* value) : EnvVar("ROS_DOMAIN_ID", value) {}
+};
+struct RosDistroEnv : EnvVar {
+  explicit RosDistroEnv(const char* value) : EnvVar("ROS_DISTRO", value) {}
 };
 
 TEST(RosConfig, DistroComesFromTheConfigElseRosDistroElseJazzy) {

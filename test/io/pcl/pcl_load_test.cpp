@@ -62,18 +62,27 @@ void expect_normals(const pcl::PointCloud<pcl::PointNormal>& loaded, const Point
   }
 }
 
+// `file` loads with `load` (pcl::io::loadPCDFile or loadPLYFile) into PointXYZ and PointNormal,
+// with the cloud's points and normals.
+template <class Load>
+void expect_loads(const std::string& file, const PointCloud& cloud, Load load) {
+  pcl::PointCloud<pcl::PointXYZ> xyz;
+  ASSERT_EQ(load(file, xyz), 0) << file;
+  expect_points(xyz, cloud);
+  pcl::PointCloud<pcl::PointNormal> with_normals;
+  ASSERT_EQ(load(file, with_normals), 0) << file;
+  expect_points(with_normals, cloud);
+  expect_normals(with_normals, cloud);
+}
+
 TEST_F(PclLoad, PcdBinaryAndAsciiLoadAsPointXYZAndPointNormal) {
   const PointCloud cloud = plain();
   for (PcdEncoding encoding : {PcdEncoding::kBinary, PcdEncoding::kAscii}) {
     const std::string file = path(encoding == PcdEncoding::kBinary ? "b.pcd" : "a.pcd");
     write_pcd(file, cloud, encoding);
-    pcl::PointCloud<pcl::PointXYZ> xyz;
-    ASSERT_EQ(pcl::io::loadPCDFile(file, xyz), 0) << file;
-    expect_points(xyz, cloud);
-    pcl::PointCloud<pcl::PointNormal> with_normals;
-    ASSERT_EQ(pcl::io::loadPCDFile(file, with_normals), 0) << file;
-    expect_points(with_normals, cloud);
-    expect_normals(with_normals, cloud);
+    expect_loads(file, cloud, [](const std::string& f, auto& out) {
+      return pcl::io::loadPCDFile(f, out);
+    });
   }
 }
 
@@ -107,13 +116,9 @@ TEST_F(PclLoad, PlyLoadsAsPointXYZAndPointNormal) {
                                PlyEncoding::kAscii}) {
     const std::string file = path("cloud" + std::to_string(static_cast<int>(encoding)) + ".ply");
     write_ply(file, cloud, encoding);
-    pcl::PointCloud<pcl::PointXYZ> xyz;
-    ASSERT_EQ(pcl::io::loadPLYFile(file, xyz), 0) << file;
-    expect_points(xyz, cloud);
-    pcl::PointCloud<pcl::PointNormal> with_normals;
-    ASSERT_EQ(pcl::io::loadPLYFile(file, with_normals), 0) << file;
-    expect_points(with_normals, cloud);
-    expect_normals(with_normals, cloud);
+    expect_loads(file, cloud, [](const std::string& f, auto& out) {
+      return pcl::io::loadPLYFile(f, out);
+    });
   }
 }
 
