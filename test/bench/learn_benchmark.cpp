@@ -128,6 +128,12 @@ void print_daily(int seeds, bool held_out, const std::string& only) {
           std::printf("  %s seed %llu %dv: size %.4f shape %.4f %.0f ms%s\n", object.name.c_str(),
                       static_cast<unsigned long long>(base + i), views, l.size, l.shape,
                       l.result.total_ms, l.result.learnt() ? "" : to_string(l.result.reason));
+          for (const auto& part : l.result.parts) {
+            const Superquadric& q = part.shape;
+            std::printf("    a %.2f %.2f %.2f eps %.3f %.3f k %.3f %.3f vis %.2f res %.3f pts %zu\n",
+                        q.a1, q.a2, q.a3, q.eps1, q.eps2, q.kx, q.ky, part.visible_share,
+                        part.residual_mm, part.points);
+          }
         }
       }
     }
