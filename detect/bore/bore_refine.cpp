@@ -78,6 +78,7 @@ Band collect_band(const RefineInput& in, const Cylinder& start, const BoreOption
   const Shell shell(start, std::max(start.radius - o.refine_band, 0.0),
                     start.radius + o.refine_band);
   Band b;
+  b.points.reserve(in.wall.size());
   for (const auto& p : in.wall) {
     if (shell.contains(p)) b.points.push_back(p);
   }
@@ -87,6 +88,7 @@ Band collect_band(const RefineInput& in, const Cylinder& start, const BoreOption
   b.points.clear();
   b.points.reserve(r.roi.size() / 2);
   const bool fill = o.cost_bounded && o.refine_full_resolution && r.stride > 1;
+  if (fill) b.source.reserve(b.points.capacity());
   for (const std::uint32_t i : r.roi) {
     const Eigen::Vector3d& p = r.points[i];
     if (!heights.contains(p) || !shell.contains(p)) continue;
