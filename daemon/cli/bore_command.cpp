@@ -16,6 +16,7 @@
 #include "daemon/cli/json_util.hpp"
 #include "daemon/cli/option_checks.hpp"
 #include "daemon/cli/png_output.hpp"
+#include "daemon/service/bore_fit_json.hpp"
 #include "daemon/service/bore_shape_json.hpp"
 #include "daemon/service/detection_adapter.hpp"
 #include "detect/bore/bore_detector.hpp"
@@ -66,11 +67,10 @@ nlohmann::json to_json(const BoreResult& r) {
     j["entrance"] = json_vec(r.entrance);
     j["axis"] = json_vec(r.axis);
     j["radius"] = r.radius;
+    // A cone's or ellipse's "sigma" is its shape's; a cylinder's is its refinement's.
+    j.update(daemon::bore_fit_json(r));
     if (r.shape) j.update(daemon::bore_shape_json(*r.shape));
-    j["plane_normal"] = json_vec(r.plane_normal);
     j["rsf_radius"] = r.rsf_radius;
-    j["second_fit"] = r.second_fit;
-    j["refined"] = r.refined;
   } else {
     j["reason"] = std::string(to_string(r.reason));
   }
@@ -143,6 +143,10 @@ void print_text(const BoreResult& r) {
                 : r.shape->cone ? " (the cone's, at the entrance)\n"
                                 : " (along the major axis)\n");
   print_shape(r);
+  if (!r.shape && r.refined && r.sigma_radius > 0.0) {
+    std::cout << "  sigma     axis " << r.sigma_axis * 180.0 / std::numbers::pi << " deg, offset "
+              << r.sigma_offset << " mm, radius " << r.sigma_radius << " mm (one sigma)\n";
+  }
   std::cout << "  points    " << r.counts.roi << " in region, " << r.counts.plane << " plane, "
             << r.counts.wall << " wall" << (r.second_fit ? " (notch re-fit ran)" : "") << "\n"
             << std::setprecision(2) << "  time      " << r.time_ms.total << " ms\n";
@@ -282,7 +286,8 @@ void add_bore_command(CLI::App& app, int* exit_code) {
   cmd->add_flag("--json", args->json,
                 "Print one JSON object: found, model, entrance, axis, radius (a cone: "
                 "half_angle, cylinder_radius; an ellipse: radius2, major_axis; their sigma), "
-                "reason, points, time_ms");
+                "plane_normal, refined, second_fit, a refined cylinder's sigma (axis_rad, "
+                "offset_mm, radius_mm: one-sigma errors of the fit), reason, points, time_ms");
   cmd->add_option("--png", args->png,
                   "Also draw the scan and the fitted bore to this PNG (as `rangefit render`)");
   cmd->callback([args, exit_code] { *exit_code = run(*args); });

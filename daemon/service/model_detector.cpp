@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "daemon/service/bore_fit_json.hpp"
 #include "daemon/service/bore_shape_json.hpp"
 #include "daemon/service/calibrate_request.hpp"
 #include "daemon/service/detection_adapter.hpp"
@@ -62,10 +63,8 @@ DetectionResult ModelDetector::detect_bore_request(const PointCloud& cloud,
   const bool outer_only = d.options.walls == BoreWalls::kOuter && d.prior.outer_radius > 0.0;
   out.parts.push_back(wall_pose(outer_only ? "outer" : "bore", r.entrance, r.axis, r.radius,
                                 outer_only ? d.prior.outer_radius : d.prior.radius));
-  out.details = {{"walls", request.bore.walls.empty() ? "inner" : request.bore.walls},
-                 {"plane_normal", {r.plane_normal.x(), r.plane_normal.y(), r.plane_normal.z()}},
-                 {"refined", r.refined},
-                 {"second_fit", r.second_fit}};
+  out.details = bore_fit_json(r);
+  out.details["walls"] = request.bore.walls.empty() ? "inner" : request.bore.walls;
   if (r.shape) out.details["shape"] = bore_shape_json(*r.shape);
   if (r.outer) {
     // Both walls: the outer one as a second part when found, and its radius in the details.

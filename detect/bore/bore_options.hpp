@@ -58,6 +58,12 @@ struct BoreOptions {
   // (the pipeline before; biased on a narrow arc).
   bool refine_full_resolution = true;
   std::size_t refine_budget = 10000;
+  // Where those points leave the axis's offset poorly determined (its one-sigma above
+  // refine_polish_offset: a narrow arc, whose offset across the arc trades against the radius,
+  // and the entrance lies on that axis), refine_polish_steps more steps on every scan point of
+  // the band, beyond the budget. 0: never.
+  double refine_polish_offset = 0.0025;  // mm, half the 0.005 mm entrance goal
+  int refine_polish_steps = 1;
   BoreWalls walls = BoreWalls::kInner;  // kOuter/kBoth: prior.outer_radius (else radius)
   // 4.1.1 region of interest and normals.
   double roi_radius_factor = 2.0;  // keep points within this * radius of the expected entrance

@@ -34,6 +34,11 @@ BoreRegion select_region(std::span<const Eigen::Vector3d> cloud, const RegionSha
   out.points.reserve(std::min(expect, budget > 0 ? 2 * budget : expect));
   out.source.reserve(out.points.capacity());
   out.roi.reserve(out.points.capacity());
+  if (s.split) {  // no regrowth in the loop: each class may hold most of the region
+    out.near_plane.reserve(out.points.capacity());
+    out.near_wall.reserve(out.points.capacity() / 2);
+    out.other.reserve(out.points.capacity() / 2);
+  }
   const double pool2 = s.pool_radius * s.pool_radius, roi2 = s.roi_radius * s.roi_radius;
   const double hi2 = s.rho_hi * s.rho_hi, lo2 = 0.64 * s.rho_lo * s.rho_lo;
   for (std::size_t i = 0; i < cloud.size(); i += out.stride) {

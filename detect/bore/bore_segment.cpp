@@ -148,6 +148,12 @@ Segmentation segment(const BoreRegion& region, const RegionNormals& n, const Bor
                      const BorePrior& prior, const BoreOptions& o) {
   Segmentation s;
   s.walls.resize(f.targets.size());
+  // Sized for the queries at once (a few thousand): no regrowth while sorting.
+  s.plane.reserve(n.queries.size());
+  for (Wall& w : s.walls) {
+    w.points.reserve(n.queries.size());
+    w.normals.reserve(n.queries.size());
+  }
   for (std::size_t i = 0; i < n.queries.size(); ++i) {
     const Eigen::Vector3d& normal = n.normals.normals[i];
     if (!normal.isZero()) sort_point(region.points[n.queries[i]], normal, f, prior, o, s);

@@ -23,6 +23,8 @@ bool rsf_with_notch_refit(const Wall& wall, const WallTarget& target, const Bore
     return false;
   }
   Wall inner;
+  inner.points.reserve(wall.points.size());
+  inner.normals.reserve(wall.points.size());
   for (std::size_t i = 0; i < wall.points.size(); ++i) {
     if (axis_distance(w.rsf.cylinder, wall.points[i]) <= o.notch_ratio * w.rsf.cylinder.radius) {
       inner.points.push_back(wall.points[i]);

@@ -16,6 +16,9 @@
 // --axis_bound=N: per case, the axis error over tuning and held-out seeds against the bound the
 // fit's own covariance gives (BoreResult::sigma_axis):
 //   build/test/bench/bore_benchmark --benchmark_filter=NONE --axis_bound=30
+// --css_entrance=N: per case, the entrance error over tuning and held-out seeds split into the
+// plane's part (height) and the axis's offset across itself, beside the fit's sigma_offset:
+//   build/test/bench/bore_benchmark --benchmark_filter=NONE --css_entrance=20
 // --thesis_tables=N: the thesis's tables 4.1-4.4 (RSF samples vs accuracy, RSF vs LSF circle
 // per resolution, pipeline time per resolution) beside its figures (bore_thesis_tables.hpp).
 // The rest: a ~75,000-point scan with a ~7,500-point region (5 mm bore, 0.2 mm spacing): the
@@ -445,6 +448,48 @@ double bottom_tilt_sigma(const sim::SyntheticBoreScan& scan, double depth) {
   return std::sqrt(var * m.inverse().trace());
 }
 
+// Where the entrance error comes from (--css_entrance=N): per CSS case, over tuning seeds 1..N
+// and held-out seeds 1001.., the median entrance error split into its height (the true entrance's
+// distance from the fitted plane: the plane's error) and its part across the true axis (the
+// fitted axis's offset where it meets the plane), beside the fit's own sigma_offset and the
+// plane's tilt from the truth.
+void css_entrance(int seeds) {
+  constexpr double kDeg = 180.0 / std::numbers::pi;
+  std::printf("\nCSS density, entrance error split, %d seeds per set (medians)\n", seeds);
+  std::printf("%-9s %-9s %9s %9s %9s %9s %10s %9s %9s\n", "case", "seeds", "entr mm",
+              "worst", "height mm", "across mm", "sig off mm", "tilt deg", "found");
+  const auto med = [](std::vector<double> v) {
+    if (v.empty()) return std::nan("");
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  for (const auto& c : bench::css_bore_cases()) {
+    for (const std::uint64_t first : {std::uint64_t{1}, std::uint64_t{1001}}) {
+      std::vector<double> e, h, a, so, tilt;
+      for (int i = 0; i < seeds; ++i) {
+        sim::SyntheticBoreOptions o = c.scan;
+        o.seed = first + static_cast<std::uint64_t>(i);
+        const sim::SyntheticBoreScan scan = sim::make_synthetic_bore(o);
+        const auto& t = scan.truth;
+        const BoreResult x = css_run(scan, bench::css_prior(t), CssMode::kDefault);
+        if (!x.found) continue;
+        const Eigen::Vector3d d = x.entrance - t.entrance;
+        e.push_back(d.norm());
+        h.push_back(std::abs(d.dot(x.plane_normal)));
+        a.push_back((d - d.dot(t.axis) * t.axis).norm());
+        so.push_back(x.sigma_offset);
+        tilt.push_back(std::acos(std::min(1.0, std::abs(x.plane_normal.dot(t.plane_normal)))) *
+                       kDeg);
+      }
+      const double worst = e.empty() ? NAN : *std::max_element(e.begin(), e.end());
+      std::printf("%-9s %4d..%-4d %9.4f %9.4f %9.4f %9.4f %10.4f %9.4f %5zu/%d\n",
+                  first == 1 ? c.name : "", static_cast<int>(first),
+                  static_cast<int>(first) + seeds - 1, med(e), worst, med(h), med(a), med(so),
+                  med(tilt), e.size(), seeds);
+    }
+  }
+}
+
 // How far the scans determine each CSS case's axis (--axis_bound=N): over tuning seeds 1..N and
 // held-out seeds 1001.., the median and worst axis error of the default pipeline beside the
 // median one-sigma error its own fit reports (BoreResult::sigma_axis, the Cramer-Rao bound of the
@@ -506,7 +551,7 @@ void axis_bound(int seeds) {
 
 int main(int argc, char** argv) {
   int table_runs = 0, accuracy_seeds = 0, thesis_trials = 0, shape_runs = 0, shape_seeds = 0;
-  int bound_seeds = 0;
+  int bound_seeds = 0, entrance_seeds = 0;
   bool held_out = false;
   for (int i = 1; i < argc; ++i) {
     int* value = nullptr;
@@ -524,6 +569,7 @@ int main(int argc, char** argv) {
     if (std::strncmp(argv[i], "--css_accuracy", 14) == 0) value = &accuracy_seeds, len = 14;
     if (std::strncmp(argv[i], "--thesis_tables", 15) == 0) value = &thesis_trials, len = 15;
     if (std::strncmp(argv[i], "--axis_bound", 12) == 0) value = &bound_seeds, len = 12;
+    if (std::strncmp(argv[i], "--css_entrance", 14) == 0) value = &entrance_seeds, len = 14;
     if (!value) continue;
     *value = argv[i][len] == '=' ? std::atoi(argv[i] + len + 1)
                                  : (len == 11 || len == 13   ? 40
@@ -540,6 +586,7 @@ int main(int argc, char** argv) {
   if (table_runs > 0) rangefit::css_table(table_runs);
   if (accuracy_seeds > 0) rangefit::css_accuracy(accuracy_seeds);
   if (bound_seeds > 0) rangefit::axis_bound(bound_seeds);
+  if (entrance_seeds > 0) rangefit::css_entrance(entrance_seeds);
   if (thesis_trials > 0) rangefit::thesis_tables(thesis_trials);
   if (shape_runs > 0) rangefit::bench::shape_table(shape_runs);
   if (shape_seeds > 0) rangefit::bench::shape_accuracy(shape_seeds, held_out, !held_out);
