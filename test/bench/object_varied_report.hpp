@@ -267,17 +267,18 @@ inline void print_varied_case(sim::VariedTarget target, bool pan_tilt, std::uint
   }
 }
 
-// The tuning seeds, or the held-out seeds (never looked at while tuning: run them only to
-// report).
+// The tuning seeds (from `first`, 1-based within the tuning set, so that a widened tuning set
+// can be run without repeating seeds already looked at), or the held-out seeds (never looked at
+// while tuning: run them only to report, always from the first one).
 inline void print_varied(int seeds, bool per_factor, bool pan_tilt, bool sensor_known,
                          bool held_out, std::optional<sim::VariedTarget> only = std::nullopt,
-                         bool list_failures = false) {
+                         bool list_failures = false, std::uint64_t first = 1) {
   if (held_out) {
     print_varied_block("Held-out seeds", sim::kHeldOutSeedBase, seeds, pan_tilt, sensor_known,
                        per_factor, only, list_failures);
   } else {
-    print_varied_block("Tuning seeds", sim::kTuningSeedBase, seeds, pan_tilt, sensor_known,
-                       per_factor, only, list_failures);
+    print_varied_block("Tuning seeds", sim::kTuningSeedBase + first - 1, seeds, pan_tilt,
+                       sensor_known, per_factor, only, list_failures);
   }
 }
 
