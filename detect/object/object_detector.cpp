@@ -192,7 +192,8 @@ std::optional<Rejection> floating(double lowest_mm, double max_size_mm, bool pla
 }
 
 // The fit-quality checks in mm (see ObjectDetectOptions::max_size_deviation and
-// residual_noise_factor), and, with `judge_sink`, the part's sink into the table judged by how
+// residual_noise_factor), and, with `judge_sink` (a single part), its flat caps' rims where its
+// size is left open (max_open_rim) and the part's sink into the table judged by how
 // well its points place it (sink_floor_mm); noise_mm is the scan's range noise (the removed
 // plane's rms). A compound object's parts are held to the table margin only: a mallet's shaft
 // touches the table at its far end, 120 mm from its centre, and a true shaft of the tuning
@@ -221,6 +222,10 @@ std::optional<Rejection> misfit(const HypothesisContext& ctx, const Superquadric
   }
   if (e.determined && std::abs(e.scale - 1.0) > o.max_size_deviation) {
     return Rejection{0, Check::kSize, e.scale - 1.0, o.max_size_deviation, T.translation()};
+  }
+  // Size left open by the fit: the extent of its flat faces is the evidence left.
+  if (!e.determined && judge_sink && seen.open_rim > o.max_open_rim) {
+    return Rejection{0, Check::kOpenRim, seen.open_rim, o.max_open_rim, T.translation()};
   }
   const double sink_limit =
       o.sink_floor_mm + o.sink_noise_factor * noise_mm + o.sink_sigma_factor * sigma;
@@ -294,6 +299,7 @@ std::optional<Rejection> judge_part(const HypothesisContext& ctx, const Superqua
     scores->coverage = c.covered;
     scores->seen_through = c.seen_through;
     scores->open_end = c.open_end;
+    scores->open_rim = c.open_rim;
     scores->lowest_mm = c.lowest_mm;
   }
   std::optional<Rejection> why =
@@ -906,6 +912,8 @@ const char* to_string(Check check) {
       return "seen through";
     case Check::kOpenEnd:
       return "open end";
+    case Check::kOpenRim:
+      return "open rim";
     case Check::kSize:
       return "size";
     case Check::kResidual:

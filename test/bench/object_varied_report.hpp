@@ -250,12 +250,12 @@ inline void print_varied_case(sim::VariedTarget target, bool pan_tilt, std::uint
       const PartScores& sc = p.scores;
       std::printf(
           "  found %s at %.1f %.1f %.1f axis %.2f %.2f %.2f x %.2f %.2f %.2f (%s): M %.3f I %zu S %zu cover %.2f of %d/%d "
-          "seen-through %.2f open end %.2f size %d %.3f residual %.2f continues %.3f lowest %.2f "
+          "seen-through %.2f open end %.2f rim %.2f size %d %.3f residual %.2f continues %.3f lowest %.2f "
           "below %.2f (sigma %.3f)\n",
           p.name.c_str(), p.center().x(), p.center().y(), p.center().z(), p.z_axis().x(),
           p.z_axis().y(), p.z_axis().z(), p.T_world_part.linear()(0, 0),
           p.T_world_part.linear()(1, 0), p.T_world_part.linear()(2, 0), nearest(p.center()).c_str(), sc.measure, sc.interior, sc.surface, sc.coverage,
-          sc.measurable, sc.facing, sc.seen_through, sc.open_end, sc.size_determined ? 1 : 0,
+          sc.measurable, sc.facing, sc.seen_through, sc.open_end, sc.open_rim, sc.size_determined ? 1 : 0,
           sc.size_scale, sc.residual_mm, sc.continuation, sc.lowest_mm, sc.below_plane_mm,
           sc.height_sigma_mm);
     }
