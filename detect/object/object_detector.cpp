@@ -330,6 +330,25 @@ struct Judged {
   std::optional<Rejection> why;
 };
 
+// A single part's candidate rejected because the scan carries on past one of its flat faces may
+// be the part itself, fitted short of its wall's end: the fit leaves a lying box or can free to
+// slide along its side walls (object_axial_slide.hpp), and a start on one end's patch stays
+// there. Slid to where its wall's points end and refined again (nullopt: it does not move), it
+// is judged as a candidate of its own (select_instances). A longer look-alike's wall is not slid
+// along.
+std::optional<PartHypothesis> slid_along_wall(const HypothesisContext& ctx,
+                                              const Superquadric& part,
+                                              const Eigen::Isometry3d& T) {
+  const Eigen::Isometry3d slid = slide_pose(ctx, part, T, Eigen::Vector3d::Zero());
+  if (same_place(slid, T, part)) return std::nullopt;
+  PartHypothesis h;
+  h.valid = true;
+  h.T_world_part = refine_pose(ctx, part, slid);
+  if (same_place(h.T_world_part, T, part)) return std::nullopt;
+  h.scores = verify_pose(ctx, part, h.T_world_part);
+  return h;
+}
+
 std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Superquadric& part,
                                         std::size_t part_index, bool compound,
                                         const CoverageOptions& cover, double noise_mm,
@@ -815,6 +834,23 @@ const Judged* judged_before(const ObjectModel& model, const Hypotheses& hyps,
   return nullptr;
 }
 
+// A single part rejected for carrying on past a flat face, slid along its wall
+// (slid_along_wall) and confirmed there: `inst` is moved to the slid pose and true is returned.
+bool slide_to_confirm(const HypothesisContext& ctx, const ObjectModel& model,
+                      const CoverageOptions& cover, double noise_mm, DetectedInstance& inst) {
+  if (model.parts.size() != 1) return false;
+  const std::optional<PartHypothesis> h =
+      slid_along_wall(ctx, model.parts[0].shape, inst.parts[0].T_world_part);
+  if (!h) return false;
+  DetectedInstance slid = inst;
+  slid.parts[0].T_world_part = h->T_world_part;
+  slid.parts[0].scores = h->scores;
+  slid.parts[0].scores.rank_sum = inst.parts[0].scores.rank_sum;
+  if (confirm(ctx, model, cover, noise_mm, nullptr, slid)) return false;
+  inst = std::move(slid);
+  return true;
+}
+
 // Selection: the ranked vote's combinations (5.1.2, extended by the links, 5.1.3) confirmed in
 // rank order until K distinct instances stand. Candidates already checked are kept by their part
 // centres: a rejected place is not checked again, and no part of a new instance may sit where a
@@ -858,7 +894,10 @@ void select_instances(const HypothesisContext& ctx, const ObjectModel& model,
             confirm(ctx, model, cover, noise_mm, judged_before(model, hyps, inst), inst)) {
       result.rejections.push_back(*why);
       rejected.push_back(std::move(centres));
-      continue;
+      if (why->check != Check::kContinues || !slide_to_confirm(ctx, model, cover, noise_mm, inst))
+        continue;
+      centres = {inst.parts[0].center()};
+      if (std::any_of(accepted.begin(), accepted.end(), clash)) continue;
     }
     for (std::size_t p = 0; p < model.parts.size(); ++p) centres.push_back(inst.parts[p].center());
     accepted.push_back(std::move(centres));
