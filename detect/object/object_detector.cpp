@@ -55,7 +55,8 @@ bool options_ok(const ObjectDetectOptions& o) {
          o.confirmations >= 1 && o.refine_trim >= 0.0 && o.max_measure > 0.0 &&
          o.max_interior_ratio >= 0.0 && o.min_coverage >= 0.0 &&
          o.min_coverage_unknown_sensor >= 0.0 && o.min_coverage_compound_part >= 0.0 && o.max_seen_through >= 0.0 &&
-         o.max_open_end >= 0.0 && o.max_open_end_compound >= 0.0 &&
+         o.max_open_end >= 0.0 && o.max_open_end_compound >= 0.0 && o.max_open_rim >= 0.0 &&
+         o.min_measurable_share_covered >= 0.0 && o.full_coverage >= 0.0 &&
          o.max_size_deviation > 0.0 && o.max_candidates >= 1 && o.min_measurable_samples >= 0 &&
          o.min_measurable_share >= 0.0 && o.max_continuation >= 0.0 && o.plane_margin_mm >= 0.0 &&
          o.rest_noise_factor >= 0.0 && o.rest_size_share >= 0.0 && o.sink_floor_mm >= 0.0 &&
@@ -100,7 +101,11 @@ std::optional<Rejection> unconfirmed(const SurfaceCoverage& c, const ObjectDetec
                      static_cast<double>(o.min_measurable_samples), Eigen::Vector3d::Zero()};
   }
   const double share = c.facing > 0 ? static_cast<double>(c.measurable) / c.facing : 0.0;
-  if (judge_share && share < o.min_measurable_share) {
+  // Less of it measurable, more of that must be there: below min_measurable_share only a part
+  // whose measurable surface is (nearly) all covered is judged on.
+  const bool all_there = share >= o.min_measurable_share_covered &&
+                         c.covered >= o.full_coverage && c.seen_through == 0.0;
+  if (judge_share && share < o.min_measurable_share && !all_there) {
     return Rejection{0, Check::kHidden, share, o.min_measurable_share, Eigen::Vector3d::Zero()};
   }
   const double sink_limit = table_margin_mm(o, c.min_size_mm, noise_mm);

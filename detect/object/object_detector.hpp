@@ -94,6 +94,13 @@ struct ObjectDetectOptions {
   // stacked parts.
   bool rest_on_plane = true;
   double min_measurable_share = 0.4;
+  // A single part mostly hidden (under an overhang, behind a wall) is still judged on a smaller
+  // measurable share, down to this, when the scan covers at least full_coverage of what it could
+  // have measured of it and saw past none of it. On the varied tuning scenes true cones and a box
+  // under overhangs showed 0.30-0.36 of their facing surface, all of it covered; the misplaced
+  // candidates rejected at such shares were covered to 0.17.
+  double min_measurable_share_covered = 0.25;
+  double full_coverage = 0.95;
   // The table margin of the RANSAC trials (a start on a small patch may sink into the table by
   // this much) and of the points the continuation leaves to the table: max(plane_margin, 10 % of
   // the part's smallest size) plus three times the table's noise (object_hypotheses.hpp
