@@ -24,6 +24,9 @@ constexpr double kFarEye = 1e4;
 // The inner rings by a flat end must show this share of their samples for the end to be judged.
 constexpr double kEndReference = 0.8;
 
+// A flat cap's rim is judged in this many sectors (a box's: one per edge of the face).
+constexpr int kRimSectors = 4;
+
 // What the scan says of one surface sample.
 enum class Sample {
   kNoEvidence,   // by the table, outside the sweep, or not facing the sensor's eyes
@@ -223,6 +226,67 @@ std::array<double, 2> open_ends(const Superquadric& sq, const CoverageOptions& o
   return open_at;
 }
 
+// A point of a flat cap's rim ring at radial fraction rho and angle omega, part frame, for the
+// cap at +-z of the part `sq` (its cross-section's own shape, so a box's rings are squares).
+Eigen::Vector3d cap_ring_point(const Superquadric& sq, double side, double rho, double omega) {
+  const double c = std::cos(omega), s = std::sin(omega);
+  const double e = 2.0 / sq.eps2;
+  const double f = std::pow(std::pow(std::abs(c), e) + std::pow(std::abs(s), e), -0.5 * sq.eps2);
+  return {sq.a1 * rho * f * c, sq.a2 * rho * f * s, side * sq.a3};
+}
+
+// The rims of the part's flat caps, by sector (a box's sectors are its faces' edges): the outer
+// rings over rim_strip of the cap's radius against as many rings farther in. A sector is judged
+// when its inner rings show the cap (kEndReference of their measurable samples covered); then the
+// scan would have shown the cap on to its edge, and the share of the outer rings' measurable
+// samples with no scan points near them is how far the part's cap reaches past the face the
+// scan shows. A part fitted by one corner to a look-alike standing a tenth narrower claims a
+// strip of top face where the sensor saw none; a true part hidden by its edge (overhang, wall,
+// shadow) shows its hiding surface in front of the strip (hidden, no evidence). The caps are the
+// +-z ones, and for a part whose cross-section is flat-sided too (a box) those at +-x and +-y.
+double open_rim(const Superquadric& sq, const CoverageOptions& o, SampleJudge& judge) {
+  if (sq.eps1 > kFlatEdgeExponent || sq.kx != 0.0 || sq.ky != 0.0 || o.rim_rings <= 0) return 0.0;
+  const bool boxy = sq.eps2 <= kFlatEdgeExponent;
+  double worst = 0.0;
+  for (int axis = boxy ? 0 : 2; axis < 3; ++axis) {
+    // Cap frame: its normal is part axis `axis`, its first in-plane axis the next one.
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    const Eigen::Vector3d a(sq.a1, sq.a2, sq.a3);
+    Superquadric cap = sq;
+    cap.a1 = a[u], cap.a2 = a[v], cap.a3 = a[axis];
+    if (axis != 2) cap.eps1 = cap.eps2 = std::max(sq.eps1, sq.eps2);
+    for (double side : {-1.0, 1.0}) {
+      for (int sector = 0; sector < kRimSectors; ++sector) {
+        int outer = 0, open = 0, inner = 0, inner_covered = 0;
+        for (int k = 0; k < 2 * o.rim_rings; ++k) {
+          const double rho = 1.0 - (k + 0.5) * o.rim_strip / o.rim_rings;
+          for (int j = 0; j < o.rim_sector_samples; ++j) {
+            const double omega = 2.0 * std::numbers::pi *
+                                 (sector - 0.5 + (j + 0.5) / o.rim_sector_samples) / kRimSectors;
+            const Eigen::Vector3d c = cap_ring_point(cap, side, rho, omega);
+            Eigen::Vector3d q;
+            q[u] = c.x(), q[v] = c.y(), q[axis] = c.z();
+            const Sample sample = judge(q);
+            const bool seen = measurable(sample);
+            if (k < o.rim_rings) {
+              outer += seen;
+              open += seen && sample != Sample::kCovered;
+            } else {
+              inner += seen;
+              inner_covered += sample == Sample::kCovered;
+            }
+          }
+        }
+        if (outer >= o.min_end_samples && inner >= o.min_end_samples &&
+            inner_covered >= kEndReference * inner) {
+          worst = std::max(worst, static_cast<double>(open) / outer);
+        }
+      }
+    }
+  }
+  return worst;
+}
+
 }  // namespace
 
 SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d& T,
@@ -251,6 +315,7 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
     seen_through += v == Sample::kSeenThrough;
   }
   const std::array<double, 2> open_at = open_ends(sq, o, judge);
+  const double rim = open_rim(sq, o, judge);
   SurfaceCoverage c;
   double below = 0.0, lowest = INFINITY;
   if (o.removed_plane && o.removed_plane->valid) {
@@ -270,6 +335,7 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
   c.facing = facing;
   c.open_end = std::max(open_at[0], open_at[1]);
   c.open_end_at[0] = open_at[0], c.open_end_at[1] = open_at[1];
+  c.open_rim = rim;
   if (measured == 0) return c;
   c.measurable = measured;
   c.covered = static_cast<double>(covered) / measured;

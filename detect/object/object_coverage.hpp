@@ -43,7 +43,14 @@ struct CoverageOptions {
   double end_strip = 0.2;
   int end_rings = 4;
   int end_ring_samples = 16;
-  int min_end_samples = 8;  // an end with fewer measurable samples is not judged
+  int min_end_samples = 8;  // an end (or a rim's sector) with fewer measurable samples is not
+                            // judged
+  // The rims of the flat caps (and of a box's every face), by sector: rim_rings rings over
+  // rim_strip of the cap's radius from its edge, and as many farther in, rim_sector_samples
+  // samples per ring and sector (object_coverage.cpp open_rim).
+  double rim_strip = 0.2;
+  int rim_rings = 4;
+  int rim_sector_samples = 6;
   // The whole scan (plane included) as occupied cells: lines of sight blocked by it are
   // occluded, and a line of sight that runs on past a sample to a measured cell saw past it.
   // Without it nothing counts as occluded or seen past.
@@ -60,6 +67,9 @@ struct SurfaceCoverage {
                                 // scan shows farther in, the largest share (of the two ends)
                                 // with no scan points near them
   double open_end_at[2] = {0.0, 0.0};  // the same per end: the one at -z, the one at +z
+  double open_rim = 0.0;        // of the measurable samples by a flat cap's edge, where the scan
+                                // shows the cap farther in, the largest share (per cap and
+                                // sector) with no scan points near them
   double below_plane_mm = 0.0;  // how far the part (as modelled) reaches through the removed plane
   double lowest_mm = 0.0;       // height of its lowest point above the removed plane, its flat
                                 // faces' rounded edges taken as sharp (refined on the surface's

@@ -55,7 +55,8 @@ bool options_ok(const ObjectDetectOptions& o) {
          o.confirmations >= 1 && o.refine_trim >= 0.0 && o.max_measure > 0.0 &&
          o.max_interior_ratio >= 0.0 && o.min_coverage >= 0.0 &&
          o.min_coverage_unknown_sensor >= 0.0 && o.min_coverage_compound_part >= 0.0 && o.max_seen_through >= 0.0 &&
-         o.max_open_end >= 0.0 && o.max_open_end_compound >= 0.0 &&
+         o.max_open_end >= 0.0 && o.max_open_end_compound >= 0.0 && o.max_open_rim >= 0.0 &&
+         o.min_measurable_share_covered >= 0.0 && o.full_coverage >= 0.0 &&
          o.max_size_deviation > 0.0 && o.max_candidates >= 1 && o.min_measurable_samples >= 0 &&
          o.min_measurable_share >= 0.0 && o.max_continuation >= 0.0 && o.plane_margin_mm >= 0.0 &&
          o.rest_noise_factor >= 0.0 && o.rest_size_share >= 0.0 && o.sink_floor_mm >= 0.0 &&
@@ -100,7 +101,11 @@ std::optional<Rejection> unconfirmed(const SurfaceCoverage& c, const ObjectDetec
                      static_cast<double>(o.min_measurable_samples), Eigen::Vector3d::Zero()};
   }
   const double share = c.facing > 0 ? static_cast<double>(c.measurable) / c.facing : 0.0;
-  if (judge_share && share < o.min_measurable_share) {
+  // Less of it measurable, more of that must be there: below min_measurable_share only a part
+  // whose measurable surface is (nearly) all covered is judged on.
+  const bool all_there = share >= o.min_measurable_share_covered &&
+                         c.covered >= o.full_coverage && c.seen_through == 0.0;
+  if (judge_share && share < o.min_measurable_share && !all_there) {
     return Rejection{0, Check::kHidden, share, o.min_measurable_share, Eigen::Vector3d::Zero()};
   }
   const double sink_limit = table_margin_mm(o, c.min_size_mm, noise_mm);
@@ -192,7 +197,8 @@ std::optional<Rejection> floating(double lowest_mm, double max_size_mm, bool pla
 }
 
 // The fit-quality checks in mm (see ObjectDetectOptions::max_size_deviation and
-// residual_noise_factor), and, with `judge_sink`, the part's sink into the table judged by how
+// residual_noise_factor), and, with `judge_sink` (a single part), its flat caps' rims where its
+// size is left open (max_open_rim) and the part's sink into the table judged by how
 // well its points place it (sink_floor_mm); noise_mm is the scan's range noise (the removed
 // plane's rms). A compound object's parts are held to the table margin only: a mallet's shaft
 // touches the table at its far end, 120 mm from its centre, and a true shaft of the tuning
@@ -221,6 +227,10 @@ std::optional<Rejection> misfit(const HypothesisContext& ctx, const Superquadric
   }
   if (e.determined && std::abs(e.scale - 1.0) > o.max_size_deviation) {
     return Rejection{0, Check::kSize, e.scale - 1.0, o.max_size_deviation, T.translation()};
+  }
+  // Size left open by the fit: the extent of its flat faces is the evidence left.
+  if (!e.determined && judge_sink && seen.open_rim > o.max_open_rim) {
+    return Rejection{0, Check::kOpenRim, seen.open_rim, o.max_open_rim, T.translation()};
   }
   const double sink_limit =
       o.sink_floor_mm + o.sink_noise_factor * noise_mm + o.sink_sigma_factor * sigma;
@@ -294,6 +304,7 @@ std::optional<Rejection> judge_part(const HypothesisContext& ctx, const Superqua
     scores->coverage = c.covered;
     scores->seen_through = c.seen_through;
     scores->open_end = c.open_end;
+    scores->open_rim = c.open_rim;
     scores->lowest_mm = c.lowest_mm;
   }
   std::optional<Rejection> why =
@@ -323,6 +334,25 @@ struct Judged {
   PartScores scores;
   std::optional<Rejection> why;
 };
+
+// A single part's candidate rejected because the scan carries on past one of its flat faces may
+// be the part itself, fitted short of its wall's end: the fit leaves a lying box or can free to
+// slide along its side walls (object_axial_slide.hpp), and a start on one end's patch stays
+// there. Slid to where its wall's points end and refined again (nullopt: it does not move), it
+// is judged as a candidate of its own (select_instances). A longer look-alike's wall is not slid
+// along.
+std::optional<PartHypothesis> slid_along_wall(const HypothesisContext& ctx,
+                                              const Superquadric& part,
+                                              const Eigen::Isometry3d& T) {
+  const Eigen::Isometry3d slid = slide_pose(ctx, part, T, Eigen::Vector3d::Zero());
+  if (same_place(slid, T, part)) return std::nullopt;
+  PartHypothesis h;
+  h.valid = true;
+  h.T_world_part = refine_pose(ctx, part, slid);
+  if (same_place(h.T_world_part, T, part)) return std::nullopt;
+  h.scores = verify_pose(ctx, part, h.T_world_part);
+  return h;
+}
 
 std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Superquadric& part,
                                         std::size_t part_index, bool compound,
@@ -809,6 +839,23 @@ const Judged* judged_before(const ObjectModel& model, const Hypotheses& hyps,
   return nullptr;
 }
 
+// A single part rejected for carrying on past a flat face, slid along its wall
+// (slid_along_wall) and confirmed there: `inst` is moved to the slid pose and true is returned.
+bool slide_to_confirm(const HypothesisContext& ctx, const ObjectModel& model,
+                      const CoverageOptions& cover, double noise_mm, DetectedInstance& inst) {
+  if (model.parts.size() != 1) return false;
+  const std::optional<PartHypothesis> h =
+      slid_along_wall(ctx, model.parts[0].shape, inst.parts[0].T_world_part);
+  if (!h) return false;
+  DetectedInstance slid = inst;
+  slid.parts[0].T_world_part = h->T_world_part;
+  slid.parts[0].scores = h->scores;
+  slid.parts[0].scores.rank_sum = inst.parts[0].scores.rank_sum;
+  if (confirm(ctx, model, cover, noise_mm, nullptr, slid)) return false;
+  inst = std::move(slid);
+  return true;
+}
+
 // Selection: the ranked vote's combinations (5.1.2, extended by the links, 5.1.3) confirmed in
 // rank order until K distinct instances stand. Candidates already checked are kept by their part
 // centres: a rejected place is not checked again, and no part of a new instance may sit where a
@@ -852,7 +899,10 @@ void select_instances(const HypothesisContext& ctx, const ObjectModel& model,
             confirm(ctx, model, cover, noise_mm, judged_before(model, hyps, inst), inst)) {
       result.rejections.push_back(*why);
       rejected.push_back(std::move(centres));
-      continue;
+      if (why->check != Check::kContinues || !slide_to_confirm(ctx, model, cover, noise_mm, inst))
+        continue;
+      centres = {inst.parts[0].center()};
+      if (std::any_of(accepted.begin(), accepted.end(), clash)) continue;
     }
     for (std::size_t p = 0; p < model.parts.size(); ++p) centres.push_back(inst.parts[p].center());
     accepted.push_back(std::move(centres));
@@ -906,6 +956,8 @@ const char* to_string(Check check) {
       return "seen through";
     case Check::kOpenEnd:
       return "open end";
+    case Check::kOpenRim:
+      return "open rim";
     case Check::kSize:
       return "size";
     case Check::kResidual:

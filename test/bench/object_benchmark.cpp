@@ -8,11 +8,12 @@
 //   object_benchmark --methods [--seeds N] thesis methods A-D vs ours, like table 5.5
 //   object_benchmark --noise [--seeds N]  TP rate vs noise on the three-sphere scene (fig. 5.29)
 //   object_benchmark --varied [--seeds N] [--per-factor] [--pan-tilt] [--no-sensor] [--held-out]
-//                    [--target TARGET] [--failures]
+//                    [--target TARGET] [--failures] [--first N]
 //                                         TP, wrong, missed and false positives on seeded varied
 //                                         stripe scans (object_varied_report.hpp), per target
-//                                         (or one) and per factor; tuning seeds, or the held-out
-//                                         ones; --failures lists the failing seeds
+//                                         (or one) and per factor; tuning seeds (from the N-th,
+//                                         default 1), or the held-out ones; --failures lists
+//                                         the failing seeds
 //   object_benchmark --varied-case TARGET SEED [--pan-tilt] [--no-sensor]
 //                                         one varied scene in detail: drawn parts, result,
 //                                         rejections and the scene part each place is on
@@ -411,7 +412,7 @@ int main(int argc, char** argv) {
   bool list_failures = false;
   std::vector<char*> rest = {argv[0]};
   std::string case_target, only_target;
-  std::uint64_t case_seed = 0;
+  std::uint64_t case_seed = 0, first = 1;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--tp")) {
       tp = true;
@@ -436,6 +437,8 @@ int main(int argc, char** argv) {
       case_seed = std::strtoull(argv[++i], nullptr, 10);
     } else if (!std::strcmp(argv[i], "--target") && i + 1 < argc) {
       only_target = argv[++i];
+    } else if (!std::strcmp(argv[i], "--first") && i + 1 < argc) {
+      first = std::strtoull(argv[++i], nullptr, 10);
     } else if (!std::strcmp(argv[i], "--seeds") && i + 1 < argc) {
       seeds = std::max(1, std::atoi(argv[++i]));
     } else {
@@ -451,8 +454,18 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "unknown target %s\n", only_target.c_str());
       return 2;
     }
+    // --first N: tuning seeds from the N-th on; the held-out seeds always start at their base,
+    // and a tuning range must stay inside the tuning set.
+    if (first < 1 || (held_out && first != 1) ||
+        first - 1 + static_cast<std::uint64_t>(seeds) > rangefit::sim::kTuningSeedCount) {
+      std::fprintf(stderr, "--first %llu --seeds %d: outside the tuning seeds 1..%llu%s\n",
+                   static_cast<unsigned long long>(first), seeds,
+                   static_cast<unsigned long long>(rangefit::sim::kTuningSeedCount),
+                   held_out ? " (--first is for tuning seeds only)" : "");
+      return 2;
+    }
     rangefit::bench::print_varied(seeds, per_factor, pan_tilt, sensor_known, held_out, only,
-                                 list_failures);
+                                 list_failures, first);
   }
   if (!case_target.empty()) {
     const auto target = rangefit::sim::varied_target_from(case_target);

@@ -250,12 +250,12 @@ inline void print_varied_case(sim::VariedTarget target, bool pan_tilt, std::uint
       const PartScores& sc = p.scores;
       std::printf(
           "  found %s at %.1f %.1f %.1f axis %.2f %.2f %.2f x %.2f %.2f %.2f (%s): M %.3f I %zu S %zu cover %.2f of %d/%d "
-          "seen-through %.2f open end %.2f size %d %.3f residual %.2f continues %.3f lowest %.2f "
+          "seen-through %.2f open end %.2f rim %.2f size %d %.3f residual %.2f continues %.3f lowest %.2f "
           "below %.2f (sigma %.3f)\n",
           p.name.c_str(), p.center().x(), p.center().y(), p.center().z(), p.z_axis().x(),
           p.z_axis().y(), p.z_axis().z(), p.T_world_part.linear()(0, 0),
           p.T_world_part.linear()(1, 0), p.T_world_part.linear()(2, 0), nearest(p.center()).c_str(), sc.measure, sc.interior, sc.surface, sc.coverage,
-          sc.measurable, sc.facing, sc.seen_through, sc.open_end, sc.size_determined ? 1 : 0,
+          sc.measurable, sc.facing, sc.seen_through, sc.open_end, sc.open_rim, sc.size_determined ? 1 : 0,
           sc.size_scale, sc.residual_mm, sc.continuation, sc.lowest_mm, sc.below_plane_mm,
           sc.height_sigma_mm);
     }
@@ -267,17 +267,18 @@ inline void print_varied_case(sim::VariedTarget target, bool pan_tilt, std::uint
   }
 }
 
-// The tuning seeds, or the held-out seeds (never looked at while tuning: run them only to
-// report).
+// The tuning seeds (from `first`, 1-based within the tuning set, so that a widened tuning set
+// can be run without repeating seeds already looked at), or the held-out seeds (never looked at
+// while tuning: run them only to report, always from the first one).
 inline void print_varied(int seeds, bool per_factor, bool pan_tilt, bool sensor_known,
                          bool held_out, std::optional<sim::VariedTarget> only = std::nullopt,
-                         bool list_failures = false) {
+                         bool list_failures = false, std::uint64_t first = 1) {
   if (held_out) {
     print_varied_block("Held-out seeds", sim::kHeldOutSeedBase, seeds, pan_tilt, sensor_known,
                        per_factor, only, list_failures);
   } else {
-    print_varied_block("Tuning seeds", sim::kTuningSeedBase, seeds, pan_tilt, sensor_known,
-                       per_factor, only, list_failures);
+    print_varied_block("Tuning seeds", sim::kTuningSeedBase + first - 1, seeds, pan_tilt,
+                       sensor_known, per_factor, only, list_failures);
   }
 }
 
