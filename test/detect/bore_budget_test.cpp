@@ -76,11 +76,8 @@ TEST(BoreBudget, DenseRegionWithinBudgetAndAsAccurateAsEveryPoint) {
   EXPECT_LT(axis_deg(fast.axis, t.axis), axis_deg(full.axis, t.axis) + 0.02);
 }
 
-// A large bore seen through a strip (a CSS sweep across a 50 mm bore): the wall is a narrow arc
-// whose radius and offset the data barely tell apart, the case where a trim made once around a
-// sample's fit held the answer 0.03 mm off. Coarse spacing and a small region budget keep the
-// test fast while the region is still read at a stride.
-TEST(BoreBudget, RegionReadAtAStrideKeepsANarrowArcAsAccurateAsEveryPoint) {
+// A 50 mm bore seen through a strip twice, at a coarse 0.3 mm spacing that keeps the tests fast.
+sim::SyntheticBoreOptions narrow_arc(std::uint64_t seed) {
   sim::SyntheticBoreOptions so;
   so.radius = 25.0;
   so.spacing = 0.3;
@@ -88,9 +85,18 @@ TEST(BoreBudget, RegionReadAtAStrideKeepsANarrowArcAsAccurateAsEveryPoint) {
   so.march_step = 0.1;
   so.extent = 28.0;
   so.extent_v = 12.0;
-  so.seed = 1203;  // held out: not a benchmark or accuracy-table seed
-  so.T_world_part = test::random_pose(1203);
-  const auto scan = sim::make_synthetic_bore(so);
+  so.seed = seed;
+  so.T_world_part = test::random_pose(seed);
+  return so;
+}
+
+// A large bore seen through a strip (a CSS sweep across a 50 mm bore): the wall is a narrow arc
+// whose radius and offset the data barely tell apart, the case where a trim made once around a
+// sample's fit held the answer 0.03 mm off. Coarse spacing and a small region budget keep the
+// test fast while the region is still read at a stride.
+TEST(BoreBudget, RegionReadAtAStrideKeepsANarrowArcAsAccurateAsEveryPoint) {
+  // Seed 1203 is held out: not a benchmark or accuracy-table seed.
+  const auto scan = sim::make_synthetic_bore(narrow_arc(1203));
   const auto& t = scan.truth;
   BoreOptions o;
   o.view_dir = t.view_dir;
@@ -134,16 +140,7 @@ TEST(BoreBudget, RegionReadAtAStrideKeepsANarrowArcAsAccurateAsEveryPoint) {
 TEST(BoreBudget, NarrowArcOffsetPolishedOnEveryScanPointOfTheBand) {
   std::vector<double> polished_err, budget_err;
   for (std::uint64_t seed = 1211; seed < 1217; ++seed) {
-    sim::SyntheticBoreOptions so;
-    so.radius = 25.0;
-    so.spacing = 0.3;
-    so.passes = 2;
-    so.march_step = 0.1;
-    so.extent = 28.0;
-    so.extent_v = 12.0;
-    so.seed = seed;
-    so.T_world_part = test::random_pose(seed);
-    const auto scan = sim::make_synthetic_bore(so);
+    const auto scan = sim::make_synthetic_bore(narrow_arc(seed));
     const auto& t = scan.truth;
     BoreOptions o;
     o.view_dir = t.view_dir;

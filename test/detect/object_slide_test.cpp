@@ -4,45 +4,22 @@
 // pose fit, and every hypothesis of the varied tuning scenes below stopped 15-20 mm short.
 #include <gtest/gtest.h>
 
-#include <string>
-
-#include "detect/object/object_detector.hpp"
-#include "sim/varied_scene.hpp"
-#include "test/detect/object_scenes.hpp"
-#include "test/detect/stripe_scan_fixture.hpp"
+#include "test/detect/varied_target.hpp"
 
 namespace rangefit {
 namespace {
 
-std::string describe(const ObjectDetectResult& r) {
-  std::string out = to_string(r.reason);
-  for (const Rejection& x : r.rejections) {
-    out += std::string("; ") + to_string(x.check) + " " + std::to_string(x.value) + " at " +
-           std::to_string(x.centre.x()) + " " + std::to_string(x.centre.y());
-  }
-  return out;
-}
-
-void expect_true_target(sim::VariedTarget target, std::uint64_t seed) {
-  sim::VariedSceneOptions so;
-  so.target = target;
-  const sim::VariedScene s = sim::make_varied_scene(so, seed);
-  const ObjectDetectResult r = test::detect_in(s, seed);
-  ASSERT_TRUE(r.found()) << "seed " << seed << ": " << describe(r);
-  EXPECT_TRUE(test::true_positive(r.instances[0].parts[0].T_world_part,
-                                  s.parts[static_cast<std::size_t>(s.target_parts[0])]))
-      << "seed " << seed << ": " << describe(r);
-}
+using test::expect_varied_target_found;
 
 // The box lying behind a wall (12 % hidden, 31 deg, camera -y, 0.16 mm noise): the best
 // candidate stood 17 mm along its axis, the scan carrying on past its end.
 TEST(ObjectSlide, FindsTheLyingBoxOfAVariedSceneSlidAlongItsWall) {
-  expect_true_target(sim::VariedTarget::kBox, 181);
+  expect_varied_target_found(sim::VariedTarget::kBox, 181);
 }
 
 // The lying cylinder behind a wall (30 % hidden, 23 deg, camera -y, 1 mm noise): 17 mm short.
 TEST(ObjectSlide, FindsTheLyingCylinderOfAVariedSceneSlidAlongItsWall) {
-  expect_true_target(sim::VariedTarget::kCylinder, 197);
+  expect_varied_target_found(sim::VariedTarget::kCylinder, 197);
 }
 
 }  // namespace
