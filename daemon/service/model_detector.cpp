@@ -51,7 +51,7 @@ DetectionResult ModelDetector::detect_bore_request(const PointCloud& cloud,
                                                    const ScanRequest& request,
                                                    const ScanSensor& sensor) {
   const BoreDetection d = bore_detection(bore_query(request, config_.detection.seed), sensor);
-  const BoreResult r = detect_bore(cloud, d.prior, d.options);
+  const BoreResult r = detect_bore(cloud, d.prior, d.options, bore_workspace_);
   DetectionResult out;
   out.found = r.found;
   if (!r.found) {

@@ -6,6 +6,7 @@
 
 #include "daemon/service/config.hpp"
 #include "daemon/service/pipeline.hpp"
+#include "detect/bore/bore_workspace.hpp"
 
 namespace rangefit::daemon {
 
@@ -21,6 +22,10 @@ class ModelDetector final : public Detector {
   DetectionResult detect_bore_request(const PointCloud& cloud, const ScanRequest& request,
                                       const ScanSensor& sensor);
   DetectorConfig config_;
+  // The bore pipeline's memory, kept between requests: a bore request like the one before
+  // allocates nothing in the detector. One call at a time: the pipeline joins a detection before
+  // it starts the next.
+  BoreWorkspace bore_workspace_;
 };
 
 }  // namespace rangefit::daemon

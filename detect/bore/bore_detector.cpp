@@ -113,34 +113,36 @@ BoreResult shaped(BoreResult res, const RefineInput& base, const bore::Wall& wal
   return res;
 }
 
-}  // namespace
-
-BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const BoreOptions& o) {
+// The whole pipeline; the workspace (nullptr: none) lends the call its memory.
+BoreResult bore_pipeline(const PointCloud& cloud, const BorePrior& prior, const BoreOptions& o,
+                         BoreWorkspace* workspace) {
   bore::StageClock clock;
   BoreResult res;
   res.counts.input = cloud.size();
   if (!bore::valid_input(prior, o)) return fail(res, BoreReason::kBadPrior, clock);
   if (!bore::valid_shape(prior, o)) return fail(res, BoreReason::kBadShape, clock);
-  const bore::BoreFrame f = bore::bore_frame(prior, o);
+  BoreArena arena(workspace);  // before the stages' buffers, which it outlives
+  std::pmr::memory_resource* mr = arena.resource();
+  const bore::BoreFrame f = bore::bore_frame(prior, o, mr);
 
   // 4.1.1 region of interest and normals.
-  const BoreRegion region = bore::region_of_interest(cloud, f, o);
+  const BoreRegion region = bore::region_of_interest(cloud, f, o, mr);
   res.counts.non_finite = region.non_finite;
   res.counts.stride = region.stride;
   res.counts.roi = region.roi.size() * region.stride;
   res.time_ms.roi = clock.lap();
   if (region.roi.empty()) return fail(res, BoreReason::kEmptyRoi, clock);
-  const bore::RegionNormals normals = bore::region_normals(region, f, o);
+  const bore::RegionNormals normals = bore::region_normals(region, f, o, mr);
   res.counts.normal_queries = normals.queries.size();
   res.counts.normals = normals.normals.kept;
   res.time_ms.normals = clock.lap();
   if (normals.normals.kept == 0) return fail(res, BoreReason::kDegenerateNormals, clock);
 
   // 4.1.2 Gaussian-image segmentation and the entrance plane.
-  const bore::Segmentation seg = bore::segment(region, normals, f, prior, o);
+  const bore::Segmentation seg = bore::segment(region, normals, f, prior, o, mr);
   res.counts.plane = seg.plane.size();
   res.counts.wall = seg.walls.front().points.size();
-  const pca::Plane plane = bore::entrance_plane(region, seg, f, o);
+  const pca::Plane plane = bore::entrance_plane(region, seg, f, o, mr);
   res.time_ms.segmentation = clock.lap();
   if (!plane.valid) return fail(res, BoreReason::kNoPlane, clock);
 
@@ -151,6 +153,7 @@ BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const Bo
   base.plane = plane;
   base.up = plane.normal.dot(f.view) < 0.0 ? Eigen::Vector3d(-plane.normal) : plane.normal;
   base.normal_radius = normals.radius;
+  base.mr = mr;
   if (bore::has_shape(prior)) return shaped(res, base, seg.walls.front(), f, prior, o, clock);
   const auto fit = [&](std::size_t k) {
     return bore::fit_wall(base, seg.walls[k], f.targets[k], f, prior, o, clock, res.time_ms);
@@ -167,6 +170,17 @@ BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const Bo
   res.reason = BoreReason::kFound;
   res.time_ms.total = clock.total();
   return res;
+}
+
+}  // namespace
+
+BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const BoreOptions& o) {
+  return bore_pipeline(cloud, prior, o, nullptr);
+}
+
+BoreResult detect_bore(const PointCloud& cloud, const BorePrior& prior, const BoreOptions& o,
+                       BoreWorkspace& workspace) {
+  return bore_pipeline(cloud, prior, o, &workspace);
 }
 
 }  // namespace rangefit

@@ -16,11 +16,12 @@ double segmented_radius(const BorePrior& prior) {
   return std::max(prior.radius, prior.radius2);
 }
 
-std::vector<WallTarget> wall_targets(const BorePrior& prior, const BoreOptions& o) {
+std::pmr::vector<WallTarget> wall_targets(const BorePrior& prior, const BoreOptions& o,
+                                          std::pmr::memory_resource* mr) {
   const double r_in = segmented_radius(prior);
   const double r_out = prior.outer_radius > r_in ? prior.outer_radius : 0.0;
   const double mid = 0.5 * (r_in + r_out);
-  std::vector<WallTarget> t;
+  std::pmr::vector<WallTarget> t(mr);
   if (o.walls != BoreWalls::kOuter) {
     const double hi = (1.0 + o.wall_band) * r_in;
     t.push_back({r_in, true, 0.0, r_out > 0.0 ? std::min(hi, mid) : hi});
@@ -56,8 +57,8 @@ bool valid_input(const BorePrior& prior, const BoreOptions& o) {
          !(o.sensor_position && !finite(*o.sensor_position));
 }
 
-BoreFrame bore_frame(const BorePrior& prior, const BoreOptions& o) {
-  BoreFrame f;
+BoreFrame bore_frame(const BorePrior& prior, const BoreOptions& o, std::pmr::memory_resource* mr) {
+  BoreFrame f(mr);
   f.entrance = prior.entrance;
   const Eigen::Vector3d plane_prior = prior.plane_normal.value_or(prior.axis);
   // Orientation convention: everything toward the sensor (view direction, else plane normal).
@@ -66,7 +67,7 @@ BoreFrame bore_frame(const BorePrior& prior, const BoreOptions& o) {
   if (f.n_cad.dot(f.view) < 0.0) f.n_cad = -f.n_cad;
   f.a_cad = prior.axis.normalized();
   if (f.a_cad.dot(f.view) < 0.0) f.a_cad = -f.a_cad;
-  f.targets = wall_targets(prior, o);
+  f.targets = wall_targets(prior, o, mr);
   f.r_min = f.r_max = f.targets.front().radius;
   for (const auto& w : f.targets) {
     f.r_min = std::min(f.r_min, w.radius);
@@ -87,7 +88,8 @@ BoreFrame bore_frame(const BorePrior& prior, const BoreOptions& o) {
 // The region and the normal neighbourhood pool around it. Cost-bounded: read within the region
 // budget, and split into the points near an expected wall and the rest (by their distance from
 // the CAD axis and their depth below the CAD plane), each thinned to its own normal budget.
-BoreRegion region_of_interest(const PointCloud& cloud, const BoreFrame& f, const BoreOptions& o) {
+BoreRegion region_of_interest(const PointCloud& cloud, const BoreFrame& f, const BoreOptions& o,
+                              std::pmr::memory_resource* mr) {
   RegionShape shape;
   shape.centre = f.entrance;
   shape.axis = f.a_cad;
@@ -102,7 +104,7 @@ BoreRegion region_of_interest(const PointCloud& cloud, const BoreFrame& f, const
   // Below the CAD plane by more than the prior's offset can explain: not the entrance plane.
   shape.below_margin = std::max(0.1 * f.r_min, 0.5);
   shape.split = o.cost_bounded;
-  return select_region(cloud.points, shape, o.cost_bounded ? o.region_budget : 0);
+  return select_region(cloud.points, shape, o.cost_bounded ? o.region_budget : 0, mr);
 }
 
 }  // namespace rangefit::bore

@@ -39,11 +39,11 @@ struct Heights {
   }
 };
 
-Heights wall_heights(const RefineInput& in, const std::vector<Eigen::Vector3d>& band,
+Heights wall_heights(const RefineInput& in, std::span<const Eigen::Vector3d> band,
                      const BoreOptions& o) {
   Heights w{in.plane.point, in.up};
   w.below = -o.refine_plane_margin;
-  std::vector<double> h;
+  std::pmr::vector<double> h(in.mr);
   h.reserve(band.size());
   for (const auto& p : band) h.push_back((p - w.point).dot(w.up));
   const std::size_t k = (h.size() - 1) * 98 / 100;
@@ -59,8 +59,9 @@ Heights wall_heights(const RefineInput& in, const std::vector<Eigen::Vector3d>& 
 }
 
 // 3 robust sigmas (MAD) of the residuals |distance from the axis - r|, at least 0.01 mm.
-double trim_limit(std::span<const Eigen::Vector3d> pts, const Cylinder& c) {
-  std::vector<double> r;
+double trim_limit(std::span<const Eigen::Vector3d> pts, const Cylinder& c,
+                  std::pmr::memory_resource* mr) {
+  std::pmr::vector<double> r(mr);
   r.reserve(pts.size());
   for (const auto& p : pts) r.push_back(std::abs(axis_distance(c, p) - c.radius));
   std::nth_element(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(r.size() / 2), r.end());
@@ -69,15 +70,16 @@ double trim_limit(std::span<const Eigen::Vector3d> pts, const Cylinder& c) {
 
 // The band's points: their positions and, for the full-resolution fill, their cloud indices.
 struct Band {
-  std::vector<Eigen::Vector3d> points;
-  std::vector<std::uint32_t> source;  // empty: no fill
+  explicit Band(std::pmr::memory_resource* mr) : points(mr), source(mr) {}
+  std::pmr::vector<Eigen::Vector3d> points;
+  std::pmr::vector<std::uint32_t> source;  // empty: no fill
 };
 
 Band collect_band(const RefineInput& in, const Cylinder& start, const BoreOptions& o,
                   Heights& heights) {
   const Shell shell(start, std::max(start.radius - o.refine_band, 0.0),
                     start.radius + o.refine_band);
-  Band b;
+  Band b(in.mr);
   b.points.reserve(in.wall.size());
   for (const auto& p : in.wall) {
     if (shell.contains(p)) b.points.push_back(p);
@@ -110,11 +112,12 @@ std::size_t fill_step(const Band& b, std::size_t stride, const BoreOptions& o) {
 // The trimmed set: the band's points within `limit` of c and, where the region was read at a
 // stride, every q-th of the scan points skipped after each of them (the rays next to a wall
 // point mostly hit the wall too).
-std::vector<Eigen::Vector3d> inliers(const RefineInput& in, const Band& b, const Heights& heights,
-                                     const Cylinder& c, double limit, std::size_t q) {
+std::pmr::vector<Eigen::Vector3d> inliers(const RefineInput& in, const Band& b,
+                                          const Heights& heights, const Cylinder& c, double limit,
+                                          std::size_t q) {
   const Shell shell(c, std::max(c.radius - limit, 0.0), c.radius + limit);
   const std::size_t stride = in.region->stride;
-  std::vector<Eigen::Vector3d> out;
+  std::pmr::vector<Eigen::Vector3d> out(in.mr);
   out.reserve(b.points.size() * (stride / q + 1));
   for (std::size_t k = 0; k < b.points.size(); ++k) {
     if (shell.contains(b.points[k])) out.push_back(b.points[k]);
@@ -141,7 +144,8 @@ void polish_full_resolution(const RefineInput& in, const Band& band, const Heigh
       !(out.sigma.offset > o.refine_polish_offset)) {
     return;
   }
-  const std::vector<Eigen::Vector3d> all = inliers(in, band, heights, out.lsf.cylinder, limit, 1);
+  const std::pmr::vector<Eigen::Vector3d> all =
+      inliers(in, band, heights, out.lsf.cylinder, limit, 1);
   lo.max_iterations = o.refine_polish_steps;
   const CylinderLsfResult lsf = fit_cylinder_lsf(all, out.lsf.cylinder, lo);
   const CylinderSigma sigma = cylinder_sigma(all, lsf.cylinder, limit);
@@ -165,7 +169,7 @@ RefineOutcome refine_wall(const RefineInput& in, const Cylinder& start, const Bo
   Band band = collect_band(in, start, o, heights);
   CylinderLsfOptions lo = o.lsf;
   if (o.cost_bounded) lo.step_tolerance = 1e-4;
-  std::vector<Eigen::Vector3d> sample;
+  std::pmr::vector<Eigen::Vector3d> sample(in.mr);
   std::span<const Eigen::Vector3d> first = band.points;
   if (o.cost_bounded && o.refine_sample > 0 && band.points.size() > o.refine_sample) {
     const std::size_t k = (band.points.size() + o.refine_sample - 1) / o.refine_sample;
@@ -188,10 +192,10 @@ RefineOutcome refine_wall(const RefineInput& in, const Cylinder& start, const Bo
     }
     return out;
   }
-  const double limit = trim_limit(first, out.lsf.cylinder);
+  const double limit = trim_limit(first, out.lsf.cylinder, in.mr);
   const std::size_t q = fill_step(band, in.region->stride, o);
   const int done = out.lsf.iterations;
-  std::vector<Eigen::Vector3d> kept;
+  std::pmr::vector<Eigen::Vector3d> kept(in.mr);
   const bool sampled = !sample.empty() && lo.method == LsfMethod::kLevenbergMarquardt;
   if (sampled && o.refine_full_resolution) {
     // A narrow arc (a large bore seen through a strip) leaves its radius and offset poorly

@@ -5,6 +5,7 @@
 // polished on the full-resolution inliers, up to a point budget (see BoreOptions).
 
 #include <Eigen/Core>
+#include <memory_resource>
 #include <span>
 
 #include "detect/bore/bore_options.hpp"
@@ -22,6 +23,7 @@ struct RefineInput {
   pca::Plane plane;
   Eigen::Vector3d up = Eigen::Vector3d::UnitZ();  // plane normal toward the sensor
   double normal_radius = 0.0;                     // R of the normals, mm
+  std::pmr::memory_resource* mr = std::pmr::get_default_resource();  // the fit's buffers
 };
 
 struct RefineOutcome {

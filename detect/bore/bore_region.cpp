@@ -23,8 +23,8 @@ std::size_t count_within(std::span<const Eigen::Vector3d> cloud, const Eigen::Ve
 }  // namespace
 
 BoreRegion select_region(std::span<const Eigen::Vector3d> cloud, const RegionShape& s,
-                         std::size_t budget) {
-  BoreRegion out;
+                         std::size_t budget, std::pmr::memory_resource* mr) {
+  BoreRegion out(mr);
   if (budget > 0 && cloud.size() > budget) {
     const std::size_t probed = count_within(cloud, s.centre, s.roi_radius, kProbeStride);
     const std::size_t estimate = probed * kProbeStride;

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <memory_resource>
 #include <span>
 #include <vector>
 
@@ -31,18 +32,21 @@ struct RegionShape {
 };
 
 struct BoreRegion {
-  std::vector<Eigen::Vector3d> points;  // every point read within pool_radius, mm
-  std::vector<std::uint32_t> source;    // cloud index of each of points
-  std::vector<std::uint32_t> roi;       // indices into points within roi_radius
+  explicit BoreRegion(std::pmr::memory_resource* mr = std::pmr::get_default_resource())
+      : points(mr), source(mr), roi(mr), near_wall(mr), near_plane(mr), other(mr) {}
+  std::pmr::vector<Eigen::Vector3d> points;  // every point read within pool_radius, mm
+  std::pmr::vector<std::uint32_t> source;    // cloud index of each of points
+  std::pmr::vector<std::uint32_t> roi;       // indices into points within roi_radius
   // The region split (RegionShape::split): near the expected wall, near the plane (not below
   // it), and the rest (a pipe's other wall, a neighbouring bore, a blind bore's bottom).
-  std::vector<std::uint32_t> near_wall, near_plane, other;
+  std::pmr::vector<std::uint32_t> near_wall, near_plane, other;
   std::size_t stride = 1;      // every stride-th scan point was read
   std::size_t non_finite = 0;  // NaN/Inf points among those read
 };
 
-// budget: region points aimed at (0: read every point). Deterministic.
+// budget: region points aimed at (0: read every point). Deterministic. Buffers from `mr`.
 BoreRegion select_region(std::span<const Eigen::Vector3d> cloud, const RegionShape& shape,
-                         std::size_t budget);
+                         std::size_t budget,
+                         std::pmr::memory_resource* mr = std::pmr::get_default_resource());
 
 }  // namespace rangefit

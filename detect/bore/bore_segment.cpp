@@ -12,10 +12,11 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 
 // Plane through the points, refit once without those beyond `sigmas` rms (outliers, a rim).
-pca::Plane robust_plane(const std::vector<Eigen::Vector3d>& pts, double sigmas) {
+pca::Plane robust_plane(std::span<const Eigen::Vector3d> pts, double sigmas,
+                        std::pmr::memory_resource* mr) {
   pca::Plane plane = pca::fit_plane(pts);
   if (!plane.valid || !(sigmas > 0.0)) return plane;
-  std::vector<Eigen::Vector3d> kept;
+  std::pmr::vector<Eigen::Vector3d> kept(mr);
   kept.reserve(pts.size());
   const double limit = std::max(sigmas * plane.rms, 1e-3);
   for (const auto& p : pts) {
@@ -30,15 +31,15 @@ pca::Plane robust_plane(const std::vector<Eigen::Vector3d>& pts, double sigmas) 
 // (their 2nd-percentile distance from the CAD axis: a rim, chamfer or rounding stays out as the
 // normal test kept it out). Running moments, no copies: the plane's accuracy follows the point
 // count, not the normal count.
-pca::Plane plane_from_region(const BoreRegion& region,
-                             const std::vector<Eigen::Vector3d>& plane_pts, pca::Plane plane,
-                             const Eigen::Vector3d& entrance, const Eigen::Vector3d& axis) {
+pca::Plane plane_from_region(const BoreRegion& region, std::span<const Eigen::Vector3d> plane_pts,
+                             pca::Plane plane, const Eigen::Vector3d& entrance,
+                             const Eigen::Vector3d& axis, std::pmr::memory_resource* mr) {
   const auto rho2 = [&](const Eigen::Vector3d& p) {
     const Eigen::Vector3d d = p - entrance;
     const double h = d.dot(axis);
     return d.squaredNorm() - h * h;
   };
-  std::vector<double> r;
+  std::pmr::vector<double> r(mr);
   r.reserve(plane_pts.size());
   for (const auto& p : plane_pts) r.push_back(rho2(p));
   const auto k = r.begin() + static_cast<std::ptrdiff_t>(r.size() / 50);
@@ -66,14 +67,15 @@ pca::Plane plane_from_region(const BoreRegion& region,
 // about normal_neighbours points at the measured density (points per occupied area near the
 // plane, seen head-on) is enough for a normal and costs O(1), a sparse one keeps R.
 void budgeted_queries(const BoreRegion& g, const BoreFrame& f, const BoreOptions& o,
-                      RegionNormals& out) {
+                      RegionNormals& out, std::pmr::memory_resource* mr) {
   const SpreadSubset w =
-      spread_subset(g.points, g.near_wall, f.entrance, f.roi_radius, o.normal_wall_budget);
+      spread_subset(g.points, g.near_wall, f.entrance, f.roi_radius, o.normal_wall_budget, mr);
   const SpreadSubset e =
-      spread_subset(g.points, g.near_plane, f.entrance, f.roi_radius, o.normal_plane_budget);
+      spread_subset(g.points, g.near_plane, f.entrance, f.roi_radius, o.normal_plane_budget, mr);
   const SpreadSubset x =
-      spread_subset(g.points, g.other, f.entrance, f.roi_radius, o.normal_plane_budget / 2);
-  out.queries = w.indices;
+      spread_subset(g.points, g.other, f.entrance, f.roi_radius, o.normal_plane_budget / 2, mr);
+  out.queries.reserve(w.indices.size() + e.indices.size() + x.indices.size());
+  out.queries.assign(w.indices.begin(), w.indices.end());
   out.queries.insert(out.queries.end(), e.indices.begin(), e.indices.end());
   out.queries.insert(out.queries.end(), x.indices.begin(), x.indices.end());
   if (w.cell > 0.0 && e.area > 0.0 && o.normal_neighbours > 0.0) {
@@ -122,15 +124,16 @@ void sort_point(const Eigen::Vector3d& p, const Eigen::Vector3d& n, const BoreFr
 
 }  // namespace
 
-RegionNormals region_normals(const BoreRegion& region, const BoreFrame& f, const BoreOptions& o) {
-  RegionNormals out;
+RegionNormals region_normals(const BoreRegion& region, const BoreFrame& f, const BoreOptions& o,
+                             std::pmr::memory_resource* mr) {
+  RegionNormals out(mr);
   out.radius = f.normal_radius;
   if (o.cost_bounded) {
-    budgeted_queries(region, f, o, out);
+    budgeted_queries(region, f, o, out, mr);
   } else {
     out.queries.assign(region.roi.begin(), region.roi.end());
   }
-  out.queries = subsample_evenly(out.queries, o.normal_keep);
+  if (!(o.normal_keep >= 1.0)) out.queries = subsample_evenly(out.queries, o.normal_keep, mr);
   NormalOptions no;
   no.radius = out.radius;
   no.max_centroid_offset = o.max_centroid_offset;
@@ -140,19 +143,22 @@ RegionNormals region_normals(const BoreRegion& region, const BoreFrame& f, const
   // Exact R-neighbourhoods from a grid binned along the view, for organised and unorganised
   // scans alike (faster than the k-d tree or the scan-grid windows, and never misses a
   // neighbour the way a fixed window can where the scan is denser than its median spacing).
-  out.normals = estimate_normals_binned(region.points, out.queries, no);
+  out.normals = estimate_normals_binned(region.points, out.queries, no, mr);
   return out;
 }
 
 Segmentation segment(const BoreRegion& region, const RegionNormals& n, const BoreFrame& f,
-                     const BorePrior& prior, const BoreOptions& o) {
-  Segmentation s;
-  s.walls.resize(f.targets.size());
+                     const BorePrior& prior, const BoreOptions& o,
+                     std::pmr::memory_resource* mr) {
+  Segmentation s(mr);
+  s.walls.reserve(f.targets.size());
   // Sized for the queries at once (a few thousand): no regrowth while sorting.
   s.plane.reserve(n.queries.size());
-  for (Wall& w : s.walls) {
+  for (std::size_t k = 0; k < f.targets.size(); ++k) {
+    Wall& w = s.walls.emplace_back(mr);
     w.points.reserve(n.queries.size());
     w.normals.reserve(n.queries.size());
+    w.bottom.reserve(k == 0 ? n.queries.size() : 0);
   }
   for (std::size_t i = 0; i < n.queries.size(); ++i) {
     const Eigen::Vector3d& normal = n.normals.normals[i];
@@ -162,11 +168,11 @@ Segmentation segment(const BoreRegion& region, const RegionNormals& n, const Bor
 }
 
 pca::Plane entrance_plane(const BoreRegion& region, const Segmentation& s, const BoreFrame& f,
-                          const BoreOptions& o) {
+                          const BoreOptions& o, std::pmr::memory_resource* mr) {
   if (s.plane.size() < static_cast<std::size_t>(o.min_plane_points)) return {};
-  const pca::Plane plane = robust_plane(s.plane, o.plane_inlier_sigmas);
+  const pca::Plane plane = robust_plane(s.plane, o.plane_inlier_sigmas, mr);
   if (!plane.valid || !o.cost_bounded) return plane;
-  return plane_from_region(region, s.plane, plane, f.entrance, f.a_cad);
+  return plane_from_region(region, s.plane, plane, f.entrance, f.a_cad, mr);
 }
 
 }  // namespace rangefit::bore

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "detect/bore/bore_stages.hpp"
 
@@ -37,7 +38,7 @@ bool seed_surface(const RefineInput& in, const Eigen::Vector3d& point, Eigen::Ve
 // one side, pulls an ellipse's centre and radii by up to 0.2 mm.
 double floor_height(const RefineInput& in, const BoreOptions& o) {
   if (in.bottom.size() < 10) return -1e300;
-  std::vector<double> h;
+  std::pmr::vector<double> h(in.mr);
   h.reserve(in.bottom.size());
   for (const auto& p : in.bottom) h.push_back((p - in.plane.point).dot(in.up));
   std::nth_element(h.begin(), h.begin() + static_cast<std::ptrdiff_t>(h.size() / 2), h.end());
@@ -81,9 +82,9 @@ bool seen(const BoreSurface& s, const Sightline& l, const Eigen::Vector3d& p) {
 // Points of the region deeper than the margin below the plane, within `band` of the wall and
 // where it faces the sensor; with q < stride, every q-th of the scan points skipped after each
 // of them too (the rays next to a wall point mostly hit the wall as well).
-std::vector<Eigen::Vector3d> near_wall(const RefineInput& in, const BoreSurface& s,
-                                       const Sightline& sight, double band, std::size_t q,
-                                       const BoreOptions& o) {
+std::pmr::vector<Eigen::Vector3d> near_wall(const RefineInput& in, const BoreSurface& s,
+                                            const Sightline& sight, double band, std::size_t q,
+                                            const BoreOptions& o) {
   const BoreRegion& r = *in.region;
   const double floor = floor_height(in, o);
   const auto keep = [&](const Eigen::Vector3d& p) {
@@ -91,7 +92,7 @@ std::vector<Eigen::Vector3d> near_wall(const RefineInput& in, const BoreSurface&
     return h < -o.refine_plane_margin && h > floor && std::abs(surface_residual(s, p)) <= band &&
            seen(s, sight, p);
   };
-  std::vector<Eigen::Vector3d> out;
+  std::pmr::vector<Eigen::Vector3d> out(in.mr);
   for (const std::uint32_t i : r.roi) {
     const Eigen::Vector3d& p = r.points[i];
     if (!keep(p)) continue;
@@ -105,17 +106,19 @@ std::vector<Eigen::Vector3d> near_wall(const RefineInput& in, const BoreSurface&
 }
 
 // Every k-th point, about n of them.
-std::vector<Eigen::Vector3d> spread(const std::vector<Eigen::Vector3d>& pts, std::size_t n) {
+std::pmr::vector<Eigen::Vector3d> spread(std::pmr::vector<Eigen::Vector3d> pts, std::size_t n) {
   if (n == 0 || pts.size() <= n) return pts;
   const std::size_t k = (pts.size() + n - 1) / n;
-  std::vector<Eigen::Vector3d> out;
+  std::pmr::vector<Eigen::Vector3d> out(pts.get_allocator());
+  out.reserve(pts.size() / k + 1);
   for (std::size_t i = 0; i < pts.size(); i += k) out.push_back(pts[i]);
   return out;
 }
 
 // 3 robust sigmas (MAD) of the residuals, at least 0.02 mm.
-double trim_limit(const std::vector<Eigen::Vector3d>& pts, const BoreSurface& s) {
-  std::vector<double> r;
+double trim_limit(std::span<const Eigen::Vector3d> pts, const BoreSurface& s,
+                  std::pmr::memory_resource* mr) {
+  std::pmr::vector<double> r(mr);
   r.reserve(pts.size());
   for (const auto& p : pts) r.push_back(std::abs(surface_residual(s, p)));
   std::nth_element(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(r.size() / 2), r.end());
@@ -163,7 +166,7 @@ ShapeWallFit fit_shaped_wall(const RefineInput& base, const Wall& wall, const Bo
   Eigen::Vector3d point = prior.entrance, axis = f.a_cad;
   if (wall.points.size() >= static_cast<std::size_t>(std::max(o.min_wall_points, 3))) {
     w.rsf = fit_cylinder_rsf(wall.points, wall.normals, f.a_cad, prior.entrance,
-                             f.targets.front().radius, o.rsf, o.seed);
+                             f.targets.front().radius, o.rsf, o.seed, in.mr);
     if (w.rsf.status == RsfStatus::kOk &&
         std::abs(w.rsf.cylinder.axis.dot(f.a_cad)) > std::cos(5.0 * kDeg)) {
       point = w.rsf.cylinder.point;
@@ -184,12 +187,12 @@ ShapeWallFit fit_shaped_wall(const RefineInput& base, const Wall& wall, const Bo
   w.fit.surface = start;
   double band = o.shape_band;
   const std::size_t stride = in.region->stride;
-  std::vector<Eigen::Vector3d> pts;
+  std::pmr::vector<Eigen::Vector3d> pts(in.mr);
   std::size_t read = 0;  // band points at the region's stride
   for (int pass = 0; pass < 2; ++pass) {
     pts = near_wall(in, w.fit.surface, sight, band, stride, o);
     read = pts.size();
-    pts = spread(pts, o.refine_sample);
+    pts = spread(std::move(pts), o.refine_sample);
     if (pts.size() < static_cast<std::size_t>(std::max(o.min_wall_points, 10))) return w;
     w.fit = fit_bore_surface(pts, w.fit.surface, in.plane.normal, so);
     band = o.refine_band;
@@ -197,7 +200,7 @@ ShapeWallFit fit_shaped_wall(const RefineInput& base, const Wall& wall, const Bo
   // The polish, under the Huber loss only: a trim re-selected around every step holds a fit
   // where it stands on a one-sided arc (measured on the tuning seeds with the visibility test:
   // 34 of 40 ellipses within 0.02 mm trimmed, 40 of 40 untrimmed).
-  const double limit = trim_limit(pts, w.fit.surface);
+  const double limit = trim_limit(pts, w.fit.surface, in.mr);
   so.max_iterations = 50;
   const std::size_t q = fill_step(read, stride, o);
   pts = near_wall(in, w.fit.surface, sight, limit, q, o);

@@ -3,10 +3,12 @@
 // values: the CAD prior as a frame, the region of interest, the normals, the Gaussian-image
 // segmentation with the entrance plane, and per wall the sequential cylinder fit with the notch
 // re-fit, the refinement and the entrance. Internal to detect/ (the API is bore_detector.hpp).
+// Every buffer of a stage comes from the call's arena (`mr`, see bore_workspace.hpp).
 
 #include <Eigen/Core>
 #include <chrono>
 #include <cstdint>
+#include <memory_resource>
 #include <vector>
 
 #include "detect/bore/bore_options.hpp"
@@ -44,11 +46,13 @@ struct WallTarget {
 // The CAD prior as every stage uses it: directions toward the sensor, the walls to fit and the
 // sizes that follow from them.
 struct BoreFrame {
+  explicit BoreFrame(std::pmr::memory_resource* mr = std::pmr::get_default_resource())
+      : targets(mr) {}
   Eigen::Vector3d entrance = Eigen::Vector3d::Zero();
   Eigen::Vector3d view = Eigen::Vector3d::UnitZ();   // unit, toward the sensor
   Eigen::Vector3d n_cad = Eigen::Vector3d::UnitZ();  // CAD plane normal, toward the sensor
   Eigen::Vector3d a_cad = Eigen::Vector3d::UnitZ();  // CAD axis, toward the sensor
-  std::vector<WallTarget> targets;                   // inner first (unless walls = kOuter)
+  std::pmr::vector<WallTarget> targets;              // inner first (unless walls = kOuter)
   double r_min = 0.0, r_max = 0.0;                   // smallest and largest target radius
   double normal_radius = 0.0;                        // R before the density adjustment, mm
   double roi_radius = 0.0;                           // mm
@@ -56,34 +60,39 @@ struct BoreFrame {
 
 // False for NaN/Inf or zero-length prior values, radius <= 0, bad options (kBadPrior).
 bool valid_input(const BorePrior& prior, const BoreOptions& o);
-BoreFrame bore_frame(const BorePrior& prior, const BoreOptions& o);
+BoreFrame bore_frame(const BorePrior& prior, const BoreOptions& o, std::pmr::memory_resource* mr);
 
 // 4.1.1 region of interest, read within the region budget when cost-bounded.
-BoreRegion region_of_interest(const PointCloud& cloud, const BoreFrame& f, const BoreOptions& o);
+BoreRegion region_of_interest(const PointCloud& cloud, const BoreFrame& f, const BoreOptions& o,
+                              std::pmr::memory_resource* mr);
 
 // 4.1.1 normals on the (sub-sampled) region, neighbours from every point read.
 struct RegionNormals {
-  std::vector<std::uint32_t> queries;  // into region.points
+  explicit RegionNormals(std::pmr::memory_resource* mr) : queries(mr), normals{std::pmr::vector<Eigen::Vector3d>(mr)} {}
+  std::pmr::vector<std::uint32_t> queries;  // into region.points
   NormalEstimate normals;              // one per query
   double radius = 0.0;                 // R used, mm
 };
-RegionNormals region_normals(const BoreRegion& region, const BoreFrame& f, const BoreOptions& o);
+RegionNormals region_normals(const BoreRegion& region, const BoreFrame& f, const BoreOptions& o,
+                             std::pmr::memory_resource* mr);
 
 // 4.1.2 Gaussian-image segmentation with the CAD prior (eq. 4.5, 4.6).
 struct Wall {
-  std::vector<Eigen::Vector3d> points, normals;  // normals turned toward the axis
-  std::vector<Eigen::Vector3d> bottom;           // points facing along the axis inside the bore
+  explicit Wall(std::pmr::memory_resource* mr) : points(mr), normals(mr), bottom(mr) {}
+  std::pmr::vector<Eigen::Vector3d> points, normals;  // normals turned toward the axis
+  std::pmr::vector<Eigen::Vector3d> bottom;  // points facing along the axis inside the bore
 };
 struct Segmentation {
-  std::vector<Eigen::Vector3d> plane;  // entrance-plane points
-  std::vector<Wall> walls;             // one per target
+  explicit Segmentation(std::pmr::memory_resource* mr) : plane(mr), walls(mr) {}
+  std::pmr::vector<Eigen::Vector3d> plane;  // entrance-plane points
+  std::pmr::vector<Wall> walls;             // one per target
 };
 Segmentation segment(const BoreRegion& region, const RegionNormals& n, const BoreFrame& f,
-                     const BorePrior& prior, const BoreOptions& o);
+                     const BorePrior& prior, const BoreOptions& o, std::pmr::memory_resource* mr);
 
 // 4.1.2 the entrance plane of the plane points (invalid: too few, or no plane).
 pca::Plane entrance_plane(const BoreRegion& region, const Segmentation& s, const BoreFrame& f,
-                          const BoreOptions& o);
+                          const BoreOptions& o, std::pmr::memory_resource* mr);
 
 // 4.1.3-4.1.4 for one wall.
 struct WallFit {
@@ -95,7 +104,7 @@ struct WallFit {
   CylinderSigma sigma;  // of the refined cylinder (invalid: not refined)
   Eigen::Vector3d entrance = Eigen::Vector3d::Zero(), axis = Eigen::Vector3d::UnitZ();
 };
-// base: the refinement's inputs shared by the walls (cloud, region, plane, up, R).
+// base: the refinement's inputs shared by the walls (cloud, region, plane, up, R, arena).
 WallFit fit_wall(const RefineInput& base, const Wall& wall, const WallTarget& target,
                  const BoreFrame& f, const BorePrior& prior, const BoreOptions& o,
                  StageClock& clock, BoreTimes& times);

@@ -14,15 +14,16 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 // 4.1.3 sequential cylinder fit, then 4.1.4: drop notch points beyond notch_ratio r and fit
 // again. False when the first fit fails.
 bool rsf_with_notch_refit(const Wall& wall, const WallTarget& target, const BoreFrame& f,
-                          const BorePrior& prior, const BoreOptions& o, WallFit& w) {
+                          const BorePrior& prior, const BoreOptions& o,
+                          std::pmr::memory_resource* mr, WallFit& w) {
   const std::size_t min_wall = static_cast<std::size_t>(std::max(o.min_wall_points, 3));
   w.rsf = fit_cylinder_rsf(wall.points, wall.normals, f.a_cad, prior.entrance, target.radius, o.rsf,
-                           o.seed);
+                           o.seed, mr);
   if (w.rsf.status != RsfStatus::kOk) {
     w.rsf = {};
     return false;
   }
-  Wall inner;
+  Wall inner(mr);
   inner.points.reserve(wall.points.size());
   inner.normals.reserve(wall.points.size());
   for (std::size_t i = 0; i < wall.points.size(); ++i) {
@@ -35,7 +36,7 @@ bool rsf_with_notch_refit(const Wall& wall, const WallTarget& target, const Bore
   if (inner.points.size() < wall.points.size() && inner.points.size() >= min_wall) {
     const RsfResult second =
         fit_cylinder_rsf(inner.points, inner.normals, f.a_cad, w.rsf.cylinder.point, target.radius,
-                         o.rsf, o.seed + 1);
+                         o.rsf, o.seed + 1, mr);
     if (second.status == RsfStatus::kOk) {
       w.rsf = second;
       w.second_fit = true;
@@ -93,7 +94,7 @@ WallFit fit_wall(const RefineInput& base, const Wall& wall, const WallTarget& ta
     w.reason = BoreReason::kTooFewWallPoints;
     return w;
   }
-  const bool fitted = rsf_with_notch_refit(wall, target, f, prior, o, w);
+  const bool fitted = rsf_with_notch_refit(wall, target, f, prior, o, base.mr, w);
   times.rsf += clock.lap();
   if (!fitted) return w;
   w.cylinder = w.rsf.cylinder;

@@ -83,7 +83,7 @@ double twice_area(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eige
   return std::abs(ab.x() * ac.y() - ab.y() * ac.x());
 }
 
-double estimate(std::vector<double>& radii, const RsfOptions& o) {
+double estimate(std::pmr::vector<double>& radii, const RsfOptions& o) {
   const std::size_t n = radii.size();
   if (o.radius_estimator == RadiusEstimator::kMedian) {
     const auto mid = radii.begin() + static_cast<std::ptrdiff_t>(n / 2);
@@ -109,11 +109,12 @@ double pseudo_angle(double x, double y) {
 // Eq. 4.11-4.15: radius from random wall triangles projected on the plane normal to u.
 double radius_from_triangles(std::span<const Eigen::Vector3d> points, const Eigen::Vector3d& u,
                              const Eigen::Vector3d& centre, double expected_radius,
-                             const RsfOptions& o, Rng& rng, int& accepted) {
+                             const RsfOptions& o, Rng& rng, int& accepted,
+                             std::pmr::memory_resource* mr) {
   accepted = 0;
   const Eigen::Vector3d e1 = u.unitOrthogonal(), e2 = u.cross(e1);
   const std::size_t n = points.size();
-  std::vector<Eigen::Vector2d> q(n);
+  std::pmr::vector<Eigen::Vector2d> q(n, mr);
   Eigen::Vector2d mean(0, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d d = points[i] - centre;
@@ -128,7 +129,7 @@ double radius_from_triangles(std::span<const Eigen::Vector3d> points, const Eige
     // matter, so two selections replace a sort.
     const Eigen::Vector2d ref =
         mean.norm() > 0.0 ? Eigen::Vector2d(mean.normalized()) : Eigen::Vector2d(1, 0);
-    std::vector<std::pair<double, std::uint32_t>> az(n);
+    std::pmr::vector<std::pair<double, std::uint32_t>> az(n, mr);
     for (std::size_t i = 0; i < n; ++i) {
       az[i] = {pseudo_angle(q[i].dot(ref), ref.x() * q[i].y() - ref.y() * q[i].x()),
                static_cast<std::uint32_t>(i)};
@@ -136,7 +137,7 @@ double radius_from_triangles(std::span<const Eigen::Vector3d> points, const Eige
     const auto at = [&](std::size_t k) { return az.begin() + static_cast<std::ptrdiff_t>(k); };
     std::nth_element(az.begin(), at(n / 3), az.end());
     std::nth_element(at(n / 3), at(2 * (n / 3)), az.end());
-    std::vector<Eigen::Vector2d> sorted(n);
+    std::pmr::vector<Eigen::Vector2d> sorted(n, mr);
     for (std::size_t i = 0; i < n; ++i) sorted[i] = q[az[i].second];
     q.swap(sorted);
   }
@@ -153,7 +154,7 @@ double radius_from_triangles(std::span<const Eigen::Vector3d> points, const Eige
     std::uint32_t a, b, c;
     double a2;
   };
-  std::vector<Tri> tris(want);
+  std::pmr::vector<Tri> tris(want, mr);
   for (auto& t : tris) {
     t.a = static_cast<std::uint32_t>(draw(0));
     t.b = static_cast<std::uint32_t>(draw(1));
@@ -168,7 +169,7 @@ double radius_from_triangles(std::span<const Eigen::Vector3d> points, const Eige
     if (halvings == 7) return 0.0;
     limit *= 0.5;
   }
-  std::vector<double> radii;
+  std::pmr::vector<double> radii(mr);
   radii.reserve(want);
   for (const Tri& t : tris) {
     if (t.a2 > limit) radii.push_back(circumradius(q[t.a], q[t.b], q[t.c], t.a2));
@@ -209,7 +210,8 @@ const char* to_string(RsfStatus s) {
 RsfResult fit_cylinder_rsf(std::span<const Eigen::Vector3d> points,
                            std::span<const Eigen::Vector3d> normals,
                            const Eigen::Vector3d& prior_axis, const Eigen::Vector3d& prior_point,
-                           double expected_radius, const RsfOptions& o, std::uint64_t seed) {
+                           double expected_radius, const RsfOptions& o, std::uint64_t seed,
+                           std::pmr::memory_resource* mr) {
   RsfResult res;
   if (points.size() < 3 || normals.size() != points.size() || !(expected_radius > 0.0)) {
     return res;
@@ -223,20 +225,20 @@ RsfResult fit_cylinder_rsf(std::span<const Eigen::Vector3d> points,
     return res;
   }
   const double r =
-      radius_from_triangles(points, u, prior_point, expected_radius, o, rng, res.triangles);
+      radius_from_triangles(points, u, prior_point, expected_radius, o, rng, res.triangles, mr);
   if (res.triangles == 0 || !(r > 0.0)) {
     res.status = RsfStatus::kNoTriangles;
     return res;
   }
   // Axis points: every wall normal crosses the axis at distance r from its point.
-  std::vector<Eigen::Vector3d> axis_pts(points.size());
+  std::pmr::vector<Eigen::Vector3d> axis_pts(points.size(), mr);
   for (std::size_t i = 0; i < points.size(); ++i) axis_pts[i] = points[i] + r * normals[i];
   if (o.cluster_axis_points) {
     // Mean shift in the plane normal to u, seeded on the prior axis: keeps only the axis points
     // of this bore (a neighbour's land on its own axis, an outer wall's 2 r away).
     const double window = std::max(o.cluster_window_factor * r, 0.2);
     Eigen::Vector3d centre = prior_point;
-    std::vector<Eigen::Vector3d> kept;
+    std::pmr::vector<Eigen::Vector3d> kept(mr);
     kept.reserve(axis_pts.size());
     for (int it = 0; it < 10; ++it) {
       kept.clear();

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <memory_resource>
 #include <span>
 
 namespace rangefit {
@@ -58,10 +59,12 @@ struct RsfResult {
 
 // points/normals: the segmented wall (normals unit, toward the axis). prior_axis orients the
 // hemisphere of the cross products and the result; prior_point seeds the axis-point clustering
-// (a point on or near the expected axis); expected_radius scales the area constraint.
+// (a point on or near the expected axis); expected_radius scales the area constraint. The
+// fit's buffers come from `mr`.
 RsfResult fit_cylinder_rsf(std::span<const Eigen::Vector3d> points,
                            std::span<const Eigen::Vector3d> normals,
                            const Eigen::Vector3d& prior_axis, const Eigen::Vector3d& prior_point,
-                           double expected_radius, const RsfOptions& options, std::uint64_t seed);
+                           double expected_radius, const RsfOptions& options, std::uint64_t seed,
+                           std::pmr::memory_resource* mr = std::pmr::get_default_resource());
 
 }  // namespace rangefit

@@ -56,8 +56,9 @@ namespace {
 // Both binned variants: the grid over every point, or over points[neighbours[i]] only.
 NormalEstimate binned(std::span<const Eigen::Vector3d> points,
                       const std::span<const std::uint32_t>* neighbours,
-                      std::span<const std::uint32_t> queries, const NormalOptions& options) {
-  NormalEstimate out;
+                      std::span<const std::uint32_t> queries, const NormalOptions& options,
+                      std::pmr::memory_resource* mr) {
+  NormalEstimate out{std::pmr::vector<Eigen::Vector3d>(mr)};
   out.normals.assign(queries.size(), Eigen::Vector3d::Zero());
   if (queries.empty() || !(options.radius > 0.0)) return out;
   // Bin along the view (the sensor's position seen from the points' centre when given).
@@ -79,8 +80,8 @@ NormalEstimate binned(std::span<const Eigen::Vector3d> points,
   }
   if (!(dir.norm() > 1e-12) || !dir.allFinite()) dir = Eigen::Vector3d::UnitZ();
   const double cell = kCellShare * options.radius;
-  const NeighbourGrid grid =
-      neighbours ? NeighbourGrid(points, *neighbours, dir, cell) : NeighbourGrid(points, dir, cell);
+  const NeighbourGrid grid = neighbours ? NeighbourGrid(points, *neighbours, dir, cell, mr)
+                                        : NeighbourGrid(points, dir, cell, mr);
   for (std::size_t i = 0; i < queries.size(); ++i) {
     if (queries[i] >= points.size()) continue;
     const Eigen::Vector3d& p = points[queries[i]];
@@ -94,15 +95,17 @@ NormalEstimate binned(std::span<const Eigen::Vector3d> points,
 
 NormalEstimate estimate_normals_binned(std::span<const Eigen::Vector3d> points,
                                        std::span<const std::uint32_t> queries,
-                                       const NormalOptions& options) {
-  return binned(points, nullptr, queries, options);
+                                       const NormalOptions& options,
+                                       std::pmr::memory_resource* mr) {
+  return binned(points, nullptr, queries, options, mr);
 }
 
 NormalEstimate estimate_normals_binned(std::span<const Eigen::Vector3d> points,
                                        std::span<const std::uint32_t> neighbours,
                                        std::span<const std::uint32_t> queries,
-                                       const NormalOptions& options) {
-  return binned(points, &neighbours, queries, options);
+                                       const NormalOptions& options,
+                                       std::pmr::memory_resource* mr) {
+  return binned(points, &neighbours, queries, options, mr);
 }
 
 NormalEstimate estimate_normals_organised(const PointCloud& cloud,
@@ -153,10 +156,14 @@ NormalEstimate estimate_normals_organised(const PointCloud& cloud,
   return out;
 }
 
-std::vector<std::uint32_t> subsample_evenly(std::span<const std::uint32_t> indices, double keep) {
-  if (!(keep > 0.0)) return {};
-  if (keep >= 1.0) return {indices.begin(), indices.end()};
-  std::vector<std::uint32_t> out;
+std::pmr::vector<std::uint32_t> subsample_evenly(std::span<const std::uint32_t> indices, double keep,
+                                                 std::pmr::memory_resource* mr) {
+  std::pmr::vector<std::uint32_t> out(mr);
+  if (!(keep > 0.0)) return out;
+  if (keep >= 1.0) {
+    out.assign(indices.begin(), indices.end());
+    return out;
+  }
   out.reserve(static_cast<std::size_t>(static_cast<double>(indices.size()) * keep) + 1);
   double acc = 0.0;
   for (const std::uint32_t i : indices) {

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <memory_resource>
 #include <optional>
 #include <span>
 #include <vector>
@@ -27,7 +28,7 @@ struct NormalOptions {
 // One entry per query: a unit normal, or zero when the point was rejected (too few neighbours,
 // degenerate patch, or the eq. 4.4 centroid test failed).
 struct NormalEstimate {
-  std::vector<Eigen::Vector3d> normals;
+  std::pmr::vector<Eigen::Vector3d> normals;
   std::size_t kept = 0;
 };
 
@@ -41,17 +42,19 @@ NormalEstimate estimate_normals(std::span<const Eigen::Vector3d> points, const K
 // is nearly a height field along its view, so a query's ball covers a few short rows of cells,
 // each stored contiguously and scanned with SIMD-friendly loops (single-precision offsets of
 // ~1e-6 mm, far below any sensor noise). Non-finite points are ignored; a non-finite query gets
-// no normal.
+// no normal. Every buffer, the result's included, comes from `mr`.
 NormalEstimate estimate_normals_binned(std::span<const Eigen::Vector3d> points,
                                        std::span<const std::uint32_t> queries,
-                                       const NormalOptions& options);
+                                       const NormalOptions& options,
+                                       std::pmr::memory_resource* mr = std::pmr::get_default_resource());
 
 // The same with neighbours only among points[neighbours[i]] (a region of a larger cloud) and
 // queries indexing `points` too.
 NormalEstimate estimate_normals_binned(std::span<const Eigen::Vector3d> points,
                                        std::span<const std::uint32_t> neighbours,
                                        std::span<const std::uint32_t> queries,
-                                       const NormalOptions& options);
+                                       const NormalOptions& options,
+                                       std::pmr::memory_resource* mr = std::pmr::get_default_resource());
 
 // Organised: neighbours come from a window of the scan grid around each query, sized from the
 // grid's median cell spacing, then filtered by 3-D distance. Falls back to nothing (all zero)
@@ -61,6 +64,7 @@ NormalEstimate estimate_normals_organised(const PointCloud& cloud,
                                           const NormalOptions& options);
 
 // Every k-th of `indices` so that about `keep` (0..1] of them remain (thesis keeps 20 %).
-std::vector<std::uint32_t> subsample_evenly(std::span<const std::uint32_t> indices, double keep);
+std::pmr::vector<std::uint32_t> subsample_evenly(std::span<const std::uint32_t> indices, double keep,
+                                                 std::pmr::memory_resource* mr = std::pmr::get_default_resource());
 
 }  // namespace rangefit

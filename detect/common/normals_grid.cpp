@@ -102,13 +102,15 @@ void ball4(const NeighbourGrid::View& g, const double* q, double r, double* out)
 int NeighbourGrid::lanes() { return rangefit::lanes::cpu_has_avx2() ? 8 : 4; }
 
 NeighbourGrid::NeighbourGrid(std::span<const Eigen::Vector3d> points, const Eigen::Vector3d& dir,
-                             double cell) {
+                             double cell, std::pmr::memory_resource* mr)
+    : start_(mr), x_(mr), y_(mr), z_(mr) {
   build(points, nullptr, points.size(), dir, cell);
 }
 
 NeighbourGrid::NeighbourGrid(std::span<const Eigen::Vector3d> points,
                              std::span<const std::uint32_t> subset, const Eigen::Vector3d& dir,
-                             double cell) {
+                             double cell, std::pmr::memory_resource* mr)
+    : start_(mr), x_(mr), y_(mr), z_(mr) {
   build(points, subset.data(), subset.size(), dir, cell);
 }
 
@@ -149,7 +151,7 @@ void NeighbourGrid::build(std::span<const Eigen::Vector3d> points, const std::ui
   lo_v_ = lo.y() - centre.y();
   // Counting sort by cell, rows of u-ordered cells one after another.
   constexpr std::uint32_t kNone = 0xffffffffu;
-  std::vector<std::uint32_t> cell_of(n, kNone);
+  std::pmr::vector<std::uint32_t> cell_of(n, kNone, start_.get_allocator());
   start_.assign(static_cast<std::size_t>(nu_) * static_cast<std::size_t>(nv_) + 1, 0);
   const auto local = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d { return bt * p - centre; };
   for (std::size_t i = 0; i < n; ++i) {
@@ -161,7 +163,7 @@ void NeighbourGrid::build(std::span<const Eigen::Vector3d> points, const std::ui
     ++start_[cell_of[i] + 1];
   }
   for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
-  std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+  std::pmr::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1, start_.get_allocator());
   x_.assign(finite + 16, 1e30f);  // padding lanes are masked off, never counted
   y_.assign(finite + 16, 1e30f);
   z_.assign(finite + 16, 1e30f);

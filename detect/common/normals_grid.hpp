@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <memory_resource>
 #include <span>
 #include <vector>
 
@@ -19,11 +20,13 @@ namespace rangefit {
 class NeighbourGrid {
  public:
   // `cell`: the grid cell size, mm (grown for sparse clouds so cells stay ~ points / 4).
-  // Non-finite points are left out.
-  NeighbourGrid(std::span<const Eigen::Vector3d> points, const Eigen::Vector3d& dir, double cell);
+  // Non-finite points are left out. The grid's buffers come from `mr`.
+  NeighbourGrid(std::span<const Eigen::Vector3d> points, const Eigen::Vector3d& dir, double cell,
+                std::pmr::memory_resource* mr = std::pmr::get_default_resource());
   // Only points[subset[i]]: a region of a larger cloud, without copying it first.
   NeighbourGrid(std::span<const Eigen::Vector3d> points, std::span<const std::uint32_t> subset,
-                const Eigen::Vector3d& dir, double cell);
+                const Eigen::Vector3d& dir, double cell,
+                std::pmr::memory_resource* mr = std::pmr::get_default_resource());
 
   // Count, sum and sum of outer products (world frame) of the offsets x - p of every point x
   // with |x - p| <= radius. Empty moments for a non-finite p or an empty grid.
@@ -49,8 +52,8 @@ class NeighbourGrid {
   double cell_ = 1.0;
   double lo_u_ = 0.0, lo_v_ = 0.0;  // grid corner in the centred (u, v) frame
   int nu_ = 0, nv_ = 0;
-  std::vector<std::uint32_t> start_;
-  std::vector<float> x_, y_, z_;  // padded by 16 far-away points for the tail loads
+  std::pmr::vector<std::uint32_t> start_;
+  std::pmr::vector<float> x_, y_, z_;  // padded by 16 far-away points for the tail loads
 };
 
 }  // namespace rangefit

@@ -11,8 +11,8 @@ namespace {
 // cubes across, a hash map would cost more than the pass; one bit per cube, so clearing it
 // (up to 160^3 cubes) costs a memset of 0.5 MB, not 4 MB.
 std::size_t occupy(std::span<const Eigen::Vector3d> points, std::span<const std::uint32_t> indices,
-                   const Eigen::Vector3d& lo, double cell, int n, std::vector<std::uint64_t>& grid,
-                   std::vector<std::uint32_t>* out, std::size_t stride = 1) {
+                   const Eigen::Vector3d& lo, double cell, int n, std::pmr::vector<std::uint64_t>& grid,
+                   std::pmr::vector<std::uint32_t>* out, std::size_t stride = 1) {
   const std::size_t cubes = static_cast<std::size_t>(n) * n * n;
   grid.assign((cubes + 63) / 64, 0);
   const double inv = 1.0 / cell;
@@ -37,14 +37,14 @@ std::size_t occupy(std::span<const Eigen::Vector3d> points, std::span<const std:
 
 SpreadSubset spread_subset(std::span<const Eigen::Vector3d> points,
                            std::span<const std::uint32_t> indices, const Eigen::Vector3d& centre,
-                           double half, std::size_t target) {
-  SpreadSubset s;
+                           double half, std::size_t target, std::pmr::memory_resource* mr) {
+  SpreadSubset s{std::pmr::vector<std::uint32_t>(mr)};
   if (indices.size() <= target || !(half > 0.0) || target == 0) {
     s.indices.assign(indices.begin(), indices.end());
     return s;
   }
   const Eigen::Vector3d lo = centre - Eigen::Vector3d::Constant(half);
-  std::vector<std::uint64_t> grid;
+  std::pmr::vector<std::uint64_t> grid(mr);
   // Probe at 32 cubes across: the occupied count measures the surface area, from which the cube
   // size for `target` cubes follows (occupied cubes scale with area / cell^2).
   constexpr int kProbe = 32;

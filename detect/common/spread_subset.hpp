@@ -6,21 +6,23 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <memory_resource>
 #include <span>
 #include <vector>
 
 namespace rangefit {
 
 struct SpreadSubset {
-  std::vector<std::uint32_t> indices;  // kept entries of the input indices (all when few)
+  std::pmr::vector<std::uint32_t> indices;  // kept entries of the input indices (all when few)
   double cell = 0.0;                   // voxel size, mm; 0: every index kept
   double area = 0.0;                   // surface area the points cover (occupied cells), mm^2
 };
 
 // indices: into points, all within `half` of `centre` in every coordinate (others are dropped).
-// Fewer than or as many as `target` indices: all are kept.
+// Fewer than or as many as `target` indices: all are kept. Every buffer comes from `mr`.
 SpreadSubset spread_subset(std::span<const Eigen::Vector3d> points,
                            std::span<const std::uint32_t> indices, const Eigen::Vector3d& centre,
-                           double half, std::size_t target);
+                           double half, std::size_t target,
+                           std::pmr::memory_resource* mr = std::pmr::get_default_resource());
 
 }  // namespace rangefit

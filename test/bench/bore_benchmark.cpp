@@ -249,9 +249,12 @@ const std::vector<CssFixture>& css_fixtures() {
 // before the region budget (every region point read, one-step refinement, 60-point normal
 // patches, 0.5 mm plane margin: the same results as before), and session 1's
 // (BoreOptions::cost_bounded = false).
-enum class CssMode { kDefault, kFullRegion, kSession1 };
+// kWorkspace: the default pipeline with a workspace kept between calls (as rangefitd keeps one),
+// allocating nothing after the first call.
+enum class CssMode { kDefault, kFullRegion, kSession1, kWorkspace };
 
-BoreResult css_run(const sim::SyntheticBoreScan& scan, const BorePrior& prior, CssMode mode) {
+BoreResult css_run(const sim::SyntheticBoreScan& scan, const BorePrior& prior, CssMode mode,
+                   BoreWorkspace* workspace = nullptr) {
   BoreOptions opt;
   opt.view_dir = scan.truth.view_dir;
   opt.cost_bounded = mode != CssMode::kSession1;
@@ -261,17 +264,20 @@ BoreResult css_run(const sim::SyntheticBoreScan& scan, const BorePrior& prior, C
     opt.normal_neighbours = 60.0;
     opt.refine_plane_margin = 0.5;
   }
+  if (workspace) return detect_bore(scan.cloud, prior, opt, *workspace);
   return detect_bore(scan.cloud, prior, opt);
 }
 
 void BM_Css(benchmark::State& state) {
   const CssFixture& f = css_fixtures()[static_cast<std::size_t>(state.range(0))];
   const auto mode = static_cast<CssMode>(state.range(1));
-  const char* labels[] = {"", " full region", " session 1"};
+  const char* labels[] = {"", " full region", " session 1", " workspace"};
   state.SetLabel(f.name + labels[state.range(1)]);
   BoreResult r;
+  BoreWorkspace ws;
+  BoreWorkspace* kept = mode == CssMode::kWorkspace ? &ws : nullptr;
   for (auto _ : state) {
-    r = css_run(f.scan, f.prior, mode);
+    r = css_run(f.scan, f.prior, mode, kept);
     benchmark::DoNotOptimize(r);
   }
   const auto& t = f.scan.truth;
@@ -288,7 +294,7 @@ void BM_Css(benchmark::State& state) {
   state.counters["refine_ms"] = r.time_ms.refine;
 }
 BENCHMARK(BM_Css)
-    ->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1, 2}})
+    ->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1, 2, 3}})
     ->Unit(benchmark::kMillisecond)
     ->ComputeStatistics("max", [](const std::vector<double>& v) {
       return *std::max_element(v.begin(), v.end());
@@ -337,21 +343,24 @@ BoreTimes median_stages(std::vector<BoreTimes> v) {
 void css_table(int runs) {
   std::printf(
       "\nCSS density, whole pipeline, %d runs each (thread CPU ms; 'full': every region\n"
-      "point, the pipeline before the region budget; 's1': session 1's)\n",
+      "point, the pipeline before the region budget; 's1': session 1's; 'ws': the default with\n"
+      "a workspace kept between calls, no allocation after the first)\n",
       runs);
-  std::printf("%-9s %6s %6s %7s %7s %8s %8s %7s %7s %8s %7s %7s\n", "case", "points", "roi",
-              "median", "worst", "full med", "s1 med", "x full", "x s1", "x s1 wst", "err mm",
-              "err deg");
+  std::printf("%-9s %6s %6s %7s %7s %8s %8s %7s %7s %7s %8s %7s %7s\n", "case", "points", "roi",
+              "median", "worst", "full med", "s1 med", "ws med", "x full", "x s1", "x s1 wst",
+              "err mm", "err deg");
   for (const auto& f : css_fixtures()) {
-    double ms[3][2];
+    double ms[4][2];
     BoreResult r;
     std::vector<BoreTimes> stages;
-    for (int mode = 0; mode < 3; ++mode) {
+    BoreWorkspace ws;
+    for (int mode = 0; mode < 4; ++mode) {
       std::vector<double> t;
       const int n = mode == 2 ? std::max(3, runs / 4) : runs;
       for (int i = 0; i < n; ++i) {
         const double t0 = cpu_ms();
-        const BoreResult x = css_run(f.scan, f.prior, static_cast<CssMode>(mode));
+        const BoreResult x =
+            css_run(f.scan, f.prior, static_cast<CssMode>(mode), mode == 3 ? &ws : nullptr);
         t.push_back(cpu_ms() - t0);
         if (mode == 0) r = x, stages.push_back(x.time_ms);
       }
@@ -359,9 +368,9 @@ void css_table(int runs) {
       ms[mode][0] = t[t.size() / 2];
       ms[mode][1] = t.back();
     }
-    std::printf("%-9s %6zu %6zu %7.3f %7.3f %8.3f %8.2f %7.1f %7.1f %8.1f %7.4f %7.4f\n",
+    std::printf("%-9s %6zu %6zu %7.3f %7.3f %8.3f %8.2f %7.3f %7.1f %7.1f %8.1f %7.4f %7.4f\n",
                 f.name.c_str(), r.counts.input, r.counts.roi, ms[0][0], ms[0][1], ms[1][0],
-                ms[2][0], ms[1][0] / ms[0][0], ms[2][0] / ms[0][0], ms[2][1] / ms[0][1],
+                ms[2][0], ms[3][0], ms[1][0] / ms[0][0], ms[2][0] / ms[0][0], ms[2][1] / ms[0][1],
                 (r.entrance - f.scan.truth.entrance).norm(),
                 std::acos(std::min(1.0, std::abs(r.axis.dot(f.scan.truth.axis)))) * 180.0 /
                     std::numbers::pi);

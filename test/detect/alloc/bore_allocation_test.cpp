@@ -1,0 +1,85 @@
+// Allocations of the bore pipeline's hot path: with a workspace kept between calls, a call on a
+// scan like the one before allocates nothing (its buffers keep their capacity), so a cyclic
+// caller sees no heap traffic and no allocator latency. Counted by replacing operator new in
+// this test program only.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <new>
+
+#include "detect/bore/bore_detector.hpp"
+#include "test/bench/bore_bench_scan.hpp"
+
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+
+namespace {
+std::atomic<bool> g_count{false};
+std::atomic<std::size_t> g_allocations{0};
+}  // namespace
+
+void* operator new(std::size_t size) {
+  if (g_count.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+// The aligned forms too: std::pmr's heap resource allocates with them.
+void* operator new(std::size_t size, std::align_val_t align) {
+  if (g_count.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
+  const auto a = static_cast<std::size_t>(align);
+  if (void* p = std::aligned_alloc(a, (std::max<std::size_t>(size, 1) + a - 1) / a * a)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+
+namespace rangefit {
+namespace {
+
+template <class F>
+std::size_t allocations(F&& f) {
+  g_allocations = 0;
+  g_count = true;
+  f();
+  g_count = false;
+  return g_allocations.load();
+}
+
+// The CSS-density cases of the bore benchmark (Ø4 blind to a Ø50 bore with a ~60,000-point
+// region): the first call sizes the workspace, the next calls on the same scan and on another
+// seed of it (other noise, outliers and ghosts) allocate nothing and give the same answer as a
+// call without a workspace.
+TEST(BoreAllocations, NoneOnceTheWorkspaceHoldsALikeScan) {
+  for (const auto& c : bench::css_bore_cases()) {
+    const auto scan = sim::make_synthetic_bore(c.scan);
+    sim::SyntheticBoreOptions other_seed = c.scan;
+    other_seed.seed += 1000;
+    const auto like = sim::make_synthetic_bore(other_seed);
+    BoreOptions o;
+    o.view_dir = scan.truth.view_dir;
+    const BorePrior prior = bench::css_prior(scan.truth);
+    BoreWorkspace ws;
+    BoreResult first, again, next;
+    const std::size_t a_first = allocations([&] { first = detect_bore(scan.cloud, prior, o, ws); });
+    const std::size_t a_again = allocations([&] { again = detect_bore(scan.cloud, prior, o, ws); });
+    const std::size_t a_next = allocations([&] { next = detect_bore(like.cloud, prior, o, ws); });
+    const BoreResult plain = detect_bore(scan.cloud, prior, o);
+    std::printf("%-9s allocations: first call %zu, same scan %zu, other seed %zu; workspace %zu kB\n",
+                c.name, a_first, a_again, a_next, ws.capacity() / 1024);
+    ASSERT_TRUE(first.found) << c.name << ": " << to_string(first.reason);
+    ASSERT_TRUE(next.found) << c.name << ": " << to_string(next.reason);
+    EXPECT_EQ(a_again, 0u) << c.name;
+    EXPECT_EQ(a_next, 0u) << c.name;
+    EXPECT_EQ(again.entrance, first.entrance) << c.name;
+    EXPECT_EQ(plain.entrance, first.entrance) << c.name;
+    EXPECT_EQ(plain.axis, first.axis) << c.name;
+    EXPECT_EQ(plain.radius, first.radius) << c.name;
+  }
+}
+
+}  // namespace
+}  // namespace rangefit
