@@ -12,6 +12,7 @@
 
 #include "detect/bore/bore_detector.hpp"
 #include "test/bench/bore_bench_scan.hpp"
+#include "test/detect/bore_test_cases.hpp"
 
 #pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 
@@ -78,6 +79,32 @@ TEST(BoreAllocations, NoneOnceTheWorkspaceHoldsALikeScan) {
     EXPECT_EQ(plain.entrance, first.entrance) << c.name;
     EXPECT_EQ(plain.axis, first.axis) << c.name;
     EXPECT_EQ(plain.radius, first.radius) << c.name;
+  }
+}
+
+// The same for the cone and elliptic bores (a countersink, a pure cone, a taper, an ellipse at
+// the CSS's density), whose model fit replaces the cylinder's.
+TEST(BoreAllocations, NoneForConesAndEllipsesOnceTheWorkspaceHoldsALikeScan) {
+  for (const test::ShapeKind kind : {test::ShapeKind::kCountersink, test::ShapeKind::kCone,
+                                     test::ShapeKind::kTaper, test::ShapeKind::kEllipse}) {
+    const auto scan = sim::make_synthetic_bore(test::shape_scan_options(kind, 1));
+    const auto like = sim::make_synthetic_bore(test::shape_scan_options(kind, 2));
+    const BorePrior prior = test::shape_prior(scan.truth, 1);
+    BoreOptions o;
+    o.view_dir = scan.truth.view_dir;
+    BoreWorkspace ws;
+    BoreResult first, next;
+    const std::size_t a_first = allocations([&] { first = detect_bore(scan.cloud, prior, o, ws); });
+    const std::size_t a_next = allocations([&] { next = detect_bore(like.cloud, prior, o, ws); });
+    const BoreResult plain = detect_bore(scan.cloud, prior, o);
+    const int k = static_cast<int>(kind);
+    std::printf("shape %d allocations: first call %zu, other seed %zu\n", k, a_first, a_next);
+    ASSERT_TRUE(first.found) << k << ": " << to_string(first.reason);
+    ASSERT_TRUE(first.shape.has_value()) << k;
+    EXPECT_EQ(a_next, 0u) << k;
+    EXPECT_EQ(plain.entrance, first.entrance) << k;
+    EXPECT_EQ(plain.shape->half_angle, first.shape->half_angle) << k;
+    EXPECT_EQ(plain.shape->radius2, first.shape->radius2) << k;
   }
 }
 
