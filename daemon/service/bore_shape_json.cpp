@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 namespace rangefit::daemon {
 namespace {
@@ -15,21 +16,23 @@ constexpr double kMaxHalfAngle = 80.0 * std::numbers::pi / 180.0;
 
 nlohmann::json bore_shape_json(const BoreShape& s) {
   nlohmann::json j;
-  nlohmann::json sigma = {
-      {"radius", s.sigma_radius}, {"entrance", s.sigma_entrance}, {"axis", s.sigma_axis}};
+  // The standard errors' keys carry their units, as a cylinder's do (bore_fit_json.hpp).
+  nlohmann::json sigma = {{"radius_mm", s.sigma_radius},
+                          {"entrance_mm", s.sigma_entrance},
+                          {"axis_rad", s.sigma_axis}};
   j["model"] = s.cone ? "cone" : "ellipse";
   if (s.cone) {
     j["half_angle"] = s.half_angle;
-    sigma["half_angle"] = s.sigma_half_angle;
+    sigma["half_angle_rad"] = s.sigma_half_angle;
     if (s.cylinder_radius > 0.0) {
       j["cylinder_radius"] = s.cylinder_radius;
-      sigma["cylinder_radius"] = s.sigma_cylinder_radius;
+      sigma["cylinder_radius_mm"] = s.sigma_cylinder_radius;
     }
   } else {
     j["radius2"] = s.radius2;
     j["major_axis"] = vec(s.major_axis);
-    sigma["radius2"] = s.sigma_radius2;
-    sigma["major_axis"] = s.sigma_major_axis;
+    sigma["radius2_mm"] = s.sigma_radius2;
+    sigma["major_axis_rad"] = s.sigma_major_axis;
   }
   j["sigma"] = sigma;
   j["rms"] = s.rms;
@@ -65,13 +68,17 @@ std::optional<BoreShape> bore_shape_from_json(const nlohmann::json& j) {
     s.major_axis.normalize();
   }
   const nlohmann::json sigma = j.value("sigma", nlohmann::json::object());
-  s.sigma_radius = sigma.value("radius", 0.0);
-  s.sigma_entrance = sigma.value("entrance", 0.0);
-  s.sigma_axis = sigma.value("axis", 0.0);
-  s.sigma_half_angle = sigma.value("half_angle", 0.0);
-  s.sigma_cylinder_radius = sigma.value("cylinder_radius", 0.0);
-  s.sigma_radius2 = sigma.value("radius2", 0.0);
-  s.sigma_major_axis = sigma.value("major_axis", 0.0);
+  // A result written before the keys carried units ("radius", ...) reads the same.
+  const auto error = [&](const char* key, const char* unit) {
+    return sigma.value(std::string(key) + "_" + unit, sigma.value(key, 0.0));
+  };
+  s.sigma_radius = error("radius", "mm");
+  s.sigma_entrance = error("entrance", "mm");
+  s.sigma_axis = error("axis", "rad");
+  s.sigma_half_angle = error("half_angle", "rad");
+  s.sigma_cylinder_radius = error("cylinder_radius", "mm");
+  s.sigma_radius2 = error("radius2", "mm");
+  s.sigma_major_axis = error("major_axis", "rad");
   s.rms = j.value("rms", 0.0);
   s.seeded_by_rsf = j.value("seeded_by_rsf", false);
   return s;

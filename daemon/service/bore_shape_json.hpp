@@ -1,8 +1,9 @@
 #pragma once
 // A cone's or elliptic bore's fitted shape as JSON, one form for `rangefit bore --json` and the
 // service's result details: half_angle (rad) and cylinder_radius (mm) of a cone; radius2 (mm)
-// and major_axis of an ellipse; their standard errors under "sigma"; the inliers' rms (mm); and
-// read back for a picture of the result.
+// and major_axis of an ellipse; their standard errors under "sigma", each key with its unit
+// (radius_mm, entrance_mm, axis_rad, half_angle_rad, cylinder_radius_mm, radius2_mm,
+// major_axis_rad); the inliers' rms (mm); and read back for a picture of the result.
 
 #include <nlohmann/json.hpp>
 #include <optional>

@@ -146,7 +146,7 @@ TEST(BoreShapeRequest, CliFitsACountersinkAndPrintsItsShapeAsJson) {
   EXPECT_EQ(j.at("model"), "cone");
   EXPECT_NEAR(j.at("half_angle").get<double>(), std::numbers::pi / 4, 0.2 * std::numbers::pi / 180);
   EXPECT_NEAR(j.at("cylinder_radius").get<double>(), 3.0, 0.05);
-  EXPECT_GT(j.at("sigma").at("half_angle").get<double>(), 0.0);
+  EXPECT_GT(j.at("sigma").at("half_angle_rad").get<double>(), 0.0);
   const CliRun no_axis = run_cli(args + "--cad-radius2 5");
   EXPECT_EQ(no_axis.exit_code, 1) << no_axis.output;
   EXPECT_NE(no_axis.output.find("--cad-major-axis"), std::string::npos);

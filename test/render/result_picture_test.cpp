@@ -68,6 +68,36 @@ TEST(ResultPicture, ASpooledBoreResultIsDrawnOnTheHoleEdge) {
   render::release_font_caches();
 }
 
+// The shape's standard errors come back as written, keys with their units, and a result written
+// before the keys carried units ("radius", "half_angle", ...) reads the same.
+TEST(ResultPicture, ShapeStandardErrorsReadBackUnderTheirUnitsAndTheOldKeys) {
+  BoreShape shape;
+  shape.cone = true;
+  shape.half_angle = 0.7;
+  shape.cylinder_radius = 3.0;
+  shape.sigma_radius = 0.01;
+  shape.sigma_entrance = 0.02;
+  shape.sigma_axis = 0.003;
+  shape.sigma_half_angle = 0.004;
+  shape.sigma_cylinder_radius = 0.05;
+  nlohmann::json j = bore_shape_json(shape);
+  EXPECT_EQ(j.at("sigma").at("half_angle_rad"), 0.004);
+  EXPECT_EQ(j.at("sigma").at("cylinder_radius_mm"), 0.05);
+  const auto check = [&](const nlohmann::json& written) {
+    const std::optional<BoreShape> back = bore_shape_from_json(written);
+    ASSERT_TRUE(back.has_value());
+    EXPECT_EQ(back->sigma_radius, 0.01);
+    EXPECT_EQ(back->sigma_entrance, 0.02);
+    EXPECT_EQ(back->sigma_axis, 0.003);
+    EXPECT_EQ(back->sigma_half_angle, 0.004);
+    EXPECT_EQ(back->sigma_cylinder_radius, 0.05);
+  };
+  check(j);
+  j["sigma"] = {{"radius", 0.01}, {"entrance", 0.02}, {"axis", 0.003}, {"half_angle", 0.004},
+                {"cylinder_radius", 0.05}};
+  check(j);
+}
+
 // A countersink's result (details.shape as the service writes it, bore_shape_json): drawn as
 // its cone into its cylinder, seen along the axis the cylinder's ring at 3 mm = 30 px, where a
 // cylinder of the entrance radius (6 mm) draws nothing; a shape no fit gives is refused.
