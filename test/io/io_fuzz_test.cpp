@@ -4,9 +4,6 @@
 
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
 #include <random>
 #include <string>
 #include <vector>
@@ -17,27 +14,7 @@
 #include "io/stl.hpp"
 #include "test/io/cloud_fixtures.hpp"
 #include "test/io/temp_dir.hpp"
-
-// The replacement operator new below is malloc-based, so its operator delete frees; GCC's
-// -Wmismatched-new-delete cannot see that the two are a pair once inlined.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-
-namespace {
-// Largest single allocation while `g_watch` is set: proves hostile counts are checked against the
-// file size before anything is reserved.
-std::atomic<bool> g_watch{false};
-std::atomic<std::size_t> g_largest{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  if (g_watch.load(std::memory_order_relaxed) && size > g_largest.load(std::memory_order_relaxed)) {
-    g_largest.store(size, std::memory_order_relaxed);
-  }
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#include "test/support/allocation_watch/allocation_watch.hpp"
 
 namespace rangefit::io {
 namespace {
@@ -144,8 +121,9 @@ TEST(IoFuzz, MutatedFilesOnlyLoadOrThrowIoError) {
       // Unlink first: rewriting a truncated file makes ext4 flush it to disk every time.
       std::filesystem::remove(file);
       TempDir::write_to(file, bytes);
-      g_largest = 0;
-      g_watch = true;
+      // The largest single allocation while reading: proves hostile counts are checked against
+      // the file size before anything is reserved.
+      rangefit::test::start_watching_allocations();
       try {
         if (file.extension() == ".stl") {
           read_stl(file);
@@ -159,9 +137,9 @@ TEST(IoFuzz, MutatedFilesOnlyLoadOrThrowIoError) {
       } catch (const std::exception& e) {
         ADD_FAILURE() << sample.name << " variant " << v << ": " << e.what();
       }
-      g_watch = false;
+      const rangefit::test::AllocationStats heap = rangefit::test::stop_watching_allocations();
       // Whole file (once, plus copies in flight), points as doubles and grids: a bounded multiple.
-      EXPECT_LE(g_largest.load(), 64 * bytes.size() + (8u << 20))
+      EXPECT_LE(heap.largest, 64 * bytes.size() + (8u << 20))
           << sample.name << " variant " << v;
     }
   }

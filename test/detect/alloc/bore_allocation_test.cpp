@@ -1,53 +1,23 @@
 // Allocations of the bore pipeline's hot path: with a workspace kept between calls, a call on a
 // scan like the one before allocates nothing (its buffers keep their capacity), so a cyclic
-// caller sees no heap traffic and no allocator latency. Counted by replacing operator new in
-// this test program only.
+// caller sees no heap traffic and no allocator latency. Counted by test/support's
+// allocation_watch (operator new replaced in this test program only).
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <atomic>
 #include <cstdio>
-#include <cstdlib>
-#include <new>
+#include <utility>
 
 #include "detect/bore/bore_detector.hpp"
 #include "test/bench/bore_bench_scan.hpp"
 #include "test/detect/bore_test_cases.hpp"
-
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-
-namespace {
-std::atomic<bool> g_count{false};
-std::atomic<std::size_t> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  if (g_count.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-// The aligned forms too: std::pmr's heap resource allocates with them.
-void* operator new(std::size_t size, std::align_val_t align) {
-  if (g_count.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
-  const auto a = static_cast<std::size_t>(align);
-  if (void* p = std::aligned_alloc(a, (std::max<std::size_t>(size, 1) + a - 1) / a * a)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+#include "test/support/allocation_watch/allocation_watch.hpp"
 
 namespace rangefit {
 namespace {
 
 template <class F>
 std::size_t allocations(F&& f) {
-  g_allocations = 0;
-  g_count = true;
-  f();
-  g_count = false;
-  return g_allocations.load();
+  return test::allocations_of(std::forward<F>(f)).count;
 }
 
 // The CSS-density cases of the bore benchmark (Ø4 blind to a Ø50 bore with a ~60,000-point
