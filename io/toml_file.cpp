@@ -64,6 +64,14 @@ class PreScan {
         line_ = line;
         fail("not valid UTF-8 (byte " + std::to_string(i) + ")");
       }
+      // TOML allows no control character but tab and line ends anywhere, comments included
+      // (escaped in strings). toml++ 3.3 reads on past a NUL in a bare value, into a comment,
+      // and a U+FD9B there reached TOML_UNREACHABLE (found by test/fuzz/fusion_config_fuzz).
+      const auto c = static_cast<unsigned char>(text_[i]);
+      if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7f) {
+        line_ = line;
+        fail("control character " + std::to_string(c) + " (byte " + std::to_string(i) + ")");
+      }
       if (text_[i] == '\n') ++line;
       i += n;
     }
