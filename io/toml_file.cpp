@@ -46,6 +46,7 @@ class PreScan {
   std::optional<TomlTextProblem> run() {
     try {
       check_utf8();
+      check_spaced_dates();
       scan();
     } catch (const TomlTextProblem& p) {
       return p;
@@ -74,6 +75,32 @@ class PreScan {
       }
       if (text_[i] == '\n') ++line;
       i += n;
+    }
+  }
+
+  // toml++ 3.3 reads a value like 1979-05-27 followed by a space and a digit as a date-time
+  // with a space for the T: it takes the digit, then the next character whatever it is (a line
+  // end included), then reads on to the next whitespace testing each character for it, and its
+  // whitespace table reaches TOML_UNREACHABLE for non-ASCII code points there (found by
+  // test/fuzz/object_model_fuzz). None may stand there.
+  void check_spaced_dates() {
+    std::uint32_t line = 1;
+    for (std::size_t i = 0; i < text_.size(); ++i) {
+      if (text_[i] == '\n') ++line;
+      if (i < 6 || text_[i] != ' ' || text_[i - 6] != '-' || text_[i - 3] != '-' ||
+          i + 1 >= text_.size() || text_[i + 1] < '0' || text_[i + 1] > '9') {
+        continue;
+      }
+      for (std::size_t j = i + 2; j < text_.size() && j < i + 2 + 128; ++j) {
+        const char c = text_[j];
+        if (static_cast<unsigned char>(c) >= 0x80) {
+          line_ = line;
+          fail("non-ASCII character right after a date and time separated by a space");
+        }
+        const bool terminator = c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == ']' ||
+                                c == '}' || c == ',' || c == '#';
+        if (terminator && j > i + 2) break;  // the character after the digit is always taken
+      }
     }
   }
 

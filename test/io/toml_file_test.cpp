@@ -112,6 +112,15 @@ TEST(TomlFile, RefusesControlCharactersEverywhere) {
   EXPECT_EQ(error_of("x = 1\r\ny = \"\tz\"\t# tab\n"), "");
 }
 
+// toml++ reads a date, a space and a digit as a date-time and takes the character after the
+// digit whatever it is (here a line end), then reads on: U+01F6 there reached TOML_UNREACHABLE
+// (found by test/fuzz/object_model_fuzz). An ordinary date-time is fine.
+TEST(TomlFile, RefusesNonAsciiWhereTomlPlusPlusReadsOnAfterADateAndASpace) {
+  EXPECT_EQ(error_of("2=30w0-05-05 0\n\"\xc7\xb6"),
+            "f.toml:1: non-ASCII character right after a date and time separated by a space");
+  EXPECT_EQ(error_of("d = 1979-05-27 07:32:00\nname = \"M\xc3\xbcller\"\n"), "");
+}
+
 TEST(TomlFile, ReportsTomlPlusPlusErrorsWithFileAndLine) {
   const std::string e = error_of("x = 1\ny = \n");
   EXPECT_EQ(e.rfind("f.toml:2: ", 0), 0u) << e;
