@@ -83,12 +83,26 @@ class PreScan {
   // end included), then reads on to the next whitespace testing each character for it, and its
   // whitespace table reaches TOML_UNREACHABLE for non-ASCII code points there (found by
   // test/fuzz/object_model_fuzz). None may stand there.
+  // Whether the characters before `end` read as toml++'s date: its last 10 characters, the
+  // '_' digit separators left out as toml++ leaves them out, have '-' at 4 and 7.
+  bool date_before(std::size_t end) const {
+    char last[10];
+    std::size_t n = 0;
+    for (std::size_t k = end; k > 0 && n < 10; --k) {
+      const char c = text_[k - 1];
+      if (c == '_') continue;
+      if (c == ' ' || c == '\t' || c == '\n' || c == '=') break;
+      last[9 - n++] = c;
+    }
+    return n == 10 && last[4] == '-' && last[7] == '-';
+  }
+
   void check_spaced_dates() {
     std::uint32_t line = 1;
     for (std::size_t i = 0; i < text_.size(); ++i) {
       if (text_[i] == '\n') ++line;
-      if (i < 6 || text_[i] != ' ' || text_[i - 6] != '-' || text_[i - 3] != '-' ||
-          i + 1 >= text_.size() || text_[i + 1] < '0' || text_[i + 1] > '9') {
+      if (text_[i] != ' ' || i + 1 >= text_.size() || text_[i + 1] < '0' || text_[i + 1] > '9' ||
+          !date_before(i)) {
         continue;
       }
       for (std::size_t j = i + 2; j < text_.size() && j < i + 2 + 128; ++j) {
