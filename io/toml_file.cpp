@@ -83,15 +83,16 @@ class PreScan {
   // end included), then reads on to the next whitespace testing each character for it, and its
   // whitespace table reaches TOML_UNREACHABLE for non-ASCII code points there (found by
   // test/fuzz/object_model_fuzz). None may stand there.
-  // Whether the characters before `end` read as toml++'s date: its last 10 characters, the
-  // '_' digit separators left out as toml++ leaves them out, have '-' at 4 and 7.
+  // Whether the characters before `end` read as toml++'s date: its last 10 characters up to
+  // whitespace, any character counting but the '_' digit separators toml++ leaves out, have '-'
+  // at 4 and 7 (conservative: toml++ also checks the others' traits).
   bool date_before(std::size_t end) const {
     char last[10];
     std::size_t n = 0;
     for (std::size_t k = end; k > 0 && n < 10; --k) {
       const char c = text_[k - 1];
       if (c == '_') continue;
-      if (c == ' ' || c == '\t' || c == '\n' || c == '=') break;
+      if (c == ' ' || c == '\t' || c == '\n' || c == '\r') break;  // '=' too counts for toml++
       last[9 - n++] = c;
     }
     return n == 10 && last[4] == '-' && last[7] == '-';

@@ -121,6 +121,8 @@ TEST(TomlFile, RefusesNonAsciiWhereTomlPlusPlusReadsOnAfterADateAndASpace) {
   // toml++ leaves the '_' digit separators out of the 10 characters it looks at.
   EXPECT_EQ(error_of("2=30w0-0_____5-05 0\n\"\xc7\xb6"),
             "f.toml:1: non-ASCII character right after a date and time separated by a space");
+  EXPECT_EQ(error_of("2=30w__5-0_______5-0= 0\n\"s.hap\xc7\xb6"),
+            "f.toml:1: non-ASCII character right after a date and time separated by a space");
   EXPECT_EQ(error_of("d = 1979-05-27 07:32:00\nname = \"M\xc3\xbcller\"\n"), "");
 }
 
