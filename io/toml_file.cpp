@@ -33,6 +33,11 @@ std::size_t utf8_length(std::string_view text, std::size_t i) {
   return n;
 }
 
+// Where toml++ ends a bare value (a number, a date, true, or garbage).
+bool value_terminator(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == ']' || c == '}' || c == ',' || c == '#';
+}
+
 bool bare_key_char(char c) {
   return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' ||
          c == '-' || c == '+';  // '+' only so that a float exponent does not end a chain early
@@ -78,11 +83,6 @@ class PreScan {
     }
   }
 
-  // toml++ 3.3 reads a value like 1979-05-27 followed by a space and a digit as a date-time
-  // with a space for the T: it takes the digit, then the next character whatever it is (a line
-  // end included), then reads on to the next whitespace testing each character for it, and its
-  // whitespace table reaches TOML_UNREACHABLE for non-ASCII code points there (found by
-  // test/fuzz/object_model_fuzz). None may stand there.
   // Whether the characters before `end` read as toml++'s date: its last 10 characters up to
   // whitespace, any character counting but the '_' digit separators toml++ leaves out, have '-'
   // at 4 and 7 (conservative: toml++ also checks the others' traits).
@@ -98,6 +98,11 @@ class PreScan {
     return n == 10 && last[4] == '-' && last[7] == '-';
   }
 
+  // toml++ 3.3 reads a value like 1979-05-27 followed by a space and a digit as a date-time
+  // with a space for the T: it takes the digit, then the next character whatever it is (a line
+  // end included), then reads on to the next whitespace testing each character for it, and its
+  // whitespace table reaches TOML_UNREACHABLE for non-ASCII code points there (found by
+  // test/fuzz/object_model_fuzz). None may stand there.
   void check_spaced_dates() {
     std::uint32_t line = 1;
     for (std::size_t i = 0; i < text_.size(); ++i) {
@@ -112,9 +117,8 @@ class PreScan {
           line_ = line;
           fail("non-ASCII character right after a date and time separated by a space");
         }
-        const bool terminator = c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == ']' ||
-                                c == '}' || c == ',' || c == '#';
-        if (terminator && j > i + 2) break;  // the character after the digit is always taken
+        // The character after the digit is always taken.
+        if (j > i + 2 && (value_terminator(c) || c == '\r')) break;
       }
     }
   }
@@ -122,10 +126,9 @@ class PreScan {
   void scan() {
     while (pos_ < text_.size()) {
       const char c = text_[pos_];
-      // toml++ scans a bare value (a number, a date, true, or garbage) up to the first of these,
-      // testing each character for whitespace; quotes and '=' inside it are no tokens.
-      const bool terminator =
-          c == ' ' || c == '\t' || c == '\n' || c == ']' || c == '}' || c == ',' || c == '#';
+      // toml++ scans a bare value up to its terminator, testing each character for whitespace;
+      // quotes and '=' inside it are no tokens.
+      const bool terminator = value_terminator(c);
       if (terminator) in_bare_ = false;
       if (c == '\n') {
         ++line_;
