@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <vector>
 
 namespace rangefit {
@@ -39,6 +40,30 @@ enum class Sample {
 bool measurable(Sample v) {
   return v == Sample::kCovered || v == Sample::kUncovered || v == Sample::kSeenThrough;
 }
+
+// The samples of a part's outer rings (next to an edge) against as many rings farther in, for
+// open_ends and open_rim: judged when the inner rings show the surface (kEndReference of their
+// measurable samples covered), and then the share of the outer rings' measurable samples with no
+// scan points near them; nothing when too few samples were measurable.
+struct RingTally {
+  int outer = 0, open = 0, inner = 0, inner_covered = 0;
+  void add(Sample v, bool outer_ring) {
+    const bool seen = measurable(v);
+    if (outer_ring) {
+      outer += seen;
+      open += seen && v != Sample::kCovered;
+    } else {
+      inner += seen;
+      inner_covered += v == Sample::kCovered;
+    }
+  }
+  std::optional<double> open_share(int min_samples) const {
+    if (outer < min_samples || inner < min_samples || inner_covered < kEndReference * inner) {
+      return std::nullopt;
+    }
+    return static_cast<double>(open) / outer;
+  }
+};
 
 // Where the ray from the part centre along d leaves the part (G = 1), part frame. G is
 // homogeneous of degree 2 without taper (G(s d) = s^2 G(d)); with taper it is still increasing
@@ -201,27 +226,16 @@ std::array<double, 2> open_ends(const Superquadric& sq, const CoverageOptions& o
   }
   const double step = o.end_strip / o.end_rings;  // of the half-length
   for (double side : {-1.0, 1.0}) {
-    int outer = 0, open = 0, inner = 0, inner_covered = 0;
+    RingTally t;
     for (int k = 0; k < 2 * o.end_rings; ++k) {
       const double u = 1.0 - (k + 0.5) * step;  // z / a3
       const double eta = side * std::asin(std::pow(u, 1.0 / sq.eps1));
       for (int j = 0; j < o.end_ring_samples; ++j) {
         const double omega = 2.0 * std::numbers::pi * (j + 0.5) / o.end_ring_samples;
-        const Sample v = judge(surface_point(sq, eta, omega));
-        const bool seen = measurable(v);
-        if (k < o.end_rings) {
-          outer += seen;
-          open += seen && v != Sample::kCovered;
-        } else {
-          inner += seen;
-          inner_covered += v == Sample::kCovered;
-        }
+        t.add(judge(surface_point(sq, eta, omega)), k < o.end_rings);
       }
     }
-    if (outer >= o.min_end_samples && inner >= o.min_end_samples &&
-        inner_covered >= kEndReference * inner) {
-      open_at[side > 0.0] = static_cast<double>(open) / outer;
-    }
+    if (const auto share = t.open_share(o.min_end_samples)) open_at[side > 0.0] = *share;
   }
   return open_at;
 }
@@ -257,7 +271,7 @@ double open_rim(const Superquadric& sq, const CoverageOptions& o, SampleJudge& j
     if (axis != 2) cap.eps1 = cap.eps2 = std::max(sq.eps1, sq.eps2);
     for (double side : {-1.0, 1.0}) {
       for (int sector = 0; sector < kRimSectors; ++sector) {
-        int outer = 0, open = 0, inner = 0, inner_covered = 0;
+        RingTally t;
         for (int k = 0; k < 2 * o.rim_rings; ++k) {
           const double rho = 1.0 - (k + 0.5) * o.rim_strip / o.rim_rings;
           for (int j = 0; j < o.rim_sector_samples; ++j) {
@@ -266,21 +280,10 @@ double open_rim(const Superquadric& sq, const CoverageOptions& o, SampleJudge& j
             const Eigen::Vector3d c = cap_ring_point(cap, side, rho, omega);
             Eigen::Vector3d q;
             q[u] = c.x(), q[v] = c.y(), q[axis] = c.z();
-            const Sample sample = judge(q);
-            const bool seen = measurable(sample);
-            if (k < o.rim_rings) {
-              outer += seen;
-              open += seen && sample != Sample::kCovered;
-            } else {
-              inner += seen;
-              inner_covered += sample == Sample::kCovered;
-            }
+            t.add(judge(q), k < o.rim_rings);
           }
         }
-        if (outer >= o.min_end_samples && inner >= o.min_end_samples &&
-            inner_covered >= kEndReference * inner) {
-          worst = std::max(worst, static_cast<double>(open) / outer);
-        }
+        if (const auto share = t.open_share(o.min_end_samples)) worst = std::max(worst, *share);
       }
     }
   }
