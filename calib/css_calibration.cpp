@@ -1,4 +1,5 @@
 #include "calib/css_calibration.hpp"
+#include "calib/axis_rotations.hpp"
 
 #include <Eigen/LU>
 #include <cmath>
@@ -25,8 +26,6 @@ struct Prepared {
   Vector3d beam;   // sensor-frame unit beam direction
   double c = 1.0;  // share of the range noise normal to the surface (see set_weights)
 };
-
-Matrix3d rot_y(double a) { return Eigen::AngleAxisd(a, Vector3d::UnitY()).toRotationMatrix(); }
 
 LmLinearisation<9> linearise(const CssState& st, const std::vector<Prepared>& pts, double radius) {
   LmLinearisation<9> lin;
@@ -69,7 +68,7 @@ void set_weights(const CssState& st, std::vector<Prepared>& pts) {
   }
 }
 
-CssState step(const CssState& s, const Vector9d& h) {
+CssState css_step(const CssState& s, const Vector9d& h) {
   CssState o = s;
   o.omega_zero += h[0];
   o.t_m.y() += h[1];
@@ -131,7 +130,7 @@ CssCalibrationResult calibrate_css_mount(std::span<const CssSphereScan> scans,
   auto solve = [&](const CssState& from) {
     return levenberg_marquardt<9>(
         from, options.lm,
-        [&](const CssState& s) { return linearise(s, pts, options.sphere_radius_mm); }, step,
+        [&](const CssState& s) { return linearise(s, pts, options.sphere_radius_mm); }, css_step,
         [](const CssState& s) { return s.t_m.norm() + s.centre.norm(); });
   };
   const auto first = solve(st);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "calib/axis_rotations.hpp"
 #include "detect/common/normals.hpp"
 #include "detect/common/point_cloud.hpp"
 
@@ -39,7 +40,7 @@ struct PlanePoint {
   int plane = 0;
 };
 
-Sweep collect(const PanTiltSweep& in) {
+Sweep collect_head_sweep(const PanTiltSweep& in) {
   Sweep s;
   int cols = 0;
   for (const auto& p : in.profiles) cols = std::max(cols, static_cast<int>(p.z_mm.size()));
@@ -59,9 +60,6 @@ Sweep collect(const PanTiltSweep& in) {
   }
   return s;
 }
-
-Matrix3d rot_x(double a) { return Eigen::AngleAxisd(a, Vector3d::UnitX()).toRotationMatrix(); }
-Matrix3d rot_y(double a) { return Eigen::AngleAxisd(a, Vector3d::UnitY()).toRotationMatrix(); }
 
 // Eq. 5.7.
 Vector3d to_world(const HeadState& s, const RawPoint& p) {
@@ -92,7 +90,7 @@ LmLinearisation<8> linearise(const HeadState& s, const std::vector<PlanePoint>& 
   return lin;
 }
 
-HeadState step(const HeadState& s, const Vector8d& h) {
+HeadState head_step(const HeadState& s, const Vector8d& h) {
   HeadState o = s;
   o.t_s += h.head<3>();
   o.t_w += h.segment<3>(3);
@@ -169,7 +167,7 @@ PanTiltCalibrationResult calibrate_pan_tilt(const PanTiltCalibrationInput& input
       result.reason = "sweep " + std::to_string(k + 1) + ": profiles and angles differ in number";
       return result;
     }
-    sweeps.push_back(collect(s));
+    sweeps.push_back(collect_head_sweep(s));
     total += sweeps.back().pts.size();
   }
   if (sweeps.size() < 2) {
@@ -217,7 +215,7 @@ PanTiltCalibrationResult calibrate_pan_tilt(const PanTiltCalibrationInput& input
       return result;
     }
     fit = levenberg_marquardt<8>(
-        st, options.lm, [&](const HeadState& s) { return linearise(s, pts, truth); }, step,
+        st, options.lm, [&](const HeadState& s) { return linearise(s, pts, truth); }, head_step,
         [](const HeadState& s) { return s.t_s.norm() + s.t_w.norm() + 1.0; });
     const double n = static_cast<double>(pts.size());
     if (round == 0) result.initial_rms_mm = std::sqrt(2.0 * fit.initial_cost / n);

@@ -16,14 +16,14 @@ using Eigen::Matrix3d;
 using Eigen::Vector3d;
 
 // The sweep's valid samples: ranger point, axis position, grid cell.
-struct RawSweep {
+struct PlaneSamples {
   std::vector<Vector3d> q;
   std::vector<double> s;
   GridLayout grid;
 };
 
-RawSweep collect(const StripeCalibrationInput& in) {
-  RawSweep raw;
+PlaneSamples collect_plane_samples(const StripeCalibrationInput& in) {
+  PlaneSamples raw;
   int cols = 0;
   for (const auto& p : in.profiles) cols = std::max(cols, static_cast<int>(p.z_mm.size()));
   raw.grid.rows = static_cast<int>(in.profiles.size());
@@ -147,7 +147,7 @@ StripeCalibrationResult calibrate_stripe_cell(const StripeCalibrationInput& inpu
     result.reason = "profiles and axis positions differ in number";
     return result;
   }
-  const RawSweep raw = collect(input);
+  const PlaneSamples raw = collect_plane_samples(input);
   if (raw.q.size() < 6 * options.planes.min_points) {
     result.reason = "too few points in the sweep (" + std::to_string(raw.q.size()) + ")";
     return result;

@@ -38,7 +38,7 @@ LmLinearisation<8> linearise(const StripeState& s, const std::vector<StripePlane
   return lin;
 }
 
-StripeState step(const StripeState& s, const Vector8d& h) {
+StripeState stripe_step(const StripeState& s, const Vector8d& h) {
   StripeState out = s;
   out.T_cell_ranger.translation() += h.head<3>();
   const Vector3d w = h.segment<3>(3);
@@ -58,7 +58,7 @@ StripeState step(const StripeState& s, const Vector8d& h) {
 StripeRefinement refine_stripe(const StripeState& start, const std::vector<StripePlanePoint>& pts,
                                const std::array<CubePlane, 6>& planes, const LmOptions& options) {
   return levenberg_marquardt<8>(
-      start, options, [&](const StripeState& s) { return linearise(s, pts, planes); }, step,
+      start, options, [&](const StripeState& s) { return linearise(s, pts, planes); }, stripe_step,
       [](const StripeState& s) { return s.T_cell_ranger.translation().norm(); });
 }
 

@@ -35,7 +35,7 @@ struct Field {
   std::size_t offset = 0;  // bytes before this field in one point (binary), or in the layout
 };
 
-struct Header {
+struct PcdHeader {
   std::vector<Field> fields;
   std::uint64_t width = 0;
   std::uint64_t height = 1;
@@ -70,8 +70,8 @@ std::optional<Scalar> pcd_scalar(char type, std::size_t size) {
   return std::nullopt;
 }
 
-Header parse_header(BoundedReader& r) {
-  Header h;
+PcdHeader parse_pcd_header(BoundedReader& r) {
+  PcdHeader h;
   std::vector<std::string_view> names, sizes, types, counts;
   std::optional<std::uint64_t> points;
   bool have_width = false;
@@ -170,7 +170,7 @@ Header parse_header(BoundedReader& r) {
   return h;
 }
 
-int find(const Header& h, std::string_view name) {
+int find(const PcdHeader& h, std::string_view name) {
   for (std::size_t i = 0; i < h.fields.size(); ++i) {
     if (h.fields[i].name == name) return static_cast<int>(i);
   }
@@ -180,7 +180,7 @@ int find(const Header& h, std::string_view name) {
 // The point data as one value per (point, field), whatever the DATA layout.
 class Values {
  public:
-  Values(BoundedReader& r, const Header& h) : r_(r), h_(h) {
+  Values(BoundedReader& r, const PcdHeader& h) : r_(r), h_(h) {
     const std::uint64_t budget = r.remaining();
     if (h.data == Data::kAscii) {
       // Each value is a number and a separator: two bytes at least (the last may lack one).
@@ -265,7 +265,7 @@ class Values {
   }
 
   BoundedReader& r_;
-  const Header& h_;
+  const PcdHeader& h_;
   std::string storage_;
   std::string_view block_;
 };
@@ -275,7 +275,7 @@ class Values {
 PointCloud read_pcd(const std::filesystem::path& path, CloudReadReport* report_out) {
   const std::string bytes = detail::load_file(path);
   BoundedReader r(path, bytes);
-  const Header h = parse_header(r);
+  const PcdHeader h = parse_pcd_header(r);
   const int x = find(h, "x"), y = find(h, "y"), z = find(h, "z");
   for (const char* axis : {"x", "y", "z"}) {
     if (find(h, axis) < 0) r.fail(std::string("header: no '") + axis + "' field");

@@ -35,7 +35,7 @@ struct Element {
   std::vector<Property> properties;
 };
 
-struct Header {
+struct PlyHeader {
   std::optional<Format> format;
   std::vector<Element> elements;
   int grid_rows = 0;
@@ -62,7 +62,8 @@ Scalar scalar_or_fail(BoundedReader& r, std::string_view name) {
   return *type;
 }
 
-void parse_rangefit_comment(BoundedReader& r, const std::vector<std::string_view>& w, Header& h) {
+void parse_rangefit_comment(BoundedReader& r, const std::vector<std::string_view>& w,
+                            PlyHeader& h) {
   if (w.size() == 5 && w[2] == "grid") {
     std::int64_t rows = 0;
     std::int64_t cols = 0;
@@ -89,12 +90,12 @@ void parse_rangefit_comment(BoundedReader& r, const std::vector<std::string_view
   }
 }
 
-Header parse_header(BoundedReader& r) {
+PlyHeader parse_ply_header(BoundedReader& r) {
   const auto first = r.next_line();
   if (!first || detail::split_words(*first) != std::vector<std::string_view>{"ply"}) {
     r.fail("not a PLY file (first line is not 'ply')");
   }
-  Header h;
+  PlyHeader h;
   while (true) {
     const auto line = r.next_line();
     if (!line) r.fail("header: truncated, no end_header line");
@@ -152,7 +153,7 @@ Header parse_header(BoundedReader& r) {
 
 // Every row needs a minimum number of bytes, so a count the data cannot hold is rejected here,
 // before anything is reserved for it.
-void check_counts(BoundedReader& r, const Header& h) {
+void check_counts(BoundedReader& r, const PlyHeader& h) {
   std::uint64_t budget = r.remaining();
   for (const Element& e : h.elements) {
     if (e.properties.empty() || e.count == 0) continue;
@@ -249,7 +250,7 @@ struct VertexLayout {
   int cell = -1;
 };
 
-VertexLayout vertex_layout(BoundedReader& r, const Element& e, const Header& h,
+VertexLayout vertex_layout(BoundedReader& r, const Element& e, const PlyHeader& h,
                            CloudReadReport& report) {
   VertexLayout v{find(e, "x"), find(e, "y"), find(e, "z")};
   for (const char* axis : {"x", "y", "z"}) {
@@ -283,7 +284,7 @@ VertexLayout vertex_layout(BoundedReader& r, const Element& e, const Header& h,
 PointCloud read_ply(const std::filesystem::path& path, CloudReadReport* report_out) {
   const std::string bytes = detail::load_file(path);
   BoundedReader r(path, bytes);
-  const Header h = parse_header(r);
+  const PlyHeader h = parse_ply_header(r);
   check_counts(r, h);
   const auto vertex = std::find_if(h.elements.begin(), h.elements.end(),
                                    [](const Element& e) { return e.name == "vertex"; });

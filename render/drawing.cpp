@@ -1,4 +1,5 @@
 #include "render/drawing.hpp"
+#include "render/text_format.hpp"
 
 #include <cstdio>
 #include <numbers>
@@ -6,12 +7,6 @@
 
 namespace rangefit::render {
 namespace {
-
-std::string format(const char* fmt, auto... args) {
-  char buffer[256];
-  std::snprintf(buffer, sizeof buffer, fmt, args...);
-  return buffer;
-}
 
 std::string vec(const Eigen::Vector3d& v, const char* digits = "%.3f") {
   const std::string f = std::string(digits) + ", " + digits + ", " + digits;

@@ -16,6 +16,7 @@
 #include "render/colour_map.hpp"
 #include "render/model_geometry.hpp"
 #include "render/sensor_direction.hpp"
+#include "render/text_format.hpp"
 
 namespace rangefit::render {
 namespace {
@@ -37,12 +38,6 @@ std::mutex& cairo_lock() {
 
 void set_colour(cairo_t* cr, Rgb c, double alpha = 1.0) {
   cairo_set_source_rgba(cr, c.r / 255.0, c.g / 255.0, c.b / 255.0, alpha);
-}
-
-std::string format(const char* fmt, auto... args) {
-  char buffer[256];
-  std::snprintf(buffer, sizeof buffer, fmt, args...);
-  return buffer;
 }
 
 // The models as lines, their entrances, and the point set a framing view should show.

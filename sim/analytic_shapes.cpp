@@ -10,7 +10,6 @@ namespace rangefit::sim {
 namespace {
 
 using Eigen::Vector3d;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 struct LocalHit {
   double t;
@@ -160,7 +159,7 @@ double surface_distance(const Shape& shape, const Eigen::Isometry3d& T_world_obj
   if (const auto* b = std::get_if<BoxShape>(&shape)) return box_distance(*b, p);
   if (const auto* c = std::get_if<CylinderShape>(&shape)) return cylinder_distance(*c, p);
   if (const auto* s = std::get_if<SphereShape>(&shape)) return std::abs(p.norm() - s->radius_mm);
-  return kNaN;
+  return std::numeric_limits<double>::quiet_NaN();
 }
 
 Eigen::AlignedBox3d local_bounds(const Shape& shape) {

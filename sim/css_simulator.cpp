@@ -10,10 +10,6 @@ namespace {
 
 using Eigen::Vector3d;
 constexpr int kN = hal::CssRevolution::kSamples;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-// Offset of the return ray's ends from the surfaces they touch, mm: well above Embree's float
-// rounding at ~300 mm from the origin (~3e-5 mm), well below any feature of a scene.
-constexpr double kSurfaceEps = 1e-3;
 
 }  // namespace
 

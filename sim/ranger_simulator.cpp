@@ -9,8 +9,6 @@ namespace rangefit::sim {
 namespace {
 
 using Eigen::Vector3d;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kSurfaceEps = 1e-3;  // see css_simulator.cpp
 
 class RangerDevice final : public SimulatedStream<hal::RangerProfile> {
  public:

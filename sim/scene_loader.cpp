@@ -10,6 +10,7 @@
 #include <optional>
 #include <sstream>
 
+#include "detect/common/angles.hpp"
 #include "hal/rpy.hpp"
 #include "io/stl.hpp"
 #include "io/toml_fields.hpp"
@@ -20,7 +21,6 @@ namespace rangefit::sim {
 namespace {
 
 using Eigen::Vector3d;
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 // Limits on what a scene may ask for: generation time and memory grow with them (segments =
 // 800000 took 33 s and 0.9 GB). Each is far above what the shipped scenes use.

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <mutex>
 #include <random>
 #include <string>
@@ -17,6 +18,12 @@
 #include "sim/fault_options.hpp"
 
 namespace rangefit::sim {
+
+// A range the ray caster found no surface for.
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Offset of the return ray's ends from the surfaces they touch, mm: well above Embree's float
+// rounding at ~300 mm from the origin (~3e-5 mm), well below any feature of a scene.
+inline constexpr double kSurfaceEps = 1e-3;
 
 // A duration of s seconds, rounded to the nanosecond.
 inline hal::Duration seconds(double s) {

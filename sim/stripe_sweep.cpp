@@ -1,4 +1,5 @@
 #include "sim/stripe_sweep.hpp"
+#include "detect/common/angles.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +9,6 @@
 namespace rangefit::sim {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kHeadArmMm = 60.0;  // pan-tilt: the fan apex this far ahead of the turn axis
 constexpr int kMaxRays = 2048;
 constexpr int kMinRays = 16;

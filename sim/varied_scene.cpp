@@ -6,6 +6,7 @@
 #include <numbers>
 #include <random>
 
+#include "detect/common/angles.hpp"
 #include "sim/occluder.hpp"
 #include "sim/scene_objects.hpp"
 #include "sim/stripe_scan.hpp"
@@ -14,7 +15,6 @@
 namespace rangefit::sim {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kCoverHeightMm = 120.0;  // the fan reaches every point of the workspace up to this
 constexpr double kObjectGapMm = 0.5;      // bounding boxes at least this far apart
 constexpr double kMaxAddedOcclusion = 0.04;  // clutter may hide this much more than drawn

@@ -1,4 +1,5 @@
 #include "daemon/dds/messages.hpp"
+#include "daemon/dds/dds_chars.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -9,11 +10,10 @@
 namespace rangefit::daemon {
 namespace {
 
-char* c_str(const std::string& s) { return const_cast<char*>(s.c_str()); }  // DDS only reads it
 std::string str(const char* s) { return s == nullptr ? std::string() : std::string(s); }
 
 std_msgs_msg_dds__Header_ header(const std::string& frame) {
-  return {wall_time_now(), c_str(frame)};
+  return {wall_time_now(), dds_chars(frame)};
 }
 
 constexpr std::uint8_t kFloat32 = 7, kFloat64 = 8;  // sensor_msgs/PointField datatypes
@@ -36,7 +36,7 @@ CloudOut::CloudOut(const PointCloud& cloud, const std::string& frame)
   names_ = {"x", "y", "z"};
   if (cloud.has_normals()) names_.insert(names_.end(), {"normal_x", "normal_y", "normal_z"});
   for (std::size_t i = 0; i < names_.size(); ++i) {
-    fields_.push_back({c_str(names_[i]), static_cast<std::uint32_t>(4 * i), kFloat32, 1});
+    fields_.push_back({dds_chars(names_[i]), static_cast<std::uint32_t>(4 * i), kFloat32, 1});
   }
   const std::uint32_t step = static_cast<std::uint32_t>(4 * names_.size());
   data_.resize(cloud.size() * step);
@@ -117,7 +117,7 @@ PointCloud from_msg(const sensor_msgs_msg_dds__PointCloud2_& msg) {
 DetectionOut::DetectionOut(const DetectionResult& r, std::string frame)
     : r_(r), frame_(std::move(frame)), kind_(to_string(r.kind)) {
   for (const auto& part : r_.parts) {
-    names_.push_back(c_str(part.name));
+    names_.push_back(dds_chars(part.name));
     const Eigen::Vector3d t = part.T_world_part.translation() * kMetresPerMm;
     const Eigen::Quaterniond q(part.T_world_part.rotation());
     poses_.push_back({{t.x(), t.y(), t.z()}, {q.x(), q.y(), q.z(), q.w()}});
@@ -127,11 +127,11 @@ DetectionOut::DetectionOut(const DetectionResult& r, std::string frame)
   for (const auto& part : r_.parts) instances_.push_back(part.instance);
   msg_.header = header(frame_);
   if (r_.acquired_wall_ns > 0) msg_.header.stamp = wall_time(r_.acquired_wall_ns);
-  msg_.request_id = c_str(r_.request_id);
-  msg_.kind = c_str(kind_);
+  msg_.request_id = dds_chars(r_.request_id);
+  msg_.kind = dds_chars(kind_);
   msg_.found = r_.found;
-  msg_.reason = c_str(r_.reason);
-  msg_.model = c_str(r_.model);
+  msg_.reason = dds_chars(r_.reason);
+  msg_.model = dds_chars(r_.model);
   msg_.part_names = {n, n, names_.data(), false};
   msg_.poses = {n, n, poses_.data(), false};
   msg_.bore_radius = r_.bore_radius_mm * kMetresPerMm;
@@ -139,10 +139,10 @@ DetectionOut::DetectionOut(const DetectionResult& r, std::string frame)
   msg_.num_points = static_cast<std::uint32_t>(r_.num_points);
   msg_.scan_seconds = r_.scan_seconds;
   msg_.detect_seconds = r_.detect_seconds;
-  msg_.spool_entry = c_str(r_.spool_entry);
+  msg_.spool_entry = dds_chars(r_.spool_entry);
   msg_.part_instances = {n, n, instances_.data(), false};
   details_ = r_.details.is_null() ? std::string() : r_.details.dump();
-  msg_.details = c_str(details_);
+  msg_.details = dds_chars(details_);
 }
 
 geometry_msgs_msg_dds__PoseStamped_ DetectionOut::first_pose() const {
@@ -188,14 +188,14 @@ DetectionResult from_msg(const rangefit_msgs_msg_dds__Detection_& msg) {
 RequestOut::RequestOut(const ScanRequest& req, bool linear_sweep)
     : req_(req), kind_(to_string(req.kind)), walls_(req.bore.walls), target_(req.target.kind) {
   convert_sweep_units(req_, linear_sweep, true);
-  msg_.request_id = c_str(req_.id);
-  msg_.kind = c_str(kind_);
-  msg_.model = c_str(req_.model);
+  msg_.request_id = dds_chars(req_.id);
+  msg_.kind = dds_chars(kind_);
+  msg_.model = dds_chars(req_.model);
   const Eigen::Vector3d p = req_.bore.position_mm * kMetresPerMm;
   msg_.bore_position = {p.x(), p.y(), p.z()};
   msg_.bore_axis = {req_.bore.axis.x(), req_.bore.axis.y(), req_.bore.axis.z()};
   msg_.bore_radius = req_.bore.radius_mm * kMetresPerMm;
-  msg_.sensor = c_str(req_.sensor);
+  msg_.sensor = dds_chars(req_.sensor);
   msg_.sweep_start = req_.sweep_start;
   msg_.sweep_end = req_.sweep_end;
   msg_.sweep_speed = req_.sweep_speed;
@@ -206,7 +206,7 @@ RequestOut::RequestOut(const ScanRequest& req, bool linear_sweep)
   msg_.trials = static_cast<std::uint32_t>(std::max(req_.trials, 0));
   msg_.seed = req_.seed;
   msg_.bore_outer_radius = req_.bore.outer_radius_mm * kMetresPerMm;
-  msg_.bore_walls = c_str(walls_);
+  msg_.bore_walls = dds_chars(walls_);
   msg_.bore_normal_keep = req_.bore.normal_keep;
   const Eigen::Vector3d v = req_.view_dir.value_or(Eigen::Vector3d::Zero());
   msg_.view_dir = {v.x(), v.y(), v.z()};
@@ -214,7 +214,7 @@ RequestOut::RequestOut(const ScanRequest& req, bool linear_sweep)
   const Eigen::Vector3d sp = req_.sensor_position.value_or(Eigen::Vector3d::Zero()) * kMetresPerMm;
   msg_.sensor_position = {sp.x(), sp.y(), sp.z()};
   msg_.parts = static_cast<std::uint32_t>(std::max(req_.parts, 0));
-  msg_.target = c_str(target_);
+  msg_.target = dds_chars(target_);
   msg_.target_edge = req_.target.edge_mm * kMetresPerMm;
   msg_.target_bar = req_.target.bar_mm * kMetresPerMm;
   const Eigen::Vector3d tp = req_.target.T_table_target.translation() * kMetresPerMm;
@@ -300,8 +300,8 @@ StateOut::StateOut(LifecycleState s, std::string detail, std::string active_id, 
     : frame_(std::move(frame)), detail_(std::move(detail)), active_(std::move(active_id)) {
   msg_.header = header(frame_);
   msg_.state = static_cast<std::uint8_t>(s);
-  msg_.detail = c_str(detail_);
-  msg_.active_request_id = c_str(active_);
+  msg_.detail = dds_chars(detail_);
+  msg_.active_request_id = dds_chars(active_);
   msg_.queue_depth = depth;
 }
 
@@ -310,12 +310,12 @@ DiagnosticsOut::DiagnosticsOut(std::vector<DiagStatus> statuses)
   values_.resize(statuses_.size());
   for (std::size_t i = 0; i < statuses_.size(); ++i) {
     auto& s = statuses_[i];
-    for (auto& [k, v] : s.values) values_[i].push_back({c_str(k), c_str(v)});
+    for (auto& [k, v] : s.values) values_[i].push_back({dds_chars(k), dds_chars(v)});
     const auto n = static_cast<std::uint32_t>(values_[i].size());
     c_statuses_.push_back({s.level,
-                           c_str(s.name),
-                           c_str(s.message),
-                           c_str(s.hardware_id),
+                           dds_chars(s.name),
+                           dds_chars(s.message),
+                           dds_chars(s.hardware_id),
                            {n, n, values_[i].data(), false}});
   }
   const auto n = static_cast<std::uint32_t>(c_statuses_.size());

@@ -1,11 +1,11 @@
 #include "daemon/dds/ros_detections.hpp"
 
+#include "daemon/dds/dds_chars.hpp"
 #include "daemon/dds/ros_frames.hpp"
 
 namespace rangefit::daemon {
 namespace {
 
-char* c_str(const std::string& s) { return const_cast<char*>(s.c_str()); }  // DDS only reads it
 char* empty() { return const_cast<char*>(""); }
 
 constexpr std::int32_t kTriangleList = visualization_msgs_msg_Marker_Constants_TRIANGLE_LIST;
@@ -41,14 +41,14 @@ Detection3DArrayOut::Detection3DArrayOut(const DetectionResult& result, std::str
                                          const std::string& part_frame_prefix)
     : frame_(std::move(frame)),
       class_id_(result.kind == DetectKind::kBore ? "bore" : result.model) {
-  const std_msgs_msg_dds__Header_ header{result_stamp(result), c_str(frame_)};
+  const std_msgs_msg_dds__Header_ header{result_stamp(result), dds_chars(frame_)};
   const auto& parts = result.found ? result.parts : std::vector<PartPose>{};
   ids_.reserve(parts.size());
   hypotheses_.reserve(parts.size());
   for (const PartPose& part : parts) {
     ids_.push_back(part_frame_prefix + part_frame(result, part));
     vision_msgs_msg_dds__ObjectHypothesisWithPose_ h{};
-    h.hypothesis.class_id = c_str(class_id_);
+    h.hypothesis.class_id = dds_chars(class_id_);
     h.hypothesis.score = part.score;
     h.pose.pose = pose_in_metres(part.T_world_part);  // covariance unknown: zeros
     hypotheses_.push_back(h);
@@ -56,7 +56,7 @@ Detection3DArrayOut::Detection3DArrayOut(const DetectionResult& result, std::str
     vision_msgs_msg_dds__Detection3D_ d{};
     d.header = header;
     d.results = {1, 1, &hypotheses_.back(), false};
-    d.id = c_str(ids_.back());
+    d.id = dds_chars(ids_.back());
     // The box is aligned with the part frame, centred on the extent's centre (a bore's lies
     // below its entrance); a part of unknown shape gets a box of size zero at its pose.
     Eigen::Isometry3d T_world_box = part.T_world_part;
@@ -76,7 +76,7 @@ Detection3DArrayOut::Detection3DArrayOut(const DetectionResult& result, std::str
 MarkerArrayOut::MarkerArrayOut(const DetectionResult& result, std::string frame,
                                const std::map<std::string, ObjectModel>& models)
     : frame_(std::move(frame)) {
-  const std_msgs_msg_dds__Header_ header{result_stamp(result), c_str(frame_)};
+  const std_msgs_msg_dds__Header_ header{result_stamp(result), dds_chars(frame_)};
   // First clear what an earlier result drew, so a part not found again disappears.
   auto clear = blank_marker(header);
   clear.action = kDeleteAll;

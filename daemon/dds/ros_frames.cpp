@@ -1,13 +1,9 @@
 #include "daemon/dds/ros_frames.hpp"
 
+#include "daemon/dds/dds_chars.hpp"
 #include "daemon/dds/messages.hpp"
 
 namespace rangefit::daemon {
-namespace {
-
-char* c_str(const std::string& s) { return const_cast<char*>(s.c_str()); }  // DDS only reads it
-
-}  // namespace
 
 geometry_msgs_msg_dds__Pose_ pose_in_metres(const Eigen::Isometry3d& T) {
   const Eigen::Vector3d t = T.translation() * kMetresPerMm;
@@ -39,8 +35,8 @@ TfOut::TfOut(const builtin_interfaces_msg_dds__Time_& stamp, std::string parent,
   for (const auto& n : named_) {
     const auto pose = pose_in_metres(n.T_parent_child);
     geometry_msgs_msg_dds__TransformStamped_ t{};
-    t.header = {stamp, c_str(parent_)};
-    t.child_frame_id = c_str(n.child_frame);
+    t.header = {stamp, dds_chars(parent_)};
+    t.child_frame_id = dds_chars(n.child_frame);
     t.transform.translation = {pose.position.x, pose.position.y, pose.position.z};
     t.transform.rotation = pose.orientation;
     transforms_.push_back(t);
@@ -53,7 +49,7 @@ PoseArrayOut::PoseArrayOut(const DetectionResult& result, std::string frame)
     : frame_(std::move(frame)) {
   for (const auto& part : result.parts) poses_.push_back(pose_in_metres(part.T_world_part));
   const auto n = static_cast<std::uint32_t>(poses_.size());
-  msg_.header = {result_stamp(result), c_str(frame_)};
+  msg_.header = {result_stamp(result), dds_chars(frame_)};
   msg_.poses = {n, n, poses_.data(), false};
 }
 

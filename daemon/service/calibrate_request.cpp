@@ -10,7 +10,7 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-std::string vec(const Eigen::Vector3d& v) {
+std::string text_vec(const Eigen::Vector3d& v) {
   std::ostringstream s;
   s.precision(10);
   s << "[" << v.x() << ", " << v.y() << ", " << v.z() << "]";
@@ -71,9 +71,9 @@ std::string stripe_calibration_toml(const calib::StripeCalibrationResult& r,
   toml << "# rangefit stripe cell calibration, from " << source
        << "; see the .report.txt beside it. Not applied: include it in the configuration.\n"
        << "[fusion.stripe_cell]\n"
-       << "ranger_position_cell_mm = " << vec(g.ranger_position_cell_mm) << "\n"
-       << "ranger_rpy_cell_rad = " << vec(g.ranger_rpy_cell_rad) << "\n"
-       << "axis_direction_cell = " << vec(g.axis_direction_cell) << "\n";
+       << "ranger_position_cell_mm = " << text_vec(g.ranger_position_cell_mm) << "\n"
+       << "ranger_rpy_cell_rad = " << text_vec(g.ranger_rpy_cell_rad) << "\n"
+       << "axis_direction_cell = " << text_vec(g.axis_direction_cell) << "\n";
   return toml.str();
 }
 
@@ -92,13 +92,14 @@ std::string stripe_calibration_report(const calib::StripeCalibrationResult& r,
   }
   rep << "  refinement: " << r.points << " plane points, rms " << r.initial_rms_mm << " -> "
       << r.rms_mm << " mm in " << r.lm_iterations << " iterations\n"
-      << "  ranger position " << vec(g.ranger_position_cell_mm) << " mm (was "
-      << vec(start.ranger_position_cell_mm) << "), 1 sigma " << vec(r.position_sigma_mm) << " mm\n"
-      << "  ranger rpy " << vec(g.ranger_rpy_cell_rad) << " rad (was "
-      << vec(start.ranger_rpy_cell_rad) << "), 1 sigma about its axes "
-      << vec(r.rotation_sigma_rad / kDeg) << " deg\n"
-      << "  axis direction " << vec(g.axis_direction_cell) << " (was "
-      << vec(start.axis_direction_cell) << "), 1 sigma " << r.axis_sigma_rad.x() / kDeg << ", "
+      << "  ranger position " << text_vec(g.ranger_position_cell_mm) << " mm (was "
+      << text_vec(start.ranger_position_cell_mm) << "), 1 sigma " << text_vec(r.position_sigma_mm)
+      << " mm\n"
+      << "  ranger rpy " << text_vec(g.ranger_rpy_cell_rad) << " rad (was "
+      << text_vec(start.ranger_rpy_cell_rad) << "), 1 sigma about its axes "
+      << text_vec(r.rotation_sigma_rad / kDeg) << " deg\n"
+      << "  axis direction " << text_vec(g.axis_direction_cell) << " (was "
+      << text_vec(start.axis_direction_cell) << "), 1 sigma " << r.axis_sigma_rad.x() / kDeg << ", "
       << r.axis_sigma_rad.y() / kDeg << " deg\n";
   return rep.str();
 }

@@ -5,7 +5,7 @@ namespace rangefit::daemon {
 namespace {
 
 nlohmann::json to_array(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
-Eigen::Vector3d vec(const nlohmann::json& j) {
+Eigen::Vector3d vec_of(const nlohmann::json& j) {
   return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
 }
 DetectKind kind(const std::string& s) {
@@ -26,7 +26,7 @@ Eigen::Isometry3d pose_of(const nlohmann::json& j) {
   if (j.size() != 6) throw std::invalid_argument("target.pose must be [x, y, z, roll, pitch, yaw]");
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = hal::rpy_matrix(j.at(3).get<double>(), j.at(4).get<double>(), j.at(5).get<double>());
-  T.translation() = vec(j);
+  T.translation() = vec_of(j);
   return T;
 }
 
@@ -96,8 +96,8 @@ bool from_json(const nlohmann::json& j, ScanRequest& out, std::string* error) {
     out.id = j.at("id").get<std::string>();
     out.kind = kind(j.at("kind").get<std::string>());
     out.model = j.at("model").get<std::string>();
-    out.bore.position_mm = vec(j.at("bore").at("position_mm"));
-    out.bore.axis = vec(j.at("bore").at("axis"));
+    out.bore.position_mm = vec_of(j.at("bore").at("position_mm"));
+    out.bore.axis = vec_of(j.at("bore").at("axis"));
     out.bore.radius_mm = j.at("bore").at("radius_mm").get<double>();
     out.sensor = j.at("sensor").get<std::string>();
     out.sweep_start = j.at("sweep").at(0).get<double>();
@@ -105,7 +105,7 @@ bool from_json(const nlohmann::json& j, ScanRequest& out, std::string* error) {
     out.sweep_speed = j.at("sweep").at(2).get<double>();
     // Absent in entries spooled before these fields existed.
     if (j.at("bore").contains("plane_normal")) {
-      out.bore.plane_normal = vec(j.at("bore").at("plane_normal"));
+      out.bore.plane_normal = vec_of(j.at("bore").at("plane_normal"));
     }
     out.instances = j.value("instances", 1);
     out.hypotheses = j.value("hypotheses", 0);
@@ -119,11 +119,11 @@ bool from_json(const nlohmann::json& j, ScanRequest& out, std::string* error) {
     out.bore.cylinder_radius_mm = bore.value("cylinder_radius_mm", 0.0);
     out.bore.radius2_mm = bore.value("radius2_mm", 0.0);
     out.bore.major_axis.reset();
-    if (bore.contains("major_axis")) out.bore.major_axis = vec(bore.at("major_axis"));
+    if (bore.contains("major_axis")) out.bore.major_axis = vec_of(bore.at("major_axis"));
     out.view_dir.reset();
     out.sensor_position.reset();
-    if (j.contains("view_dir")) out.view_dir = vec(j.at("view_dir"));
-    if (j.contains("sensor_position_mm")) out.sensor_position = vec(j.at("sensor_position_mm"));
+    if (j.contains("view_dir")) out.view_dir = vec_of(j.at("view_dir"));
+    if (j.contains("sensor_position_mm")) out.sensor_position = vec_of(j.at("sensor_position_mm"));
     out.parts = j.value("parts", 0);
     out.target = {};
     if (j.contains("target")) {
@@ -158,7 +158,7 @@ bool from_json(const nlohmann::json& j, DetectionResult& out, std::string* error
                                                       q.at(2).get<double>(), q.at(3).get<double>())
                                        .normalized()
                                        .toRotationMatrix();
-      part.T_world_part.translation() = vec(p.at("translation_mm"));
+      part.T_world_part.translation() = vec_of(p.at("translation_mm"));
       part.score = p.at("score").get<double>();
       part.instance = p.value("instance", std::uint32_t{0});
       out.parts.push_back(std::move(part));

@@ -9,7 +9,7 @@
 namespace rangefit::daemon {
 namespace {
 
-nlohmann::json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+nlohmann::json learn_vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 }  // namespace
 
@@ -24,8 +24,8 @@ nlohmann::json learn_json(const LearnResult& r, std::size_t points, std::size_t 
   j["clusters"] = r.segment.clusters;
   if (r.segment.plane.plane.valid) {
     j["plane"] = {{"removed", r.segment.plane.removed()},
-                  {"point", vec(r.segment.plane.plane.point)},
-                  {"normal", vec(r.segment.plane.plane.normal)},
+                  {"point", learn_vec(r.segment.plane.plane.point)},
+                  {"normal", learn_vec(r.segment.plane.plane.normal)},
                   {"rms_mm", r.segment.plane.plane.rms}};
   }
   nlohmann::json parts = nlohmann::json::array();
@@ -35,8 +35,8 @@ nlohmann::json learn_json(const LearnResult& r, std::size_t points, std::size_t 
                      {"size", {p.shape.a1, p.shape.a2, p.shape.a3}},
                      {"shape", {p.shape.eps1, p.shape.eps2}},
                      {"taper", {p.shape.kx, p.shape.ky}},
-                     {"center", vec(p.T_world_part.translation())},
-                     {"z_axis", vec(p.T_world_part.linear().col(2))},
+                     {"center", learn_vec(p.T_world_part.translation())},
+                     {"z_axis", learn_vec(p.T_world_part.linear().col(2))},
                      {"quaternion", {q.w(), q.x(), q.y(), q.z()}},
                      {"points", p.points},
                      {"M", p.measure},

@@ -4,12 +4,11 @@
 #include <numbers>
 
 #include "detect/bore/bore_stages.hpp"
+#include "detect/common/angles.hpp"
 #include "detect/common/spread_subset.hpp"
 
 namespace rangefit::bore {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 // Plane through the points, refit once without those beyond `sigmas` rms (outliers, a rim).
 pca::Plane robust_plane(std::span<const Eigen::Vector3d> pts, double sigmas,

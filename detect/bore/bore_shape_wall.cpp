@@ -8,11 +8,10 @@
 #include <utility>
 
 #include "detect/bore/bore_stages.hpp"
+#include "detect/common/angles.hpp"
 
 namespace rangefit::bore {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 // The CAD model on the seed's axis line, its entrance where that line meets the plane.
 bool seed_surface(const RefineInput& in, const Eigen::Vector3d& point, Eigen::Vector3d axis,

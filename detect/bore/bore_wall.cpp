@@ -5,11 +5,10 @@
 #include <numbers>
 
 #include "detect/bore/bore_stages.hpp"
+#include "detect/common/angles.hpp"
 
 namespace rangefit::bore {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 // 4.1.3 sequential cylinder fit, then 4.1.4: drop notch points beyond notch_ratio r and fit
 // again. False when the first fit fails.

@@ -7,12 +7,11 @@
 #include <numeric>
 #include <vector>
 
+#include "detect/common/angles.hpp"
 #include "detect/common/pca.hpp"
 
 namespace rangefit {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 // xoshiro256++ seeded through splitmix64: a few ns per draw (std::mt19937_64 with
 // uniform_int_distribution took 60 % of the fit), and still a pure function of the seed.

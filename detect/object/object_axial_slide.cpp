@@ -7,9 +7,6 @@
 namespace rangefit {
 namespace {
 
-// Faces are straight along a direction when their exponent is at most this (as in
-// object_continuation.cpp).
-constexpr double kFlatExponent = 0.5;
 // A part stretched by this factor along one axis stands for its wall extended without end: for
 // eps <= 0.5 its G along that axis is (z / (10 a))^(2 / eps) <= 1.25^4 / 10^4 within the reach.
 constexpr double kEndless = 10.0;

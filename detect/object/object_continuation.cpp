@@ -9,9 +9,6 @@ namespace {
 
 // Points of a sibling part with G below this are its own (the refinement's trim band).
 constexpr double kSiblingGate = 1.6;
-// Faces are straight along a direction when their exponent is at most this (a cylinder's side
-// wall along its axis: eps1; a box's sides across it: eps2).
-constexpr double kFlatExponent = 0.5;
 
 // One way of extending the part: its sizes stretched by `stretch`, and how far out along the
 // stretch a part-frame point is, in units of the part's size there (1: on the face being

@@ -19,6 +19,10 @@
 
 namespace rangefit {
 
+// A part's faces are straight along a direction when its exponent there is at most this (a
+// cylinder's side wall along its axis: eps1; a box's sides across it: eps2).
+inline constexpr double kFlatExponent = 0.5;
+
 struct Superquadric {
   double a1 = 1.0, a2 = 1.0, a3 = 1.0;  // half sizes along x, y, z of the part frame, mm
   double eps1 = 1.0;                    // north-south shape exponent, valid [0.1, 2]

@@ -7,11 +7,15 @@
 #include <filesystem>
 #include <map>
 #include <mutex>
+#include <string>
 #include <thread>
 
 #include "api/backend.hpp"
 
 namespace rangefit::api::test {
+
+// The write token the servers under test are started with.
+inline const std::string kToken = "t0ken-for-tests";
 
 class FakeBackend : public Backend {
  public:

@@ -18,10 +18,10 @@
 #include "fake_backend.hpp"
 
 namespace rangefit::api {
-namespace {
+namespace http_server_test {
 
 const std::string kRequest = R"({"kind": "bore", "bore": {"radius_mm": 5}})";
-const std::string kToken = "t0ken-for-tests";
+using test::kToken;
 
 class Http : public ::testing::Test {
  protected:
@@ -333,5 +333,5 @@ TEST_F(Http, PortInUseIsAnError) {
   EXPECT_NE(error.find(std::to_string(server_->port())), std::string::npos) << error;
 }
 
-}  // namespace
+}  // namespace http_server_test
 }  // namespace rangefit::api

@@ -15,7 +15,7 @@
 #include "fake_backend.hpp"
 
 namespace rangefit::api {
-namespace {
+namespace line_server_test {
 
 // A raw TCP client reading answers line by line.
 class LineClient {
@@ -62,8 +62,8 @@ class LineClient {
   std::string buffer_;
 };
 
-const std::string kToken = "t0ken-for-tests";
-const std::string kRequest =
+using test::kToken;
+const std::string kLineRequest =
     R"({"kind": "bore", "bore": {"radius_mm": 5}, "token": ")" + kToken + "\"}";
 
 class Line : public ::testing::Test {
@@ -84,7 +84,7 @@ TEST_F(Line, OneAnswerPerRequestLineInOrder) {
   LineClient c(server_->port());
   ASSERT_TRUE(c.connected());
   c.send(
-      kRequest + "\n" + R"({"op": "state"})" + "\r\n" +
+      kLineRequest + "\n" + R"({"op": "state"})" + "\r\n" +
       R"({"op": "detect", "request": {"kind": "bore", "id": "mine"}, "wait": false, "token": ")" +
       kToken + "\"}\n");
   const nlohmann::json first = c.answer();
@@ -106,7 +106,7 @@ TEST_F(Line, OneAnswerPerRequestLineInOrder) {
 TEST_F(Line, BadJsonIsAnsweredAndTheConnectionStays) {
   start();
   LineClient c(server_->port());
-  c.send("{ not json\n[1]\n{\"op\": \"dance\"}\n{\"op\": \"result\"}\n" + kRequest + "\n");
+  c.send("{ not json\n[1]\n{\"op\": \"dance\"}\n{\"op\": \"result\"}\n" + kLineRequest + "\n");
   for (int i = 0; i < 4; ++i) {
     const nlohmann::json a = c.answer();
     EXPECT_EQ(a["status"], "bad_request") << a;
@@ -140,7 +140,7 @@ TEST_F(Line, OverlongLinesCloseTheConnection) {
   EXPECT_EQ(c.answer()["status"], "too_large");
   EXPECT_TRUE(c.closed(2000));
   LineClient next(server_->port());
-  next.send(kRequest + "\n");
+  next.send(kLineRequest + "\n");
   EXPECT_EQ(next.answer()["status"], "ok");
 }
 
@@ -150,7 +150,7 @@ TEST_F(Line, BusyAndTooManyConnections) {
   start(o);
   backend_.capacity = 0;
   LineClient a(server_->port()), b(server_->port());
-  a.send(kRequest + "\n");
+  a.send(kLineRequest + "\n");
   EXPECT_EQ(a.answer()["status"], "busy");  // the cell's queue is full
   b.send(R"({"op": "state"})"
          "\n");
@@ -176,7 +176,7 @@ TEST_F(Line, FiftyConcurrentClients) {
   for (int i = 0; i < 50; ++i) {
     clients.push_back(std::async(std::launch::async, [this] {
       LineClient c(server_->port());
-      c.send(kRequest + "\n");
+      c.send(kLineRequest + "\n");
       return c.answer(5000).value("status", std::string("none"));
     }));
   }
@@ -197,5 +197,5 @@ TEST(ListenAddress, Parses) {
   }
 }
 
-}  // namespace
+}  // namespace line_server_test
 }  // namespace rangefit::api

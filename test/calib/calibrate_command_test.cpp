@@ -19,7 +19,7 @@
 
 #ifdef RANGEFIT_CLI_PATH
 namespace rangefit::test {
-namespace {
+namespace calibrate_command_test {
 
 namespace fs = std::filesystem;
 
@@ -212,6 +212,6 @@ TEST(CalibrateCommand, BadSweepFileIsBadInputNamingTheLine) {
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace calibrate_command_test
 }  // namespace rangefit::test
 #endif

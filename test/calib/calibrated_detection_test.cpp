@@ -18,7 +18,7 @@
 #include "test/sim/sim_test_scenes.hpp"
 
 namespace rangefit::test {
-namespace {
+namespace calibrated_detection_test {
 
 struct BoreError {
   bool found = false;
@@ -141,5 +141,5 @@ INSTANTIATE_TEST_SUITE_P(Perturbed, CalibratedCssCell,
                          ::testing::Values(std::array<double, 3>{3.0, 10.0, -3.0},
                                            std::array<double, 3>{-1.5, -6.0, 2.0}));
 
-}  // namespace
+}  // namespace calibrated_detection_test
 }  // namespace rangefit::test

@@ -19,7 +19,7 @@
 #include "test/sim/sim_test_scans.hpp"
 
 namespace rangefit::test {
-namespace {
+namespace calibrated_stripe_detection_test {
 
 sim::testing::RawStripeSweep scan_table_top(const sim::Scene& scene,
                                             const hal::StripeCellGeometry& truth) {
@@ -100,5 +100,5 @@ INSTANTIATE_TEST_SUITE_P(Perturbed, CalibratedStripeCell, ::testing::Values(2u))
 INSTANTIATE_TEST_SUITE_P(Perturbed, CalibratedStripeCell, ::testing::Values(2u, 3u));
 #endif
 
-}  // namespace
+}  // namespace calibrated_stripe_detection_test
 }  // namespace rangefit::test

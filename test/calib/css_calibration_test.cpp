@@ -5,7 +5,7 @@
 #include "css_fixtures.hpp"
 
 namespace rangefit::test {
-namespace {
+namespace css_calibration_test {
 
 class CssCalibrationSeeds : public ::testing::TestWithParam<std::uint64_t> {};
 
@@ -67,5 +67,5 @@ TEST(CssCalibration, TooFewPosesIsAClearError) {
   EXPECT_FALSE(calib::calibrate_css_mount({}, g, 0.0).ok);
 }
 
-}  // namespace
+}  // namespace css_calibration_test
 }  // namespace rangefit::test

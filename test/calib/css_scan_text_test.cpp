@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace rangefit::calib {
-namespace {
+namespace css_scan_text_test {
 
 TEST(CssScanText, RoundTripsPosesAndSamples) {
   std::vector<CssSphereScan> scans(2);
@@ -38,5 +38,5 @@ TEST(CssScanText, EmptyAndMalformedInputGiveTheLine) {
             std::string::npos);
 }
 
-}  // namespace
+}  // namespace css_scan_text_test
 }  // namespace rangefit::calib

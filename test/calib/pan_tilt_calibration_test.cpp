@@ -5,7 +5,7 @@
 #include "pan_tilt_fixtures.hpp"
 
 namespace rangefit::test {
-namespace {
+namespace pan_tilt_calibration_test {
 
 void expect_recovered(const calib::PanTiltCalibrationResult& r, const hal::PanTiltGeometry& truth) {
   ASSERT_TRUE(r.ok) << r.reason;
@@ -96,5 +96,5 @@ TEST(PanTiltCalibration, SweepsThatMissTheCubeNameTheMissingPlanes) {
   EXPECT_FALSE(r.reason.empty());
 }
 
-}  // namespace
+}  // namespace pan_tilt_calibration_test
 }  // namespace rangefit::test

@@ -5,7 +5,7 @@
 #include <cmath>
 
 namespace rangefit::calib {
-namespace {
+namespace raw_sweep_text_test {
 
 TEST(RawSweepText, RoundTripsStripeAndPanTiltSweeps) {
   for (const SweepKind kind : {SweepKind::kStripe, SweepKind::kPanTilt}) {
@@ -48,5 +48,5 @@ TEST(RawSweepText, EmptyAndMalformedInputGiveTheLine) {
             std::string::npos);
 }
 
-}  // namespace
+}  // namespace raw_sweep_text_test
 }  // namespace rangefit::calib

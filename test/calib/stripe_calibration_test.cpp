@@ -5,7 +5,7 @@
 #include "calib_fixtures.hpp"
 
 namespace rangefit::test {
-namespace {
+namespace stripe_calibration_test {
 
 class StripeCalibrationSeeds : public ::testing::TestWithParam<std::uint64_t> {};
 
@@ -91,5 +91,5 @@ TEST(StripeCalibration, SweepThatMissesTheCubeNamesTheMissingPlane) {
   EXPECT_FALSE(r.reason.empty());
 }
 
-}  // namespace
+}  // namespace stripe_calibration_test
 }  // namespace rangefit::test

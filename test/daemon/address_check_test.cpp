@@ -5,7 +5,7 @@
 #include <fstream>
 
 namespace rangefit::daemon {
-namespace {
+namespace address_check_test {
 
 IpAllowList list(const char* text) {
   std::string why;
@@ -152,5 +152,5 @@ TEST(AddressCheck, DdsInterfacesAndPeersOutsideTheListAreRefused) {
   }
 }
 
-}  // namespace
+}  // namespace address_check_test
 }  // namespace rangefit::daemon

@@ -12,7 +12,7 @@
 #include "test/daemon/cli_run.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace bore_fit_output_test {
 namespace fs = std::filesystem;
 
 const fs::path kExample = fs::path(RANGEFIT_SOURCE_DIR) / "data/examples/bore_plate_r5.ply";
@@ -74,5 +74,5 @@ TEST(BoreFitOutput, CliJsonReportsTheSameFitFieldsAsTheService) {
 }
 #endif
 
-}  // namespace
+}  // namespace bore_fit_output_test
 }  // namespace rangefit::daemon

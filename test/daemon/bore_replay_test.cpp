@@ -13,7 +13,7 @@
 #include "test/support/synthetic_bore.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace bore_replay_test {
 namespace fs = std::filesystem;
 
 TEST(BoreReplayThroughDds, BoreRequestFindsTheSimulatedBoreWithinTolerance) {
@@ -50,5 +50,5 @@ TEST(BoreReplayThroughDds, BoreRequestFindsTheSimulatedBoreWithinTolerance) {
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace bore_replay_test
 }  // namespace rangefit::daemon

@@ -21,7 +21,7 @@
 #include "test/detect/bore_test_cases.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace bore_shape_request_test {
 
 DaemonConfig css_only() {
   DaemonConfig config;
@@ -154,5 +154,5 @@ TEST(BoreShapeRequest, CliFitsACountersinkAndPrintsItsShapeAsJson) {
 }
 #endif
 
-}  // namespace
+}  // namespace bore_shape_request_test
 }  // namespace rangefit::daemon

@@ -14,7 +14,7 @@
 
 #if defined(RANGEFIT_CLI_PATH) && defined(RANGEFITD_PATH) && defined(RANGEFIT_PROJECT_VERSION)
 namespace rangefit {
-namespace {
+namespace cli_edges_test {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -127,6 +127,6 @@ TEST(CliEdges, DashPipesCloudsFromSimulateIntoBoreAndObject) {
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace cli_edges_test
 }  // namespace rangefit
 #endif

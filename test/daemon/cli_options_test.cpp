@@ -7,7 +7,7 @@
 
 #include "test/daemon/cli_run.hpp"
 
-namespace {
+namespace cli_options_test {
 
 #ifdef RANGEFIT_CLI_PATH
 using rangefit::test::CliRun;
@@ -59,4 +59,4 @@ TEST(CliOptions, WatchRejectsANonFiniteDuration) {
 }
 #endif
 
-}  // namespace
+}  // namespace cli_options_test

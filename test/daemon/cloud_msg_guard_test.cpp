@@ -7,7 +7,7 @@
 #include <vector>
 
 namespace rangefit::daemon {
-namespace {
+namespace cloud_msg_guard_test {
 
 TEST(CloudMsgGuard, SizesAreCheckedWithoutOverflow) {
   EXPECT_TRUE(cloud_msg_fits(4, 2, 12, 96));
@@ -61,5 +61,5 @@ TEST(CloudMsgGuard, APointFiniteInMetresButNotInMillimetresIsDropped) {
   EXPECT_NEAR(cloud.points[0].z(), 2000.0, 1e-9);
 }
 
-}  // namespace
+}  // namespace cloud_msg_guard_test
 }  // namespace rangefit::daemon

@@ -11,7 +11,7 @@
 #include "test/daemon/replay_service.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace config_models_test {
 namespace fs = std::filesystem;
 
 const fs::path kModels = fs::path(RANGEFIT_SOURCE_DIR) / "data/models";
@@ -67,5 +67,5 @@ TEST(ConfigModels, BadOrMissingModelFilesAndMixedFormsAreErrorsNamingTheField) {
   EXPECT_NE(taper.error.find("objects[0].taper"), std::string::npos) << taper.error;
 }
 
-}  // namespace
+}  // namespace config_models_test
 }  // namespace rangefit::daemon

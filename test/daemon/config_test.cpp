@@ -5,7 +5,7 @@
 #include <ostream>
 
 namespace rangefit::daemon {
-namespace {
+namespace config_test {
 
 TEST(DaemonConfig, EmptyFileGivesTheDocumentedDefaults) {
   const auto r = parse_config("");
@@ -221,5 +221,5 @@ TEST(DaemonConfig, MissingFileIsReportedWithItsPath) {
   EXPECT_NE(r.error.find("/nonexistent/rangefitd.toml"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace config_test
 }  // namespace rangefit::daemon

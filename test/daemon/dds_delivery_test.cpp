@@ -18,7 +18,7 @@
 #include "test/daemon/replay_service.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace dds_delivery_test {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 using std::chrono::milliseconds;
@@ -239,5 +239,5 @@ TEST_F(DdsDeliveryTest, ReloadDuringAScanAnswersEveryQueuedAndLaterRequestWithIt
   EXPECT_EQ(service_->config().service.queue_capacity, 7u);
 }
 
-}  // namespace
+}  // namespace dds_delivery_test
 }  // namespace rangefit::daemon

@@ -21,7 +21,7 @@
 #include "test/daemon/replay_service.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace dds_security_test {
 namespace fs = std::filesystem;
 
 DdsSecurityConfig security_in(const fs::path& dir, const std::string& identity) {
@@ -175,5 +175,5 @@ TEST(DdsSecurityEndToEnd, SecuredParticipantsExchangeMessagesAndAnUnsecuredOneRe
 }
 #endif
 
-}  // namespace
+}  // namespace dds_security_test
 }  // namespace rangefit::daemon

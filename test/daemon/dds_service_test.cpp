@@ -13,7 +13,7 @@
 #include "test/daemon/replay_service.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace dds_service_test {
 namespace fs = std::filesystem;
 
 class DdsServiceTest : public ::testing::Test {
@@ -122,5 +122,5 @@ TEST_F(DdsServiceTest, ReplayDeviceGoneGivesErrorResultAndErrorDiagnosticThenRec
   EXPECT_EQ(result->reason.find("scan failed"), std::string::npos) << result->reason;
 }
 
-}  // namespace
+}  // namespace dds_service_test
 }  // namespace rangefit::daemon

@@ -12,7 +12,7 @@
 #include <vector>
 
 namespace rangefit::test {
-namespace {
+namespace dds_test_env_test {
 
 constexpr int kEach = 30;
 
@@ -74,5 +74,5 @@ TEST(TestDomains, AnotherProcessGetsNoneOfTheDomainsThisOneHolds) {
   release(fds);
 }
 
-}  // namespace
+}  // namespace dds_test_env_test
 }  // namespace rangefit::test

@@ -8,7 +8,7 @@
 #include <chrono>
 
 namespace rangefit::daemon {
-namespace {
+namespace diagnostics_test {
 
 using std::chrono::seconds;
 
@@ -49,5 +49,5 @@ TEST(Diagnostics, HardwareIdIsTheDevicesSerialOnceKnownElseItsName) {
   EXPECT_EQ(value(*find(second, "rangefitd: device css"), "rate_hz"), "7.0");
 }
 
-}  // namespace
+}  // namespace diagnostics_test
 }  // namespace rangefit::daemon

@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 namespace rangefit::daemon {
-namespace {
+namespace driver_configs_test {
 
 DeviceConfig device(const std::string& kind, const std::string& transport) {
   DeviceConfig d;
@@ -88,5 +88,5 @@ TEST(DriverConfigs, CanNodesListEveryIdADeviceOccupiesAndNoneOffTheBus) {
   EXPECT_TRUE(can_nodes(DeviceConfig{}).empty());
 }
 
-}  // namespace
+}  // namespace driver_configs_test
 }  // namespace rangefit::daemon

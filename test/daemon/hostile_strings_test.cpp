@@ -8,7 +8,7 @@
 #include "daemon/service/request_validation.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace hostile_strings_test {
 
 TEST(LogEscape, ControlCharactersAndAnsiBecomeVisibleEscapes) {
   EXPECT_EQ(log_escape("scan-17"), "scan-17");
@@ -79,5 +79,5 @@ TEST(ValidateRequest, HostileIdsAndNamesAreRejectedWithoutEchoingThem) {
   }
 }
 
-}  // namespace
+}  // namespace hostile_strings_test
 }  // namespace rangefit::daemon

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace {
+namespace msg_idl_agreement_test {
 
 std::string read(const std::string& rel) {
   std::ifstream in(std::string(RANGEFIT_SOURCE_DIR) + "/" + rel);
@@ -252,4 +252,4 @@ TEST(OfficialDefinition, AReorderedOrResizedFieldIsNoMatch) {
             idl_struct(idl, "PoseArray_"));
 }
 
-}  // namespace
+}  // namespace msg_idl_agreement_test

@@ -13,7 +13,7 @@
 #include "test/daemon/stripe_cell_config.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace partial_sweep_test {
 namespace fs = std::filesystem;
 
 struct Sweep {
@@ -64,5 +64,5 @@ INSTANTIATE_TEST_SUITE_P(Sweeps, PartialSweep,
                                   std::to_string(static_cast<int>(p.param.to_mm));
                          });
 
-}  // namespace
+}  // namespace partial_sweep_test
 }  // namespace rangefit::daemon

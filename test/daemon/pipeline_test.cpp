@@ -7,7 +7,7 @@
 #include "test/daemon/fakes.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace pipeline_test {
 
 using test::CentroidDetector;
 using test::FakeBackend;
@@ -150,5 +150,5 @@ TEST(Pipeline, SpoolsTheCloudAndResultBeforePublishing) {
   std::filesystem::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace pipeline_test
 }  // namespace rangefit::daemon

@@ -6,7 +6,7 @@
 #include "test/daemon/fakes.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace pipeline_timeout_test {
 
 using std::chrono::milliseconds;
 using test::CentroidDetector;
@@ -100,5 +100,5 @@ TEST(PipelineTimeouts, OverlongDetectionIsAnsweredAtOnceAndStarvesTheWatchdogUnt
   EXPECT_FALSE(p.stalled(clock.now(), std::chrono::seconds(30)));
 }
 
-}  // namespace
+}  // namespace pipeline_timeout_test
 }  // namespace rangefit::daemon

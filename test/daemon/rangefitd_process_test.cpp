@@ -15,7 +15,7 @@
 #include "test/daemon/notify_socket.hpp"
 
 #ifdef RANGEFITD_PATH
-namespace {
+namespace rangefitd_process_test {
 namespace fs = std::filesystem;
 using std::chrono::seconds;
 
@@ -123,5 +123,5 @@ TEST(RangefitdProcess, AListenAddressOutsideTheUnitsAllowListIsRefusedAtStart) {
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace rangefitd_process_test
 #endif

@@ -13,7 +13,7 @@
 #include "test/support/modbus_axis_server.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace real_devices_test {
 
 using std::chrono::milliseconds;
 
@@ -167,5 +167,5 @@ TEST(RealDevices, NoRealDevicesMeansNoHealthEntries) {
   EXPECT_TRUE(devices.health().empty());
 }
 
-}  // namespace
+}  // namespace real_devices_test
 }  // namespace rangefit::daemon

@@ -19,7 +19,7 @@
 #include "test/support/synthetic_bore.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace request_exit_code_test {
 namespace fs = std::filesystem;
 
 TEST(ResultOutcome, DetectorReasonsAreNotFoundAndEverythingElseIsAnError) {
@@ -79,5 +79,5 @@ TEST(RequestCommand, ExitsZeroWhenFoundTwoWhenNotFoundOneOnABadRequest) {
 }
 #endif
 
-}  // namespace
+}  // namespace request_exit_code_test
 }  // namespace rangefit::daemon

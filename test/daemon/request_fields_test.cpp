@@ -7,7 +7,7 @@
 #include "daemon/service/request_validation.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace request_fields_test {
 
 TEST(RequestFields, PlaneNormalCountsAndSeedRoundTripTheWire) {
   ScanRequest req;
@@ -54,5 +54,5 @@ TEST(RequestFields, AnOlderClientsZerosMeanTheEarlierDefaults) {
             "trials must be in 0 .. 10000 (0: the detector's default)");
 }
 
-}  // namespace
+}  // namespace request_fields_test
 }  // namespace rangefit::daemon

@@ -11,7 +11,7 @@
 #include "daemon/service/request_validation.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace request_kinds_test {
 
 ScanRequest pipe_request() {
   ScanRequest req;
@@ -173,5 +173,5 @@ TEST(RequestKinds, ValidationNamesWhatIsWrong) {
             "unknown kind \"teach\" (expected \"bore\", \"object\", \"learn\" or \"calibrate\")");
 }
 
-}  // namespace
+}  // namespace request_kinds_test
 }  // namespace rangefit::daemon

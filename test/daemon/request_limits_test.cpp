@@ -9,7 +9,7 @@
 #include "daemon/service/request_validation.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace request_limits_test {
 
 DaemonConfig css_and_stripe() {
   DaemonConfig c;
@@ -70,5 +70,5 @@ TEST(RequestLimits, CloudWhosePointCountTimesStepWrapsAroundIsNoCloud) {
   EXPECT_EQ(from_msg(msg).size(), 4u);
 }
 
-}  // namespace
+}  // namespace request_limits_test
 }  // namespace rangefit::daemon

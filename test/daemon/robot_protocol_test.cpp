@@ -6,7 +6,7 @@
 #include "daemon/service/config.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace robot_protocol_test {
 
 ConfigResult robot(const std::string& extra) {
   return parse_config(
@@ -50,5 +50,5 @@ TEST(RobotProtocol, DefaultIsCia402AndOtherValuesOrKindsAreErrors) {
       << axis.error;
 }
 
-}  // namespace
+}  // namespace robot_protocol_test
 }  // namespace rangefit::daemon

@@ -10,7 +10,7 @@
 #include "daemon/service/config.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace ros_config_test {
 
 const std::string kDevice =
     "[[devices]]\nname = \"css\"\nkind = \"css\"\ndriver = \"replay\"\nreplay_file = \"x.ply\"\n";
@@ -144,5 +144,5 @@ TEST(RosConfig, BadNamespacesAndPartitionsAreErrorsNamingTheField) {
   EXPECT_FALSE(unknown.config);
 }
 
-}  // namespace
+}  // namespace ros_config_test
 }  // namespace rangefit::daemon

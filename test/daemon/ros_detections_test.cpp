@@ -20,7 +20,7 @@
 #include "test/daemon/xcdr_reader.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace ros_detections_test {
 using std::chrono::milliseconds;
 using std::chrono::seconds;
 using test::Cdr;
@@ -333,5 +333,5 @@ TEST_F(RosDetectionsTest, APartOfAnUnknownModelGetsNoMeshAndAnEmptyBox) {
   expect_same_pose(d[0].pose, r.parts[0].T_world_part);
 }
 
-}  // namespace
+}  // namespace ros_detections_test
 }  // namespace rangefit::daemon

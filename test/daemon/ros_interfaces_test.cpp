@@ -26,7 +26,7 @@
 #include "test/daemon/xcdr_reader.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace ros_interfaces_test {
 namespace fs = std::filesystem;
 using std::chrono::milliseconds;
 using std::chrono::seconds;
@@ -307,5 +307,5 @@ TEST(RosDiscoveryHumble, GidsAreTheGuidsInTwentyFourBytesUnderTheRosTypeName) {
   EXPECT_EQ(announced->type_name, "rmw_dds_common::msg::dds_::ParticipantEntitiesInfo_");
 }
 
-}  // namespace
+}  // namespace ros_interfaces_test
 }  // namespace rangefit::daemon

@@ -19,7 +19,7 @@
 #include "test/daemon/xcdr_reader.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace ros_namespace_test {
 namespace fs = std::filesystem;
 using std::chrono::milliseconds;
 using std::chrono::seconds;
@@ -154,5 +154,5 @@ TEST(RosNamespace, TopicsServiceAndFramesAreTheNamespacedRosNames) {
             (std::set<std::string>{"cell1/world -> cell1/css", "cell2/world -> cell2/css"}));
 }
 
-}  // namespace
+}  // namespace ros_namespace_test
 }  // namespace rangefit::daemon

@@ -8,7 +8,7 @@
 #include <cmath>
 
 namespace rangefit::daemon {
-namespace {
+namespace scan_loop_test {
 
 template <class Sample>
 class ScriptedSource final : public hal::SampleSource<Sample> {
@@ -138,5 +138,5 @@ TEST(FinishScan, PlacesTheCloudWithTheExtrinsicsAfterTheMountAndNamesTheDeviceOn
   EXPECT_EQ(finish_scan(d, scan).status.message, "css: fusion: too many faults");
 }
 
-}  // namespace
+}  // namespace scan_loop_test
 }  // namespace rangefit::daemon

@@ -14,7 +14,7 @@
 #include "daemon/cell/sim_cell.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace scan_sensor_test {
 
 TEST(ScanSensor, StripeSweepHoldsEveryPointTheSimulatedCellMeasured) {
   DaemonConfig c;
@@ -82,5 +82,5 @@ TEST(ScanSensor, MovingTheScanMovesTheSensorWithIt) {
   for (int k = 0; k < 2; ++k) EXPECT_LT((T * before.at[k] - after.at[k]).norm(), 1e-9);
 }
 
-}  // namespace
+}  // namespace scan_sensor_test
 }  // namespace rangefit::daemon

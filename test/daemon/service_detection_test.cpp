@@ -23,7 +23,7 @@
 #include "test/daemon/replay_service.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace service_detection_test {
 namespace fs = std::filesystem;
 using std::chrono::seconds;
 
@@ -169,5 +169,5 @@ TEST(ServiceDetection, ScanStampIsTheLastSampleOnTheWallClock) {
   EXPECT_EQ(msg.first_pose().header.stamp.sec, msg.msg().header.stamp.sec);
 }
 
-}  // namespace
+}  // namespace service_detection_test
 }  // namespace rangefit::daemon

@@ -8,7 +8,7 @@
 #include "test/daemon/dds_test_env.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace service_reload_test {
 namespace fs = std::filesystem;
 
 DaemonConfig sim_config(const fs::path& dir, const fs::path& scene) {
@@ -80,5 +80,5 @@ TEST(ServiceReload, BrokenSceneAtStartIsAStartUpError) {
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace service_reload_test
 }  // namespace rangefit::daemon

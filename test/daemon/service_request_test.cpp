@@ -8,7 +8,7 @@
 #include <limits>
 
 namespace rangefit::daemon {
-namespace {
+namespace service_request_test {
 
 char* text(const char* s) { return const_cast<char*>(s); }  // the wire struct only reads it
 
@@ -77,5 +77,5 @@ TEST(ServiceRequest, AnUnknownKindIsNamedBeforeTheMissingId) {
   EXPECT_NE(error.find("unknown kind \"teleport\""), std::string::npos) << error;
 }
 
-}  // namespace
+}  // namespace service_request_test
 }  // namespace rangefit::daemon

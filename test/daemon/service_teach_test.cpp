@@ -22,7 +22,7 @@
 #include "test/detect/learn_scenes.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace service_teach_test {
 namespace fs = std::filesystem;
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -242,5 +242,5 @@ TEST(ServiceTeach, CalibrateRefusesATargetItCannotScanAndASensorOfAnotherKind) {
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace service_teach_test
 }  // namespace rangefit::daemon

@@ -11,7 +11,7 @@
 #include "sim/scene_loader.hpp"
 
 namespace rangefit {
-namespace {
+namespace shipped_mallet_test {
 
 TEST(ShippedMallet, SceneAndModelAgreeOnPartsAndTheirLink) {
   const std::filesystem::path data = std::filesystem::path(RANGEFIT_SOURCE_DIR) / "data";
@@ -49,5 +49,5 @@ TEST(ShippedMallet, SceneAndModelAgreeOnPartsAndTheirLink) {
             0.25 * o.link_distance_tolerance * link.distance_mm);
 }
 
-}  // namespace
+}  // namespace shipped_mallet_test
 }  // namespace rangefit

@@ -15,7 +15,7 @@
 #include "test/daemon/replay_service.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace sim_bore_service_test {
 namespace fs = std::filesystem;
 
 // bore_plate.toml with the plate shifted so that cell `cell` lies under the CSS.
@@ -89,5 +89,5 @@ INSTANTIATE_TEST_SUITE_P(Plate, SimBoreService,
                                            PlateBore{3, "chamfered_16"}),
                          [](const auto& p) { return std::string(p.param.name); });
 
-}  // namespace
+}  // namespace sim_bore_service_test
 }  // namespace rangefit::daemon

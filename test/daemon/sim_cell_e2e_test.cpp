@@ -18,7 +18,7 @@
 
 #ifdef RANGEFITD_PATH
 namespace rangefit::daemon {
-namespace {
+namespace sim_cell_e2e_test {
 namespace fs = std::filesystem;
 using std::chrono::milliseconds;
 using std::chrono::seconds;
@@ -193,6 +193,6 @@ TEST(SimulatedCellEndToEnd, DeviceLostMidScanGivesAnErrorResultAndDiagnosticThen
   EXPECT_EQ(daemon.stop(), 0);
 }
 
-}  // namespace
+}  // namespace sim_cell_e2e_test
 }  // namespace rangefit::daemon
 #endif

@@ -7,7 +7,7 @@
 #include <filesystem>
 
 namespace rangefit::daemon {
-namespace {
+namespace sim_cell_test {
 
 const std::string kScenes = std::string(RANGEFIT_SOURCE_DIR) + "/data/scenes/";
 
@@ -101,5 +101,5 @@ TEST(SimCell, WithoutSimulatedDevicesThereIsNothingToReport) {
   EXPECT_TRUE(cell.health().empty());
 }
 
-}  // namespace
+}  // namespace sim_cell_test
 }  // namespace rangefit::daemon

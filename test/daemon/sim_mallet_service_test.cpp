@@ -14,7 +14,7 @@
 #include "test/daemon/stripe_cell_config.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace sim_mallet_service_test {
 namespace fs = std::filesystem;
 using std::chrono::milliseconds;
 using std::chrono::seconds;
@@ -81,5 +81,5 @@ TEST(SimMalletService, BothPartsOfTheMalletAreFoundAndEachIsPublishedAsPoseAndFr
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace sim_mallet_service_test
 }  // namespace rangefit::daemon

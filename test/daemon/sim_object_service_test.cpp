@@ -13,7 +13,7 @@
 #include "test/daemon/stripe_cell_config.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace sim_object_service_test {
 namespace fs = std::filesystem;
 
 TEST(SimObjectService, TaperedConeFromItsModelFileIsFoundThroughDds) {
@@ -45,5 +45,5 @@ TEST(SimObjectService, TaperedConeFromItsModelFileIsFoundThroughDds) {
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace sim_object_service_test
 }  // namespace rangefit::daemon

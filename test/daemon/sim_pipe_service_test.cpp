@@ -20,7 +20,7 @@
 #include "test/daemon/replay_service.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace sim_pipe_service_test {
 namespace fs = std::filesystem;
 
 constexpr double kTop = 285.8;  // the CSS's standoff plane (data/scenes/bore_plate.toml)
@@ -140,5 +140,5 @@ TEST(SimPipeService, BothWallsThroughDdsEqualTheCliOnTheSpooledScan) {
 }
 #endif
 
-}  // namespace
+}  // namespace sim_pipe_service_test
 }  // namespace rangefit::daemon

@@ -14,7 +14,7 @@
 #include "test/daemon/replay_service.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace simulate_path_test {
 namespace fs = std::filesystem;
 
 #ifdef RANGEFIT_CLI_PATH
@@ -53,5 +53,5 @@ TEST(SimulatePath, SimulateWritesTheCloudTheServicesSimulatedCellScans) {
 
 #endif
 
-}  // namespace
+}  // namespace simulate_path_test
 }  // namespace rangefit::daemon

@@ -8,7 +8,7 @@
 #include "test/daemon/fakes.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace spool_test {
 namespace fs = std::filesystem;
 
 class SpoolTest : public ::testing::Test {
@@ -106,5 +106,5 @@ TEST_F(SpoolTest, MissingOrBrokenEntryIsAnErrorNotACrash) {
   EXPECT_FALSE(read_spool_entry(dir_ / "bad", &why));
 }
 
-}  // namespace
+}  // namespace spool_test
 }  // namespace rangefit::daemon

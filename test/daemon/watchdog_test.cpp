@@ -4,7 +4,7 @@
 #include "test/daemon/notify_socket.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace watchdog_test {
 
 using std::chrono::seconds;
 
@@ -40,5 +40,5 @@ TEST(SdNotifier, WithoutANotifySocketDoesNothing) {
   EXPECT_EQ(watchdog_interval(), hal::Duration::zero());
 }
 
-}  // namespace
+}  // namespace watchdog_test
 }  // namespace rangefit::daemon

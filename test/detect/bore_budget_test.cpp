@@ -14,7 +14,9 @@
 #include "test/support/synthetic_bore.hpp"
 
 namespace rangefit {
-namespace {
+namespace bore_budget_test {
+
+using test::axis_deg;
 
 sim::SyntheticBoreScan dense_scan(double radius, double extent, double depth, std::uint64_t seed) {
   sim::SyntheticBoreOptions o;
@@ -27,10 +29,6 @@ sim::SyntheticBoreScan dense_scan(double radius, double extent, double depth, st
   o.seed = seed;
   o.T_world_part = test::random_pose(seed);
   return sim::make_synthetic_bore(o);
-}
-
-double axis_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::acos(std::min(1.0, std::abs(a.dot(b)))) * 180.0 / std::numbers::pi;
 }
 
 TEST(BoreBudget, SmallDenseBoreKeepsEveryWallPoint) {
@@ -170,5 +168,5 @@ TEST(BoreBudget, NarrowArcOffsetPolishedOnEveryScanPointOfTheBand) {
   EXPECT_LT(polished_err[polished_err.size() / 2], budget_err[budget_err.size() / 2]);
 }
 
-}  // namespace
+}  // namespace bore_budget_test
 }  // namespace rangefit

@@ -11,13 +11,10 @@
 #include "test/detect/bore_test_cases.hpp"
 
 namespace rangefit {
-namespace {
+namespace bore_cone_test {
 
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
-
-double axis_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::acos(std::min(1.0, std::abs(a.dot(b)))) * kRadToDeg;
-}
+using test::axis_deg;
+using test::kRadToDeg;
 
 class BoreCone : public ::testing::TestWithParam<test::ShapeKind> {};
 
@@ -112,5 +109,5 @@ TEST(BoreConeReasons, CountersinkPriorOnAPlainBoreIsNotFound) {
   EXPECT_EQ(r.reason, BoreReason::kShapeFitFailed) << to_string(r.reason);
 }
 
-}  // namespace
+}  // namespace bore_cone_test
 }  // namespace rangefit

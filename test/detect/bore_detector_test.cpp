@@ -11,9 +11,10 @@
 #include "test/detect/bore_test_cases.hpp"
 
 namespace rangefit {
-namespace {
+namespace bore_detector_test {
 
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+using test::axis_deg;
+using test::kRadToDeg;
 
 struct Errors {
   double entrance_mm, axis_deg, radius_mm;
@@ -62,5 +63,5 @@ TEST(BoreDetector, EveryCaseWithinThesisToleranceAndMedianWithinTarget) {
   EXPECT_LT(median(axis), 0.25);
 }
 
-}  // namespace
+}  // namespace bore_detector_test
 }  // namespace rangefit

@@ -11,13 +11,9 @@
 #include "test/detect/bore_test_cases.hpp"
 
 namespace rangefit {
-namespace {
+namespace bore_ellipse_test {
 
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
-
-double axis_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::acos(std::min(1.0, std::abs(a.dot(b)))) * kRadToDeg;
-}
+using test::axis_deg;
 
 TEST(BoreEllipse, RadiiMajorAxisEntranceAndAxisOnEveryTuningSeed) {
   for (std::uint64_t seed = 1; seed <= test::kShapeTuningSeeds; ++seed) {
@@ -107,5 +103,5 @@ TEST(BoreEllipse, MajorAxisAlongTheBoreAxisIsABadModel) {
   EXPECT_EQ(detect_bore(scan.cloud, p).reason, BoreReason::kBadShape);
 }
 
-}  // namespace
+}  // namespace bore_ellipse_test
 }  // namespace rangefit

@@ -14,7 +14,7 @@
 #include "test/support/synthetic_bore.hpp"
 
 namespace rangefit {
-namespace {
+namespace bore_example_test {
 
 const std::filesystem::path kExample =
     std::filesystem::path(RANGEFIT_SOURCE_DIR) / "data/examples/bore_plate_r5.ply";
@@ -65,5 +65,5 @@ TEST(BoreExample, ShippedScanIsFoundWithItsDocumentedPrior) {
               scan.truth.view_dir.x(), scan.truth.view_dir.y(), scan.truth.view_dir.z());
 }
 
-}  // namespace
+}  // namespace bore_example_test
 }  // namespace rangefit

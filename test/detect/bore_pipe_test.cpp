@@ -12,9 +12,9 @@
 #include "test/support/synthetic_bore.hpp"
 
 namespace rangefit {
-namespace {
+namespace bore_pipe_test {
 
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+using test::axis_deg;
 
 sim::SyntheticBoreScan pipe_scan(std::uint64_t seed) {
   sim::SyntheticBoreOptions o;
@@ -34,10 +34,6 @@ BorePrior pipe_prior(const sim::SyntheticBoreTruth& t, std::uint64_t seed) {
   p.radius = 6.0;
   p.outer_radius = 8.0;
   return p;
-}
-
-double axis_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::acos(std::min(1.0, std::abs(a.dot(b)))) * kRadToDeg;
 }
 
 TEST(BorePipe, InnerAndOuterWallBothWithoutAViewDirection) {
@@ -90,5 +86,5 @@ TEST(BorePipe, BothWallsNeedAnOuterRadius) {
   EXPECT_EQ(detect_bore(scan.cloud, p, o).reason, BoreReason::kBadPrior);
 }
 
-}  // namespace
+}  // namespace bore_pipe_test
 }  // namespace rangefit

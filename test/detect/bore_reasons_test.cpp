@@ -6,7 +6,7 @@
 #include "test/support/synthetic_bore.hpp"
 
 namespace rangefit {
-namespace {
+namespace bore_reasons_test {
 
 sim::SyntheticBoreScan plate_scan() {
   sim::SyntheticBoreOptions o;
@@ -96,5 +96,5 @@ TEST(BoreReasons, SameSeedGivesTheSameResult) {
   EXPECT_EQ(a.radius, b.radius);
 }
 
-}  // namespace
+}  // namespace bore_reasons_test
 }  // namespace rangefit

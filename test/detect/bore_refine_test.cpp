@@ -13,7 +13,7 @@
 #include "test/detect/bore_test_cases.hpp"
 
 namespace rangefit {
-namespace {
+namespace bore_refine_test {
 
 struct Medians {
   double entrance_mm = 0, axis_deg = 0, radius_mm = 0;
@@ -75,5 +75,5 @@ TEST(BoreRefine, RefinementUsesMorePointsThanTheSegmentedWall) {
   EXPECT_GT(r.counts.refine_inliers, r.counts.wall * 3 / 2);
 }
 
-}  // namespace
+}  // namespace bore_refine_test
 }  // namespace rangefit

@@ -14,7 +14,7 @@
 #include "test/support/synthetic_bore.hpp"
 
 namespace rangefit {
-namespace {
+namespace bore_sigma_test {
 
 // A 4 mm blind bore, 3 mm deep, at the CSS's density (two interleaved passes at 0.15 mm).
 sim::SyntheticBoreScan small_blind_bore(std::uint64_t seed, double noise = 0.06) {
@@ -110,5 +110,5 @@ TEST(BoreSigma, CylinderSigmaScalesWithPointsAndWallLength) {
   EXPECT_LT(cylinder_sigma(arc(4000, 3.0), c, 0.02).points, 4000u);
 }
 
-}  // namespace
+}  // namespace bore_sigma_test
 }  // namespace rangefit

@@ -2,6 +2,9 @@
 // The synthetic bore cases shared by the bore tests and the benchmark.
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <random>
 #include <string>
 #include <vector>
@@ -10,6 +13,13 @@
 #include "test/support/synthetic_bore.hpp"
 
 namespace rangefit::test {
+
+inline constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+
+// Angle between two axes regardless of their sign, degrees.
+inline double axis_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::acos(std::min(1.0, std::abs(a.dot(b)))) * kRadToDeg;
+}
 
 struct BoreCase {
   std::string name;

@@ -10,7 +10,7 @@
 #include "detect/bore/cylinder_rsf.hpp"
 
 namespace rangefit {
-namespace {
+namespace cylinder_fit_test {
 
 // A 120-degree fragment of a cylinder (axis z through (1, 2, 0), radius r), normals toward the
 // axis, with Gaussian noise on the radius.
@@ -104,5 +104,5 @@ TEST(CylinderLsf, LevenbergMarquardtConvergesFromACadPoseOffByAMillimetre) {
   EXPECT_NEAR(r.rms, 0.02, 0.005);
 }
 
-}  // namespace
+}  // namespace cylinder_fit_test
 }  // namespace rangefit

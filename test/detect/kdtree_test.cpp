@@ -6,7 +6,7 @@
 #include <random>
 
 namespace rangefit {
-namespace {
+namespace kdtree_test {
 
 std::vector<Eigen::Vector3d> RandomPoints(std::size_t n, unsigned seed) {
   std::mt19937 rng(seed);
@@ -54,5 +54,5 @@ TEST(KdTree, KnnReturnsNearestFirst) {
   for (int i = 0; i < 5; ++i) EXPECT_EQ(found[i], order[i]);
 }
 
-}  // namespace
+}  // namespace kdtree_test
 }  // namespace rangefit

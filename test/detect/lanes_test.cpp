@@ -11,7 +11,7 @@
 #include "test/detect/object_scenes.hpp"
 
 namespace rangefit {
-namespace {
+namespace lanes_test {
 
 using lanes::V4d;
 
@@ -106,5 +106,5 @@ TEST(Lanes, BatchValuesMatchThePointwiseMetric) {
   m.values(T, pts, {}, {});  // nothing to do, nothing touched
 }
 
-}  // namespace
+}  // namespace lanes_test
 }  // namespace rangefit

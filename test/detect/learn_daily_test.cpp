@@ -13,7 +13,7 @@
 #include "test/detect/learn_daily.hpp"
 
 namespace rangefit {
-namespace {
+namespace learn_daily_test {
 
 std::vector<sim::DailyObject> one_part_objects() {
   std::vector<sim::DailyObject> out;
@@ -55,5 +55,5 @@ TEST(LearnDaily, TableFiveSixObjectsFromTwoStripeViews) {
   }
 }
 
-}  // namespace
+}  // namespace learn_daily_test
 }  // namespace rangefit

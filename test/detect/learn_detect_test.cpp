@@ -19,7 +19,7 @@
 #include "test/detect/stripe_scan_fixture.hpp"
 
 namespace rangefit {
-namespace {
+namespace learn_detect_test {
 
 sim::ScanSetup stripe_setup(double triangulation_deg, int side) {
   sim::ScanSetup s;
@@ -133,5 +133,5 @@ TEST(LearnDetect, LearntCupIsFoundAmongDailyLifeObjectsAsOftenAsTheTrueModel) {
   EXPECT_GE(learnt, true_model);
 }
 
-}  // namespace
+}  // namespace learn_detect_test
 }  // namespace rangefit

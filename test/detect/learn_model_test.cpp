@@ -20,7 +20,7 @@
 #include "test/detect/object_scenes.hpp"
 
 namespace rangefit {
-namespace {
+namespace learn_model_test {
 
 constexpr double kNoise = 0.05;
 
@@ -182,11 +182,11 @@ TEST(LearnModel, HeldOutRandomSuperquadricsAreReported) {
   EXPECT_GE(two.within, kRandomSeeds / 2);
 }
 
-}  // namespace
+}  // namespace learn_model_test
 }  // namespace rangefit
 
 namespace rangefit {
-namespace {
+namespace learn_model_test {
 
 // Two parts: the mallet (head 30,30,56 across the end of the shaft 12,10,120, centres 170 mm
 // apart) lying on the table, seen from the front and from behind.
@@ -223,11 +223,11 @@ TEST(LearnModel, LearnsTheMalletAsHeadAndShaftWithTheirLink) {
   EXPECT_NEAR(r.model.links[0].distance_mm, 170.0, 1.0);
 }
 
-}  // namespace
+}  // namespace learn_model_test
 }  // namespace rangefit
 
 namespace rangefit {
-namespace {
+namespace learn_model_test {
 
 TEST(LearnModel, EmptyTableAndBadOptionsAreReasonsNotCrashes) {
   EXPECT_EQ(learn_model({}).reason, LearnReason::kEmptyCloud);
@@ -284,5 +284,5 @@ TEST(LearnModel, DegenerateCloudsAreClearReasonsNotFits) {
   }
 }
 
-}  // namespace
+}  // namespace learn_model_test
 }  // namespace rangefit

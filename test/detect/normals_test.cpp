@@ -11,7 +11,7 @@
 #include "test/support/synthetic_bore.hpp"
 
 namespace rangefit {
-namespace {
+namespace normals_test {
 
 // A flat 10 x 10 mm grid at z = 0 with 0.2 mm spacing, optionally organised.
 PointCloud plate(bool organised) {
@@ -152,5 +152,5 @@ TEST(Normals, SubsamplingKeepsTheRequestedShareEvenly) {
   EXPECT_EQ(subsample_evenly(idx, 1.0).size(), 1000u);
 }
 
-}  // namespace
+}  // namespace normals_test
 }  // namespace rangefit

@@ -8,7 +8,7 @@
 #include "test/detect/object_scenes.hpp"
 
 namespace rangefit {
-namespace {
+namespace object_detector_test {
 
 using test::Scene;
 
@@ -212,5 +212,5 @@ TEST(ObjectDetector, EmptyCloudInvalidModelAndOptionsAreReasonsNotCrashes) {
   EXPECT_EQ(r.reason, DetectReason::kNoHypothesis);
 }
 
-}  // namespace
+}  // namespace object_detector_test
 }  // namespace rangefit

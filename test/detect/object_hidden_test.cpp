@@ -8,7 +8,7 @@
 #include "test/detect/varied_target.hpp"
 
 namespace rangefit {
-namespace {
+namespace object_hidden_test {
 
 using test::expect_varied_target_found;
 
@@ -38,5 +38,5 @@ TEST(ObjectHidden, ObjectFreeVariedScenesHaveNoConeOrBox) {
   }
 }
 
-}  // namespace
+}  // namespace object_hidden_test
 }  // namespace rangefit

@@ -19,7 +19,7 @@
 #include "test/detect/stripe_scan_fixture.hpp"
 
 namespace rangefit {
-namespace {
+namespace object_lookalike_test {
 
 using test::StripeGeometry;
 // Both camera sides and both triangulation angles in two scans (the suite stays fast; each of
@@ -125,5 +125,5 @@ TEST(ObjectLookAlike, ContinuationSeesTheSideWallGoOnPastTheCap) {
   EXPECT_GT(past.share, 0.05);  // 20 of 110 mm of wall beyond the cap, less the margins
 }
 
-}  // namespace
+}  // namespace object_lookalike_test
 }  // namespace rangefit

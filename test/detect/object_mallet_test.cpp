@@ -16,7 +16,7 @@
 #include "test/detect/object_scenes.hpp"
 
 namespace rangefit {
-namespace {
+namespace object_mallet_test {
 
 // The upper half of a lying can's side wall from z0 to z1 (part frame: axis z, radius 30), as a
 // scan sees it with its caps grazed: no points on them.
@@ -97,5 +97,5 @@ TEST(ObjectMallet, FoundWithOnePartPartlyHidden) {
   for (std::uint64_t seed : {14u, 16u}) expect_mallet_found(seed);
 }
 
-}  // namespace
+}  // namespace object_mallet_test
 }  // namespace rangefit

@@ -13,7 +13,7 @@
 #include "test/detect/stripe_scan_fixture.hpp"
 
 namespace rangefit {
-namespace {
+namespace object_resting_test {
 
 using test::kStripeGeometries;
 using test::StripeGeometry;
@@ -162,5 +162,5 @@ TEST(ObjectResting, AShorterBoxOrCanLyingAlongTheSweepIsNotTakenForTheModel) {
   }
 }
 
-}  // namespace
+}  // namespace object_resting_test
 }  // namespace rangefit

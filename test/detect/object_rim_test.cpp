@@ -15,7 +15,7 @@
 #include "test/detect/stripe_scan_fixture.hpp"
 
 namespace rangefit {
-namespace {
+namespace object_rim_test {
 
 using test::kStripeGeometries;
 using test::StripeGeometry;
@@ -85,5 +85,5 @@ TEST(ObjectRim, ANarrowerStandingBoxAloneIsNotTheBox) {
   }
 }
 
-}  // namespace
+}  // namespace object_rim_test
 }  // namespace rangefit

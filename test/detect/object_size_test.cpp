@@ -14,7 +14,7 @@
 #include "test/detect/stripe_scan_fixture.hpp"
 
 namespace rangefit {
-namespace {
+namespace object_size_test {
 
 using test::kStripeGeometries;
 using test::StripeGeometry;
@@ -109,5 +109,5 @@ TEST(ObjectSize, AnEmptyTableHasNoBox) {
   EXPECT_FALSE(detect(s, 33).found());
 }
 
-}  // namespace
+}  // namespace object_size_test
 }  // namespace rangefit

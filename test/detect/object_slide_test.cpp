@@ -7,7 +7,7 @@
 #include "test/detect/varied_target.hpp"
 
 namespace rangefit {
-namespace {
+namespace object_slide_test {
 
 using test::expect_varied_target_found;
 
@@ -22,5 +22,5 @@ TEST(ObjectSlide, FindsTheLyingCylinderOfAVariedSceneSlidAlongItsWall) {
   expect_varied_target_found(sim::VariedTarget::kCylinder, 197);
 }
 
-}  // namespace
+}  // namespace object_slide_test
 }  // namespace rangefit

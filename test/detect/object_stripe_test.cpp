@@ -11,7 +11,7 @@
 #include "test/detect/object_scenes.hpp"
 
 namespace rangefit {
-namespace {
+namespace object_stripe_test {
 
 sim::ScanSetup setup(double triangulation_deg, int side, double noise_mm = 0.1) {
   sim::ScanSetup s;
@@ -128,5 +128,5 @@ TEST(ObjectStripe, FindsAPartlyOccludedObjectAndGivesTrueReasons) {
   EXPECT_NE(none.reason, DetectReason::kNotLinked);
 }
 
-}  // namespace
+}  // namespace object_stripe_test
 }  // namespace rangefit

@@ -10,7 +10,7 @@
 #include "test/detect/object_scenes.hpp"
 
 namespace rangefit {
-namespace {
+namespace occupancy_grid_test {
 
 // A 400 x 400 mm wall in the plane z = 0, 2 mm grid, seen from 500 mm above its centre.
 std::vector<Eigen::Vector3d> wall() {
@@ -121,5 +121,5 @@ TEST(SurfaceCoverage, SurfaceInTheCameraShadowIsNotAskedFor) {
   EXPECT_LT(one_eye.covered, two_eyes.covered - 0.1);  // its camera shadow counted as missing
 }
 
-}  // namespace
+}  // namespace occupancy_grid_test
 }  // namespace rangefit

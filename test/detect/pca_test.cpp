@@ -8,7 +8,7 @@
 #include <vector>
 
 namespace rangefit::pca {
-namespace {
+namespace pca_test {
 
 TEST(Pca, EmptyInputGivesZeroCentroidAndInvalidFits) {
   std::vector<Eigen::Vector3d> none;
@@ -55,5 +55,5 @@ TEST(Pca, CollinearPointsHaveNoPlaneButALine) {
   EXPECT_GT(std::abs(line.direction.dot(Eigen::Vector3d(1, 1, 1).normalized())), 1.0 - 1e-12);
 }
 
-}  // namespace
+}  // namespace pca_test
 }  // namespace rangefit::pca

@@ -5,7 +5,7 @@
 #include "test/detect/object_scenes.hpp"
 
 namespace rangefit {
-namespace {
+namespace plane_removal_test {
 
 TEST(PlaneRemoval, RemovesTheTableAndKeepsTheObjects) {
   const test::Scene s = test::fig_5_18_scene(0.0, 1, 0.4);
@@ -47,5 +47,5 @@ TEST(PlaneRemoval, EmptyAndTinyCloudsAreLeftAlone) {
   EXPECT_EQ(r.remaining.size(), 3u);
 }
 
-}  // namespace
+}  // namespace plane_removal_test
 }  // namespace rangefit

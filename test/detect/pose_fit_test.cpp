@@ -9,7 +9,7 @@
 #include "test/detect/object_scenes.hpp"
 
 namespace rangefit {
-namespace {
+namespace pose_fit_test {
 
 // Points on the visible half (x > 0 in the part frame) of a posed part.
 std::vector<Eigen::Vector3d> surface_samples(const Superquadric& sq, const Eigen::Isometry3d& T,
@@ -97,5 +97,5 @@ TEST(PoseFit, EmptyTooFewAndBadInputAreReportedNotFitted) {
   EXPECT_EQ(measure_of_fit(sphere, Eigen::Isometry3d::Identity(), {}), 0.0);
 }
 
-}  // namespace
+}  // namespace pose_fit_test
 }  // namespace rangefit

@@ -7,7 +7,7 @@
 #include <vector>
 
 namespace rangefit {
-namespace {
+namespace superquadric_test {
 
 Superquadric make(double a1, double a2, double a3, double e1, double e2, double kx = 0.0,
                   double ky = 0.0) {
@@ -109,5 +109,5 @@ TEST(Superquadric, BoundsContainTheSurface) {
   }
 }
 
-}  // namespace
+}  // namespace superquadric_test
 }  // namespace rangefit

@@ -19,7 +19,7 @@
 #include "test/support/inprocess_transport.hpp"
 
 namespace rangefit::drivers::can {
-namespace {
+namespace can_cia402_driver_test {
 
 using namespace std::chrono_literals;
 using test::eventually;
@@ -330,5 +330,5 @@ TEST(Cia402PanTilt, PairsPanAndTiltOfTheSameSync) {
   }
 }
 
-}  // namespace
+}  // namespace can_cia402_driver_test
 }  // namespace rangefit::drivers::can

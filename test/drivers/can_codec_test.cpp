@@ -10,7 +10,7 @@
 #include "drivers/can/ranger_codec.hpp"
 
 namespace rangefit::drivers::can {
-namespace {
+namespace can_codec_test {
 
 TEST(CanFrame, FdLengthsPadToTheNextValidSize) {
   EXPECT_EQ(fd_padded_length(0), 0);
@@ -203,5 +203,5 @@ TEST_F(RangerCodec, DuplicateSegmentsAndBadHeadersAreCounted) {
   EXPECT_EQ(r.counters().bad_frames, 2u);
 }
 
-}  // namespace
+}  // namespace can_codec_test
 }  // namespace rangefit::drivers::can

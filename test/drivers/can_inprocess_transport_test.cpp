@@ -7,7 +7,7 @@
 #include "test/support/inprocess_transport.hpp"
 
 namespace rangefit::drivers::can {
-namespace {
+namespace can_inprocess_transport_test {
 
 constexpr auto kWait = std::chrono::milliseconds(500);
 
@@ -82,5 +82,5 @@ TEST(InProcessTransport, DownedLinkIsReportedUntilItComesBack) {
   EXPECT_EQ(a->send(make_frame(0x1, {})), TxResult::kOk);
 }
 
-}  // namespace
+}  // namespace can_inprocess_transport_test
 }  // namespace rangefit::drivers::can

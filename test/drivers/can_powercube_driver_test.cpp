@@ -10,7 +10,7 @@
 #include "test/support/inprocess_transport.hpp"
 
 namespace rangefit::drivers::can {
-namespace {
+namespace can_powercube_driver_test {
 
 using namespace std::chrono_literals;
 using test::eventually;
@@ -96,5 +96,5 @@ TEST_F(PowerCubeDriver, NotOkStateMarksSamplesInvalidAndShortRepliesAreCounted) 
   ASSERT_TRUE(eventually([&] { return count(Counter::kBadLengths) >= 1; }));
 }
 
-}  // namespace
+}  // namespace can_powercube_driver_test
 }  // namespace rangefit::drivers::can

@@ -14,7 +14,7 @@
 #include "test/support/inprocess_transport.hpp"
 
 namespace rangefit::drivers::can {
-namespace {
+namespace can_ranger_driver_test {
 
 using namespace std::chrono_literals;
 using test::eventually;
@@ -138,5 +138,5 @@ TEST_F(RangerDriver, SilentRangerIsReportedLostAndRecovers) {
   ASSERT_TRUE(eventually([&] { return driver_->health().state == hal::DeviceState::kStreaming; }));
 }
 
-}  // namespace
+}  // namespace can_ranger_driver_test
 }  // namespace rangefit::drivers::can

@@ -7,7 +7,7 @@
 #include "test/drivers/modbus_test_rig.hpp"
 
 namespace rangefit::test {
-namespace {
+namespace modbus_axis_test {
 
 // |measured - truth| allowed for a sample: the stamp is within +-uncertainty/2 of the instant the
 // position was sampled, so at speed v the position can be off by v*uncertainty/2, plus one
@@ -125,5 +125,5 @@ TEST(FhppAxis, WithoutFallbackAMissing0x17IsAConfigurationError) {
   EXPECT_EQ(rig.axis->health().counters.reconnects, 0u);
 }
 
-}  // namespace
+}  // namespace modbus_axis_test
 }  // namespace rangefit::test

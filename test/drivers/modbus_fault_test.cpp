@@ -9,7 +9,7 @@
 #include "test/drivers/modbus_test_rig.hpp"
 
 namespace rangefit::test {
-namespace {
+namespace modbus_fault_test {
 
 // Every valid sample must match the truth at its stamp: a reply taken for the answer to a later
 // request would place an old position at a new stamp and break this while the axis moves.
@@ -232,5 +232,5 @@ TEST(FhppAxisFaults, AnotherClientTakingControlIsReportedAndControlReturnsWhenIt
   EXPECT_TRUE(rig.axis->move_to(200.0, 500.0).ok) << rig.axis->health().message;
 }
 
-}  // namespace
+}  // namespace modbus_fault_test
 }  // namespace rangefit::test

@@ -6,7 +6,7 @@
 #include "drivers/modbus/position_check.hpp"
 
 namespace rangefit::drivers::fhpp {
-namespace {
+namespace modbus_fhpp_codec_test {
 
 TEST(FhppCodec, OutputTelegramMapsBytesLowByteFirstIntoRegisters) {
   OutputTelegram t{0x43, 0x03, 0x00, 50, 0x12345678};
@@ -72,5 +72,5 @@ TEST(PositionCheck, FlagsPositionsOutsideTravelAndImpossibleJumps) {
             std::string::npos);
 }
 
-}  // namespace
+}  // namespace modbus_fhpp_codec_test
 }  // namespace rangefit::drivers::fhpp

@@ -4,7 +4,7 @@
 #include "drivers/modbus/fhpp_commander.hpp"
 
 namespace rangefit::drivers::fhpp {
-namespace {
+namespace modbus_fhpp_commander_test {
 
 constexpr std::uint8_t kReadyScon = kSconEnabled | kSconOpen | kSconLoadVoltage;
 constexpr std::uint8_t kIdleSpos = kSposHalt | kSposMotionComplete | kSposReferenced;
@@ -88,5 +88,5 @@ TEST(FhppCommander, RefusesMovesOutsideTravelWithoutSpeedOrReference) {
   EXPECT_NE(c.request_home(t).message.find("another master"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace modbus_fhpp_commander_test
 }  // namespace rangefit::drivers::fhpp

@@ -15,7 +15,7 @@
 #include "test/drivers/modbus_test_rig.hpp"
 
 namespace rangefit::test {
-namespace {
+namespace modbus_peers_test {
 
 const char* const kPython = "/usr/bin/python3";  // Debian's, where python3-pymodbus installs
 
@@ -186,5 +186,5 @@ TEST(FhppAxisPeers, MbpollReadsAndDrivesTheSimulatedDrive) {
   EXPECT_EQ(in->position_inc, 100000);
 }
 
-}  // namespace
+}  // namespace modbus_peers_test
 }  // namespace rangefit::test

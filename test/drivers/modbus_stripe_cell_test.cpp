@@ -14,7 +14,7 @@
 #include "test/drivers/modbus_test_rig.hpp"
 
 namespace rangefit::test {
-namespace {
+namespace modbus_stripe_cell_test {
 
 // Table surface and a sphere on it, in the table ("world") frame the cell's cloud is built in.
 sim::Scene cell_scene() {
@@ -112,5 +112,5 @@ TEST(FhppAxisStripeCell, ScanThroughTheDriverMatchesTheSimulatedTruthWithinTheRo
   EXPECT_GT(on_ball, 1000u);  // the ball was scanned, not only the table
 }
 
-}  // namespace
+}  // namespace modbus_stripe_cell_test
 }  // namespace rangefit::test

@@ -8,7 +8,7 @@
 #include "test/drivers/usb_fake_transport.hpp"
 
 namespace rangefit::drivers::css_usb {
-namespace {
+namespace usb_css_driver_test {
 
 using std::chrono::milliseconds;
 using test::FakeCssDevice;
@@ -120,5 +120,5 @@ TEST(CssUsbDriver, CorruptFramesGapsStallsAndShortTransfersAreCounted) {
   EXPECT_EQ(rig.driver->health().state, hal::DeviceState::kStreaming);
 }
 
-}  // namespace
+}  // namespace usb_css_driver_test
 }  // namespace rangefit::drivers::css_usb

@@ -9,7 +9,7 @@
 #include "drivers/usb/css_stream_parser.hpp"
 
 namespace rangefit::drivers::css_usb {
-namespace {
+namespace usb_css_protocol_test {
 
 WireRevolution revolution(std::uint32_t sequence) {
   WireRevolution r;
@@ -185,5 +185,5 @@ TEST(CssStreamParser, RandomCorruptionNeverLosesAnIntactFrame) {
   EXPECT_EQ(parser.counters().gaps, intact.back() - intact.front() + 1 - intact.size());
 }
 
-}  // namespace
+}  // namespace usb_css_protocol_test
 }  // namespace rangefit::drivers::css_usb

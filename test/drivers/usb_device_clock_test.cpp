@@ -6,7 +6,7 @@
 #include "drivers/usb/device_clock.hpp"
 
 namespace rangefit::drivers::css_usb {
-namespace {
+namespace usb_device_clock_test {
 
 using std::chrono::microseconds;
 using std::chrono::milliseconds;
@@ -108,5 +108,5 @@ TEST(DeviceClock, SlowExchangesAreRejectedAndResetForgets) {
   EXPECT_FALSE(clock.to_host(5'000'000));
 }
 
-}  // namespace
+}  // namespace usb_device_clock_test
 }  // namespace rangefit::drivers::css_usb

@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 namespace rangefit::fusion {
-namespace {
+namespace config_test {
 
 using std::chrono::milliseconds;
 
@@ -130,5 +130,5 @@ TEST(FusionConfig, ChangedFileTakesEffectWithoutARebuild) {
   std::filesystem::remove(path);
 }
 
-}  // namespace
+}  // namespace config_test
 }  // namespace rangefit::fusion

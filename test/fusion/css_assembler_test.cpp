@@ -9,7 +9,7 @@
 #include "test/fusion/css_truth.hpp"
 
 namespace rangefit::fusion {
-namespace {
+namespace css_assembler_test {
 
 using std::chrono::milliseconds;
 using testing::CssTruthOptions;
@@ -153,5 +153,5 @@ TEST(CssAssembler, AssemblerIsReusableForTheNextScan) {
   }
 }
 
-}  // namespace
+}  // namespace css_assembler_test
 }  // namespace rangefit::fusion

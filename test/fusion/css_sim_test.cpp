@@ -13,7 +13,7 @@
 #include "sim/sim_clock.hpp"
 
 namespace rangefit::fusion {
-namespace {
+namespace css_sim_test {
 
 using std::chrono::milliseconds;
 constexpr int kCols = hal::CssRevolution::kSamples;
@@ -80,5 +80,5 @@ TEST(CssAssemblerOnSimulator, EveryFusedPointIsWithinAMicrometreOfTheRayCastHit)
   EXPECT_GT(compared, 5000u);
 }
 
-}  // namespace
+}  // namespace css_sim_test
 }  // namespace rangefit::fusion

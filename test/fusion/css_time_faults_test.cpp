@@ -9,7 +9,7 @@
 #include "test/fusion/css_truth.hpp"
 
 namespace rangefit::fusion {
-namespace {
+namespace css_time_faults_test {
 
 using std::chrono::milliseconds;
 using testing::CssTruthOptions;
@@ -142,5 +142,5 @@ TEST(CssTimeFaults, ScanWithMoreFaultsThanTheLimitIsMarkedBadWithTheCounts) {
   EXPECT_NE(scan.reason.find("gaps 2"), std::string::npos) << scan.reason;
 }
 
-}  // namespace
+}  // namespace css_time_faults_test
 }  // namespace rangefit::fusion

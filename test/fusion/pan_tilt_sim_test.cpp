@@ -12,7 +12,7 @@
 #include "sim/sim_clock.hpp"
 
 namespace rangefit::fusion {
-namespace {
+namespace pan_tilt_sim_test {
 
 using std::chrono::milliseconds;
 
@@ -73,5 +73,5 @@ TEST(PanTiltAssemblerOnSimulator, EveryFusedPointIsWithinAMicrometreOfTheRayCast
   EXPECT_GT(on_ball, 500u);
 }
 
-}  // namespace
+}  // namespace pan_tilt_sim_test
 }  // namespace rangefit::fusion

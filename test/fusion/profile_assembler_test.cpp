@@ -6,7 +6,7 @@
 #include <cmath>
 
 namespace rangefit::fusion {
-namespace {
+namespace profile_assembler_test {
 
 using std::chrono::milliseconds;
 
@@ -242,5 +242,5 @@ TEST(PanTiltAssembler, ProfileWithoutAnyPoseSampleIsDroppedAndCounted) {
   EXPECT_EQ(scan.faults.extrapolated, 1u);
 }
 
-}  // namespace
+}  // namespace profile_assembler_test
 }  // namespace rangefit::fusion

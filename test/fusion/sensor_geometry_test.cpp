@@ -6,7 +6,7 @@
 #include "hal/stripe_geometry.hpp"
 
 namespace rangefit::hal {
-namespace {
+namespace sensor_geometry_test {
 
 TEST(StripeRanger, FanRaysSpanTheFanAngleSymmetricallyInTheLaserPlane) {
   const StripeRanger r;
@@ -47,5 +47,5 @@ TEST(PanTiltGeometry, MatchesEquation5_7) {
   EXPECT_NEAR((g.T_world_ranger(a, b) * xs - expected).norm(), 0.0, 1e-9);
 }
 
-}  // namespace
+}  // namespace sensor_geometry_test
 }  // namespace rangefit::hal

@@ -12,7 +12,7 @@
 #include "sim/stripe_cell.hpp"
 
 namespace rangefit::fusion {
-namespace {
+namespace stripe_sim_test {
 
 using std::chrono::milliseconds;
 
@@ -76,5 +76,5 @@ TEST(StripeCellAssemblerOnSimulator, EveryFusedPointIsWithinAMicrometreOfTheRayC
   EXPECT_GT(on_ball, 1000u);  // the moving object, not only the flat table, is checked
 }
 
-}  // namespace
+}  // namespace stripe_sim_test
 }  // namespace rangefit::fusion

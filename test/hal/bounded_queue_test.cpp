@@ -5,7 +5,7 @@
 #include <thread>
 
 namespace rangefit::hal {
-namespace {
+namespace bounded_queue_test {
 
 using namespace std::chrono_literals;
 
@@ -39,5 +39,5 @@ TEST(BoundedQueue, DrainWakesWhenAProducerPushes) {
   EXPECT_EQ(out.front(), 42);
 }
 
-}  // namespace
+}  // namespace bounded_queue_test
 }  // namespace rangefit::hal

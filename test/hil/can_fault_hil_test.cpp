@@ -19,7 +19,7 @@
 #include "test/support/can_profile_ranger.hpp"
 
 namespace rangefit::drivers::can {
-namespace {
+namespace can_fault_hil_test {
 
 using namespace std::chrono_literals;
 using test::cansend;
@@ -343,5 +343,5 @@ TEST(CanFaultHilDevices, RangerLostSegmentCrcErrorAndSequenceGapAreCountedAndStr
   bus->stop();
 }
 
-}  // namespace
+}  // namespace can_fault_hil_test
 }  // namespace rangefit::drivers::can

@@ -22,7 +22,7 @@
 #include "test/support/can_profile_ranger.hpp"
 
 namespace rangefit::drivers::can {
-namespace {
+namespace can_hil_test {
 
 using namespace std::chrono_literals;
 using test::cansend;
@@ -165,5 +165,5 @@ TEST(CanHil, CandumpSeesOurSyncAndCansendFramesReachTheDriver) {
   EXPECT_EQ(out[0].status, 0x0637);
 }
 
-}  // namespace
+}  // namespace can_hil_test
 }  // namespace rangefit::drivers::can

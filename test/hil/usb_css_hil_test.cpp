@@ -17,7 +17,7 @@
 #include "test/hil/css_gadget/css_gadget.hpp"
 
 namespace rangefit::hil {
-namespace {
+namespace usb_css_hil_test {
 
 using namespace std::chrono_literals;
 using drivers::css_usb::CssUsbDriver;
@@ -274,5 +274,5 @@ TEST(UsbCssHil, OffsetAndFiftyPpmDriftAreTrackedAfterTenSeconds) {
               checked, lo, hi, rig.driver->clock_drift_ppm());
 }
 
-}  // namespace
+}  // namespace usb_css_hil_test
 }  // namespace rangefit::hil

@@ -12,9 +12,9 @@
 #include "test/io/temp_dir.hpp"
 
 namespace rangefit::io {
-namespace {
+namespace bounded_reader_test {
 
-std::string error_of(const std::function<void()>& f) {
+std::string reader_error(const std::function<void()>& f) {
   try {
     f();
   } catch (const IoError& e) {
@@ -28,11 +28,11 @@ TEST(LoadFile, DevicesAndFifosAreRefusedUnlessAskedForThenCapped) {
   test::TempDir dir;
   const auto fifo = dir.path("scan.ply");
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-  EXPECT_EQ(error_of([&] { read_ply(fifo); }),
+  EXPECT_EQ(reader_error([&] { read_ply(fifo); }),
             fifo.string() + ": is not a regular file (a device, FIFO or socket)");
-  EXPECT_EQ(error_of([] { read_stl("/dev/zero"); }),
+  EXPECT_EQ(reader_error([] { read_stl("/dev/zero"); }),
             "/dev/zero: is not a regular file (a device, FIFO or socket)");
-  EXPECT_EQ(error_of([] { detail::load_file("/dev/zero", 100000, /*allow_special=*/true); }),
+  EXPECT_EQ(reader_error([] { detail::load_file("/dev/zero", 100000, /*allow_special=*/true); }),
             "/dev/zero: more than the limit of 100000 bytes");
   EXPECT_EQ(detail::load_file("/dev/null", 10, true), "");
 }
@@ -41,11 +41,11 @@ TEST(LoadFile, RegularFilesAreCheckedAgainstTheCapBeforeReading) {
   test::TempDir dir;
   const auto file = dir.write("a.stl", std::string(64, 'x'));
   EXPECT_EQ(detail::load_file(file, 64), std::string(64, 'x'));
-  EXPECT_EQ(error_of([&] { detail::load_file(file, 63); }),
+  EXPECT_EQ(reader_error([&] { detail::load_file(file, 63); }),
             file.string() + ": is 64 bytes, more than the limit of 63");
-  EXPECT_EQ(error_of([&] { read_ply(dir.path("")); }),
+  EXPECT_EQ(reader_error([&] { read_ply(dir.path("")); }),
             dir.path("").string() + ": is a directory, not a file");
 }
 
-}  // namespace
+}  // namespace bounded_reader_test
 }  // namespace rangefit::io

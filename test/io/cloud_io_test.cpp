@@ -7,7 +7,7 @@
 #include "test/io/temp_dir.hpp"
 
 namespace rangefit::io {
-namespace {
+namespace cloud_io_test {
 
 using test::TempDir;
 using ::testing::HasSubstr;
@@ -86,5 +86,5 @@ TEST(CloudIo, SensorViewRoundTripsThroughBothFormats) {
               ::testing::ThrowsMessage<IoError>(HasSubstr("'rangefit sensor' is not a kind")));
 }
 
-}  // namespace
+}  // namespace cloud_io_test
 }  // namespace rangefit::io

@@ -16,7 +16,7 @@
 #include "test/io/temp_dir.hpp"
 
 namespace rangefit::io {
-namespace {
+namespace cloud_precision_test {
 
 using test::TempDir;
 using ::testing::HasSubstr;
@@ -172,5 +172,5 @@ TEST(CloudStdio, DashWritesStandardOutputAsPlyUnlessTold) {
   EXPECT_EQ(back.grid.index, cloud.grid.index);
 }
 
-}  // namespace
+}  // namespace cloud_precision_test
 }  // namespace rangefit::io

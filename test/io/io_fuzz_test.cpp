@@ -17,7 +17,7 @@
 #include "test/support/allocation_watch/allocation_watch.hpp"
 
 namespace rangefit::io {
-namespace {
+namespace io_fuzz_test {
 
 using test::TempDir;
 
@@ -160,5 +160,5 @@ TEST(IoFuzz, ValidFilesLoad) {
   }
 }
 
-}  // namespace
+}  // namespace io_fuzz_test
 }  // namespace rangefit::io

@@ -8,9 +8,9 @@
 #include "io/io_error.hpp"
 
 namespace rangefit::io {
-namespace {
+namespace object_model_file_test {
 
-std::string error_of(const std::string& text) {
+std::string model_error(const std::string& text) {
   try {
     parse_object_model(text, "model.toml");
   } catch (const IoError& e) {
@@ -54,40 +54,40 @@ TEST(ObjectModelFile, TaperDefaultsToZeroAndFormatRoundTrips) {
 TEST(ObjectModelFile, ErrorsNameTheLineAndTheField) {
   const std::string bad_size =
       "name = \"x\"\n[[part]]\nname = \"p\"\nsize = [1, 2]\nshape = [1, 1]\n";
-  const std::string e1 = error_of(bad_size);
+  const std::string e1 = model_error(bad_size);
   EXPECT_EQ(e1.rfind("model.toml:4: ", 0), 0u) << e1;
   EXPECT_NE(e1.find("part[0].size"), std::string::npos) << e1;
 
   const std::string bad_shape =
       "name = \"x\"\n[[part]]\nname = \"p\"\nsize = [1, 2, 3]\nshape = [0.01, 1]\n";
-  EXPECT_NE(error_of(bad_shape).find("part[0].shape"), std::string::npos);
+  EXPECT_NE(model_error(bad_shape).find("part[0].shape"), std::string::npos);
 
   const std::string bad_link =
       "name = \"x\"\n[[part]]\nname = \"p\"\nsize = [1, 2, 3]\nshape = [1, 1]\n"
       "[[link]]\nparts = [\"p\", \"q\"]\nangle_deg = 90\ndistance = 10\n";
-  const std::string e3 = error_of(bad_link);
+  const std::string e3 = model_error(bad_link);
   EXPECT_NE(e3.find("link[0].parts"), std::string::npos) << e3;
   EXPECT_EQ(e3.rfind("model.toml:7: ", 0), 0u) << e3;
 
-  EXPECT_NE(error_of("name = \"x\"\n").find("part"), std::string::npos);
-  EXPECT_NE(error_of("[[part]]\nname = \"p\"\n").find("name: is required"), std::string::npos);
-  EXPECT_EQ(error_of("name = \"x\"\nsize = [1, 2\n").rfind("model.toml:2: ", 0), 0u);
+  EXPECT_NE(model_error("name = \"x\"\n").find("part"), std::string::npos);
+  EXPECT_NE(model_error("[[part]]\nname = \"p\"\n").find("name: is required"), std::string::npos);
+  EXPECT_EQ(model_error("name = \"x\"\nsize = [1, 2\n").rfind("model.toml:2: ", 0), 0u);
 }
 
 TEST(ObjectModelFile, UnknownKeysAreErrorsNamingTheLine) {
   const std::string part = "[[part]]\nname = \"p\"\nsize = [1, 2, 3]\nshape = [1, 1]\n";
-  EXPECT_EQ(error_of("name = \"x\"\nnmae = \"y\"\n" + part),
+  EXPECT_EQ(model_error("name = \"x\"\nnmae = \"y\"\n" + part),
             "model.toml:2: nmae: unknown field");
-  EXPECT_EQ(error_of("name = \"x\"\n" + part + "tapper = [0, 0]\n"),
+  EXPECT_EQ(model_error("name = \"x\"\n" + part + "tapper = [0, 0]\n"),
             "model.toml:6: part[0].tapper: unknown field");
-  EXPECT_EQ(error_of("name = \"x\"\n" + part + "[[link]]\nparts = [\"p\", \"p\"]\nangle = 9\n"),
+  EXPECT_EQ(model_error("name = \"x\"\n" + part + "[[link]]\nparts = [\"p\", \"p\"]\nangle = 9\n"),
             "model.toml:8: link[0].angle: unknown field");
 }
 
 TEST(ObjectModelFile, EmptyOrMissingFileIsAnError) {
-  EXPECT_FALSE(error_of("").empty());
+  EXPECT_FALSE(model_error("").empty());
   EXPECT_THROW(read_object_model("/nonexistent/model.toml"), IoError);
 }
 
-}  // namespace
+}  // namespace object_model_file_test
 }  // namespace rangefit::io

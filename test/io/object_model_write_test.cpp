@@ -14,7 +14,7 @@
 #include "test/io/temp_dir.hpp"
 
 namespace rangefit::io {
-namespace {
+namespace object_model_write_test {
 
 ObjectModel learnt_mallet() {
   ObjectModel m;
@@ -86,5 +86,5 @@ TEST(ObjectModelWrite, RefusesModelsThatWouldNotReadBack) {
   EXPECT_THROW(write_object_model(dir.path("no/such/dir/m.toml"), learnt_mallet()), IoError);
 }
 
-}  // namespace
+}  // namespace object_model_write_test
 }  // namespace rangefit::io

@@ -13,14 +13,14 @@
 #include "test/io/temp_dir.hpp"
 
 namespace rangefit::io {
-namespace {
+namespace pcd_test {
 
 using test::append_le;
 using test::TempDir;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 
-std::string error_of(const std::filesystem::path& file) {
+std::string pcd_error(const std::filesystem::path& file) {
   try {
     read_pcd(file);
   } catch (const IoError& e) {
@@ -200,59 +200,59 @@ TEST(PcdRead, BinaryCompressedFromLiblzfsCompressorReadsBack) {
   append_le(cut, static_cast<std::uint32_t>(packed.size() - 1));
   append_le(cut, static_cast<std::uint32_t>(raw.size()));
   cut += packed.substr(0, packed.size() - 1);
-  EXPECT_NE(error_of(dir.write("cut.pcd", cut)), "no IoError");
+  EXPECT_NE(pcd_error(dir.write("cut.pcd", cut)), "no IoError");
 }
 
 TEST(PcdRead, HugePointCountIsRejectedBeforeAllocating) {
   TempDir dir;
   std::string bytes = header("x y z", "4 4 4", "F F F", 2000000000, 2, "binary");
   bytes += std::string(1200, '\0');
-  EXPECT_THAT(error_of(dir.write("scan.pcd", bytes)),
+  EXPECT_THAT(pcd_error(dir.write("scan.pcd", bytes)),
               HasSubstr("scan.pcd: header: POINTS 4000000000 exceeds what 1200 bytes of data "
                         "can hold"));
 }
 
 TEST(PcdRead, EachHeaderProblemHasItsMessage) {
   TempDir dir;
-  EXPECT_THAT(error_of(dir.write("a.pcd", header("x y z", "4 4 4", "F F Q", 1, 1, "ascii"))),
+  EXPECT_THAT(pcd_error(dir.write("a.pcd", header("x y z", "4 4 4", "F F Q", 1, 1, "ascii"))),
               HasSubstr("a.pcd: header: field 'z' has unsupported TYPE 'Q' with SIZE '4'"));
-  EXPECT_THAT(error_of(dir.write("b.pcd", header("x y z", "4 4", "F F F", 1, 1, "ascii"))),
+  EXPECT_THAT(pcd_error(dir.write("b.pcd", header("x y z", "4 4", "F F F", 1, 1, "ascii"))),
               HasSubstr("b.pcd: header: 3 FIELDS but 2 SIZE and 3 TYPE entries"));
-  EXPECT_THAT(error_of(dir.write("c.pcd", header("x y", "4 4", "F F", 1, 1, "ascii"))),
+  EXPECT_THAT(pcd_error(dir.write("c.pcd", header("x y", "4 4", "F F", 1, 1, "ascii"))),
               HasSubstr("c.pcd: header: no 'z' field"));
-  EXPECT_THAT(error_of(dir.write("d.pcd", "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\n")),
+  EXPECT_THAT(pcd_error(dir.write("d.pcd", "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\n")),
               HasSubstr("d.pcd: header: truncated, no DATA line"));
-  EXPECT_THAT(error_of(dir.write("e.pcd",
-                                 "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 2\n"
-                                 "HEIGHT 2\nPOINTS 5\nDATA ascii\n")),
+  EXPECT_THAT(pcd_error(dir.write("e.pcd",
+                                  "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 2\n"
+                                  "HEIGHT 2\nPOINTS 5\nDATA ascii\n")),
               HasSubstr("e.pcd: header: POINTS 5 is not WIDTH 2 x HEIGHT 2"));
-  EXPECT_THAT(error_of(dir.write("f.pcd", "FIELDS x y z\nWIDTH -3\n")),
+  EXPECT_THAT(pcd_error(dir.write("f.pcd", "FIELDS x y z\nWIDTH -3\n")),
               HasSubstr("f.pcd: line 2: header: WIDTH '-3' is not a non-negative integer"));
-  EXPECT_THAT(error_of(dir.write("g.pcd", header("x y z", "4 4 4", "F F F", 1, 1, "lzma"))),
+  EXPECT_THAT(pcd_error(dir.write("g.pcd", header("x y z", "4 4 4", "F F F", 1, 1, "lzma"))),
               HasSubstr("header: unknown DATA 'lzma'"));
-  EXPECT_THAT(error_of(dir.write("h.pcd", "FIELDS x y z\nCOLOUR red\n")),
+  EXPECT_THAT(pcd_error(dir.write("h.pcd", "FIELDS x y z\nCOLOUR red\n")),
               HasSubstr("h.pcd: line 2: header: unknown keyword 'COLOUR'"));
-  EXPECT_THAT(error_of(dir.path("missing.pcd")), HasSubstr("missing.pcd: cannot open"));
+  EXPECT_THAT(pcd_error(dir.path("missing.pcd")), HasSubstr("missing.pcd: cannot open"));
 }
 
 TEST(PcdRead, DataProblemsAreNamed) {
   TempDir dir;
   const std::string ascii = header("x y z", "4 4 4", "F F F", 2, 1, "ascii");
-  EXPECT_THAT(error_of(dir.write("a.pcd", ascii + "1 2 3\n4 5 six\n")),
+  EXPECT_THAT(pcd_error(dir.write("a.pcd", ascii + "1 2 3\n4 5 six\n")),
               HasSubstr("a.pcd: line 12: expected a number, found 'six'"));
-  EXPECT_THAT(error_of(dir.write("b.pcd", ascii + "1.0 2.0 3.0\n4.0\n")),
+  EXPECT_THAT(pcd_error(dir.write("b.pcd", ascii + "1.0 2.0 3.0\n4.0\n")),
               HasSubstr("b.pcd: line 12: truncated: point 1 of 2 ends early"));
   std::string compressed = header("x y z", "4 4 4", "F F F", 1, 1, "binary_compressed");
   append_le(compressed, std::uint32_t{3});
   append_le(compressed, std::uint32_t{12});
   compressed += std::string("\x1f\x00\x00", 3);  // literal run of 32 bytes with 2 present
-  EXPECT_THAT(error_of(dir.write("c.pcd", compressed)),
+  EXPECT_THAT(pcd_error(dir.write("c.pcd", compressed)),
               HasSubstr("c.pcd: compressed data: corrupt"));
   std::string wrong_size = header("x y z", "4 4 4", "F F F", 1, 1, "binary_compressed");
   append_le(wrong_size, std::uint32_t{3});
   append_le(wrong_size, std::uint32_t{4000000000u});
   wrong_size += "abc";
-  EXPECT_THAT(error_of(dir.write("d.pcd", wrong_size)),
+  EXPECT_THAT(pcd_error(dir.write("d.pcd", wrong_size)),
               HasSubstr("do not match the 4000000000 uncompressed bytes declared"));
 }
 
@@ -266,18 +266,18 @@ TEST(PcdRead, DecompressedSizeHasAnAbsoluteCap) {
   append_le(big, compressed);
   append_le(big, std::uint32_t{points * 12u});
   big += std::string(compressed, '\0');
-  EXPECT_THAT(error_of(dir.write("big.pcd", big)),
+  EXPECT_THAT(pcd_error(dir.write("big.pcd", big)),
               HasSubstr("big.pcd: compressed data: 268435464 uncompressed bytes declared, more "
                         "than the limit of 268435456"));
 }
 
 TEST(PcdRead, SpecialFilesAreRefusedWithoutBlocking) {
   TempDir dir;
-  EXPECT_THAT(error_of("/dev/zero"), HasSubstr("/dev/zero: is not a regular file"));
+  EXPECT_THAT(pcd_error("/dev/zero"), HasSubstr("/dev/zero: is not a regular file"));
   const auto fifo = dir.path("cloud.pcd");
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-  EXPECT_THAT(error_of(fifo), HasSubstr("cloud.pcd: is not a regular file"));
-  EXPECT_THAT(error_of(dir.path("")), HasSubstr("is a directory"));
+  EXPECT_THAT(pcd_error(fifo), HasSubstr("cloud.pcd: is not a regular file"));
+  EXPECT_THAT(pcd_error(dir.path("")), HasSubstr("is a directory"));
 }
 
 TEST(PcdWrite, RejectsPointOutsideTheGrid) {
@@ -288,5 +288,5 @@ TEST(PcdWrite, RejectsPointOutsideTheGrid) {
               ::testing::ThrowsMessage<IoError>(HasSubstr("point 0 is in no grid cell")));
 }
 
-}  // namespace
+}  // namespace pcd_test
 }  // namespace rangefit::io

@@ -10,14 +10,14 @@
 #include "test/io/temp_dir.hpp"
 
 namespace rangefit::io {
-namespace {
+namespace ply_test {
 
 using test::append_le;
 using test::TempDir;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 
-std::string error_of(const std::filesystem::path& file) {
+std::string ply_error(const std::filesystem::path& file) {
   try {
     read_ply(file);
   } catch (const IoError& e) {
@@ -199,7 +199,7 @@ TEST(PlyRead, HugeVertexCountIsRejectedBeforeAllocating) {
   std::string bytes = header_only(
       "element vertex 4000000000\nproperty float x\nproperty float y\nproperty float z\n");
   bytes += std::string(1200, '\0');
-  EXPECT_THAT(error_of(dir.write("scan.ply", bytes)),
+  EXPECT_THAT(ply_error(dir.write("scan.ply", bytes)),
               HasSubstr("scan.ply: header: vertex count 4000000000 exceeds what 1200 bytes of "
                         "data can hold"));
 }
@@ -207,33 +207,33 @@ TEST(PlyRead, HugeVertexCountIsRejectedBeforeAllocating) {
 TEST(PlyRead, EachHeaderProblemHasItsMessage) {
   TempDir dir;
   const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
-  EXPECT_THAT(error_of(dir.write("a.ply", "PLY\n")), HasSubstr("a.ply: not a PLY file"));
+  EXPECT_THAT(ply_error(dir.write("a.ply", "PLY\n")), HasSubstr("a.ply: not a PLY file"));
   EXPECT_THAT(
-      error_of(dir.write("b.ply", header_only("element vertex -5\n" + xyz))),
+      ply_error(dir.write("b.ply", header_only("element vertex -5\n" + xyz))),
       HasSubstr("b.ply: line 3: header: element 'vertex' count '-5' is not a non-negative"));
-  EXPECT_THAT(error_of(dir.write("c.ply", header_only("element vertex 1\nproperty float128 x\n"))),
+  EXPECT_THAT(ply_error(dir.write("c.ply", header_only("element vertex 1\nproperty float128 x\n"))),
               HasSubstr("c.ply: line 4: header: unknown property type 'float128'"));
-  EXPECT_THAT(error_of(dir.write("d.ply", header_only("element vertex 0\nproperty float x\n"
-                                                      "property float y\n"))),
+  EXPECT_THAT(ply_error(dir.write("d.ply", header_only("element vertex 0\nproperty float x\n"
+                                                       "property float y\n"))),
               HasSubstr("d.ply: header: vertex element has no 'z' property"));
-  EXPECT_THAT(error_of(dir.write("e.ply", "ply\nformat binary_middle_endian 1.0\nend_header\n")),
+  EXPECT_THAT(ply_error(dir.write("e.ply", "ply\nformat binary_middle_endian 1.0\nend_header\n")),
               HasSubstr("e.ply: line 2: header: unknown format 'binary_middle_endian'"));
-  EXPECT_THAT(error_of(dir.write("f.ply", "ply\nformat ascii 1.0\nelement vertex 1\n")),
+  EXPECT_THAT(ply_error(dir.write("f.ply", "ply\nformat ascii 1.0\nelement vertex 1\n")),
               HasSubstr("f.ply: header: truncated, no end_header"));
-  EXPECT_THAT(error_of(dir.write("g.ply", "ply\nformat ascii 1.0\ncomment " +
-                                              std::string(2 << 20, 'x') + "\nend_header\n")),
+  EXPECT_THAT(ply_error(dir.write("g.ply", "ply\nformat ascii 1.0\ncomment " +
+                                               std::string(2 << 20, 'x') + "\nend_header\n")),
               HasSubstr("g.ply: line 3: line longer than"));
-  EXPECT_THAT(error_of(dir.write("h.ply", header_only("element face 0\nproperty list float int "
-                                                      "vertex_indices\n"))),
+  EXPECT_THAT(ply_error(dir.write("h.ply", header_only("element face 0\nproperty list float int "
+                                                       "vertex_indices\n"))),
               HasSubstr("list count type 'float' is not an integer type"));
-  EXPECT_THAT(error_of(dir.write("i.ply", header_only("property float x\n"))),
+  EXPECT_THAT(ply_error(dir.write("i.ply", header_only("property float x\n"))),
               HasSubstr("property before any element"));
-  EXPECT_THAT(error_of(dir.write("j.ply", header_only("element face 0\n"))),
+  EXPECT_THAT(ply_error(dir.write("j.ply", header_only("element face 0\n"))),
               HasSubstr("j.ply: header: no vertex element"));
-  EXPECT_THAT(error_of(dir.write("k.ply", header_only("element vertex 0\n" + xyz +
-                                                      "comment rangefit grid 100000 100000\n"))),
+  EXPECT_THAT(ply_error(dir.write("k.ply", header_only("element vertex 0\n" + xyz +
+                                                       "comment rangefit grid 100000 100000\n"))),
               HasSubstr("grid 100000x100000 is larger than a file of"));
-  EXPECT_THAT(error_of(dir.path("missing.ply")), HasSubstr("missing.ply: cannot open"));
+  EXPECT_THAT(ply_error(dir.path("missing.ply")), HasSubstr("missing.ply: cannot open"));
 }
 
 TEST(PlyRead, DataProblemsNameTheLineOrByte) {
@@ -241,9 +241,9 @@ TEST(PlyRead, DataProblemsNameTheLineOrByte) {
   const std::string ascii_xyz =
       "ply\nformat ascii 1.0\nelement vertex 2\n"
       "property float x\nproperty float y\nproperty float z\nend_header\n";
-  EXPECT_THAT(error_of(dir.write("a.ply", ascii_xyz + "1 2 3\n4 five 6\n")),
+  EXPECT_THAT(ply_error(dir.write("a.ply", ascii_xyz + "1 2 3\n4 five 6\n")),
               HasSubstr("a.ply: line 9: expected a number, found 'five'"));
-  EXPECT_THAT(error_of(dir.write("b.ply", ascii_xyz + "1 2 3\n4 5\n")),
+  EXPECT_THAT(ply_error(dir.write("b.ply", ascii_xyz + "1 2 3\n4 5\n")),
               HasSubstr("b.ply: line 9: truncated: vertex 1 of 2 ends early"));
   std::string binary = header_only(
       "element vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
@@ -252,14 +252,14 @@ TEST(PlyRead, DataProblemsNameTheLineOrByte) {
   binary += '\x09';  // 9 indices declared, 2 present
   append_le(binary, 0);
   append_le(binary, 1);
-  EXPECT_THAT(error_of(dir.write("c.ply", binary)), HasSubstr("c.ply: byte"));
-  EXPECT_THAT(error_of(dir.write("c.ply", binary)), HasSubstr("list 'vertex_indices' length 9"));
+  EXPECT_THAT(ply_error(dir.write("c.ply", binary)), HasSubstr("c.ply: byte"));
+  EXPECT_THAT(ply_error(dir.write("c.ply", binary)), HasSubstr("list 'vertex_indices' length 9"));
   const std::string ascii_face =
       "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
       "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
-  EXPECT_THAT(error_of(dir.write("d.ply", ascii_face + "-3 0 1 2\n")),
+  EXPECT_THAT(ply_error(dir.write("d.ply", ascii_face + "-3 0 1 2\n")),
               HasSubstr("list 'vertex_indices' length -3"));
-  EXPECT_THAT(error_of(dir.write("e.ply", ascii_face + "1.5 0 1 2\n")),
+  EXPECT_THAT(ply_error(dir.write("e.ply", ascii_face + "1.5 0 1 2\n")),
               HasSubstr("expected an integer, found '1.5'"));
 }
 
@@ -269,9 +269,9 @@ TEST(PlyRead, GridCellsOutOfRangeOrSharedAreErrors) {
       "ply\nformat ascii 1.0\ncomment rangefit grid 2 2\nelement vertex 2\n"
       "property float x\nproperty float y\nproperty float z\nproperty int rangefit_cell\n"
       "end_header\n";
-  EXPECT_THAT(error_of(dir.write("a.ply", head + "1 1 1 0\n2 2 2 4\n")),
+  EXPECT_THAT(ply_error(dir.write("a.ply", head + "1 1 1 0\n2 2 2 4\n")),
               HasSubstr("rangefit_cell 4 outside the 2x2 grid"));
-  EXPECT_THAT(error_of(dir.write("b.ply", head + "1 1 1 3\n2 2 2 3\n")),
+  EXPECT_THAT(ply_error(dir.write("b.ply", head + "1 1 1 3\n2 2 2 3\n")),
               HasSubstr("rangefit_cell 3 holds two points"));
 }
 
@@ -289,5 +289,5 @@ TEST(PlyWrite, RejectsInconsistentClouds) {
   EXPECT_THROW(write_ply(dir.path("no_such_dir/d.ply"), test::organised_cloud()), IoError);
 }
 
-}  // namespace
+}  // namespace ply_test
 }  // namespace rangefit::io

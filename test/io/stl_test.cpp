@@ -10,7 +10,7 @@
 #include "test/io/temp_dir.hpp"
 
 namespace rangefit::io {
-namespace {
+namespace stl_test {
 
 using test::TempDir;
 using ::testing::HasSubstr;
@@ -160,5 +160,5 @@ TEST(Stl, WriteRejectsTriangleWithMissingVertex) {
   EXPECT_THROW(write_stl(dir.path("bad.stl"), mesh), IoError);
 }
 
-}  // namespace
+}  // namespace stl_test
 }  // namespace rangefit::io

@@ -7,9 +7,9 @@
 #include <string>
 
 namespace rangefit::io {
-namespace {
+namespace toml_fields_test {
 
-std::string error_of(const std::function<void()>& read) {
+std::string fields_error(const std::function<void()>& read) {
   try {
     read();
   } catch (const TomlError& e) {
@@ -26,19 +26,19 @@ TEST(TomlFields, EveryErrorNamesFileLineAndDottedField) {
   double x = 0.0;
   a.read("x", x, 0.0, 10.0);
   EXPECT_EQ(x, 1.0);
-  EXPECT_EQ(error_of([&] { a.read("x", x, 2.0, 10.0); }),
+  EXPECT_EQ(fields_error([&] { a.read("x", x, 2.0, 10.0); }),
             "f.toml:2: a.x: must be in [2, 10], got 1");
   TomlFields b = a.sub("b");
-  EXPECT_EQ(error_of([&] { b.read("y", x, 0.0, 1.0); }), "f.toml:4: a.b.y: must be a number");
+  EXPECT_EQ(fields_error([&] { b.read("y", x, 0.0, 1.0); }), "f.toml:4: a.b.y: must be a number");
   std::array<double, 3> v{};
-  EXPECT_EQ(error_of([&] { b.read("z", v, 0.0, 9.0); }),
+  EXPECT_EQ(fields_error([&] { b.read("z", v, 0.0, 9.0); }),
             "f.toml:5: a.b.z: must be an array of 3 numbers");
   // A missing field fails at its table's line; a key nobody read is refused.
-  EXPECT_EQ(error_of([&] { b.require("w"); }), "f.toml:3: a.b.w: is required");
+  EXPECT_EQ(fields_error([&] { b.require("w"); }), "f.toml:3: a.b.w: is required");
   std::string y;
   b.read("y", y);
-  EXPECT_EQ(error_of([&] { b.reject_unknown(); }), "f.toml:6: a.b.u: unknown field");
-  EXPECT_EQ(error_of([&] { top.only({"q"}); }), "f.toml:1: a: unknown field");
+  EXPECT_EQ(fields_error([&] { b.reject_unknown(); }), "f.toml:6: a.b.u: unknown field");
+  EXPECT_EQ(fields_error([&] { top.only({"q"}); }), "f.toml:1: a: unknown field");
 }
 
 TEST(TomlFields, AnAbsentTableKeepsEveryDefault) {
@@ -53,11 +53,11 @@ TEST(TomlFields, AnAbsentTableKeepsEveryDefault) {
   ASSERT_NE(items, nullptr);
   TomlFields second = top.element("item", *items, 1);
   int k = 0;
-  EXPECT_EQ(error_of([&] { second.read_int("k", k, 0, 65535); }),
+  EXPECT_EQ(fields_error([&] { second.read_int("k", k, 0, 65535); }),
             "g.toml:5: item[1].k: must be in [0, 65535], got 70000");
-  EXPECT_EQ(error_of([&] { top.table_array("n"); }),
+  EXPECT_EQ(fields_error([&] { top.table_array("n"); }),
             "g.toml:1: n: must be an array of tables ([[n]])");
 }
 
-}  // namespace
+}  // namespace toml_fields_test
 }  // namespace rangefit::io

@@ -16,7 +16,7 @@
 
 #ifdef RANGEFIT_CLI_PATH
 namespace rangefit {
-namespace {
+namespace render_cli_test {
 
 namespace fs = std::filesystem;
 
@@ -156,6 +156,6 @@ TEST_F(RenderCli, ResultsItCannotDrawAreBadInput) {
   EXPECT_NE(r.output.find("--png"), std::string::npos) << r.output;
 }
 
-}  // namespace
+}  // namespace render_cli_test
 }  // namespace rangefit
 #endif

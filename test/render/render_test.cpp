@@ -17,7 +17,7 @@
 #include "test/render/picture_checks.hpp"
 
 namespace rangefit::render {
-namespace {
+namespace render_test {
 
 constexpr double kPi = std::numbers::pi;
 
@@ -351,5 +351,5 @@ class FontCaches : public ::testing::Environment {
 };
 const auto* const kFontCaches = ::testing::AddGlobalTestEnvironment(new FontCaches);
 
-}  // namespace
+}  // namespace render_test
 }  // namespace rangefit::render

@@ -10,7 +10,7 @@
 #include "test/render/picture_checks.hpp"
 
 namespace rangefit::render {
-namespace {
+namespace render_threads_test {
 
 // Pixels of the legend strip that are not background: the text.
 int legend_ink(const Rendering& r) {
@@ -49,5 +49,5 @@ TEST(RenderThreads, PicturesDrawnConcurrentlyWithCacheReleasesAreAllWhole) {
   for (int k = 0; k < kThreads; ++k) EXPECT_EQ(whole[k], kPictures) << "thread " << k;
 }
 
-}  // namespace
+}  // namespace render_threads_test
 }  // namespace rangefit::render

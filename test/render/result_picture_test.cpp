@@ -16,7 +16,7 @@
 #include "test/render/picture_checks.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace result_picture_test {
 namespace fs = std::filesystem;
 
 // White (the model's colour, each channel above 225) within a pixel of p.
@@ -208,5 +208,5 @@ TEST_F(SpoolPictures, ReplayDrawsTheReplayedDetection) {
 }
 #endif
 
-}  // namespace
+}  // namespace result_picture_test
 }  // namespace rangefit::daemon

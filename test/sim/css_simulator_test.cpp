@@ -12,7 +12,7 @@
 #include "sim_test_scenes.hpp"
 
 namespace rangefit::sim {
-namespace {
+namespace css_simulator_test {
 
 constexpr int kN = hal::CssRevolution::kSamples;
 
@@ -230,5 +230,5 @@ TEST(CssSimulator, JointStreamFollowsTheScanPathAtTheTcpSpeed) {
   EXPECT_NEAR(samples[10].velocity_rad_s * rig.options().geometry.pivot_radius_mm, 2.0, 1e-9);
 }
 
-}  // namespace
+}  // namespace css_simulator_test
 }  // namespace rangefit::sim

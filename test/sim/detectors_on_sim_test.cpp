@@ -16,7 +16,7 @@
 #include "sim_test_scenes.hpp"
 
 namespace rangefit::sim {
-namespace {
+namespace detectors_on_sim_test {
 
 TEST(DetectorsOnSimulatedScans, BoreDetectorFindsTheBoreInANoisyCssScan) {
   const Scene scene = testing::css_bore_scene(BoreKind::kStraight, 12.0);
@@ -69,5 +69,5 @@ TEST(DetectorsOnSimulatedScans, ObjectDetectorFindsTheSphereInAStripeCellScan) {
   EXPECT_LT((r.instances[0].parts[0].center() - Eigen::Vector3d(160.0, 65.0, 50.0)).norm(), 3.0);
 }
 
-}  // namespace
+}  // namespace detectors_on_sim_test
 }  // namespace rangefit::sim

@@ -12,7 +12,7 @@
 #include "sim/stripe_cell.hpp"
 
 namespace rangefit::sim {
-namespace {
+namespace ranger_faults_test {
 
 using std::chrono::milliseconds;
 
@@ -246,5 +246,5 @@ TEST(RangerFaults, RangerAndPanTiltDisconnectsMidSweepAreReportedAndRecovered) {
   EXPECT_EQ(lost_angles.scan.faults.gaps, 1u) << "the missing angles";
 }
 
-}  // namespace
+}  // namespace ranger_faults_test
 }  // namespace rangefit::sim

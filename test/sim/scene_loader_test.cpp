@@ -7,7 +7,7 @@
 #include <string>
 
 namespace rangefit::sim {
-namespace {
+namespace scene_loader_test {
 
 std::string error_of(const std::string& text) {
   try {
@@ -71,5 +71,5 @@ TEST(SceneLoader, CrashInputsAndSpecialFilesAreErrors) {
   }
 }
 
-}  // namespace
+}  // namespace scene_loader_test
 }  // namespace rangefit::sim

@@ -10,7 +10,7 @@
 #include "sim/stripe_cell.hpp"
 
 namespace rangefit::sim {
-namespace {
+namespace shipped_scenes_test {
 
 std::string scene_path(const char* name) {
   return std::string(RANGEFIT_SOURCE_DIR) + "/data/scenes/" + name;
@@ -72,5 +72,5 @@ TEST(ShippedScenes, StripeScanOfTheFigure518SceneLandsOnTheSuperquadrics) {
   }
 }
 
-}  // namespace
+}  // namespace shipped_scenes_test
 }  // namespace rangefit::sim

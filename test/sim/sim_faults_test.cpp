@@ -8,7 +8,7 @@
 #include "sim_test_scenes.hpp"
 
 namespace rangefit::sim {
-namespace {
+namespace sim_faults_test {
 
 using std::chrono::milliseconds;
 
@@ -205,5 +205,5 @@ TEST(RayCaster, EmbreeAgreesWithBruteForceOnAMeshAndPrimitives) {
   EXPECT_GT(hits, 1000);
 }
 
-}  // namespace
+}  // namespace sim_faults_test
 }  // namespace rangefit::sim

@@ -20,7 +20,7 @@
 #include "sim_test_scans.hpp"
 
 namespace rangefit::sim {
-namespace {
+namespace stl_scenes_test {
 
 using std::chrono::milliseconds;
 
@@ -187,5 +187,5 @@ TEST(StlScenes, PanTiltScanOfTheStlClutteredTableGivesTheObjectDetectorItsBall) 
   EXPECT_LT((found_sphere(points, 35.0) - Eigen::Vector3d(40.0, 60.0, 35.0)).norm(), 3.0);
 }
 
-}  // namespace
+}  // namespace stl_scenes_test
 }  // namespace rangefit::sim

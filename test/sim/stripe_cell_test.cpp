@@ -9,7 +9,7 @@
 #include "sim/sim_clock.hpp"
 
 namespace rangefit::sim {
-namespace {
+namespace stripe_cell_test {
 
 // The table plus a box and a cylinder standing on it, in the cell's table frame.
 Scene table_scene() {
@@ -189,5 +189,5 @@ TEST(PanTiltHead, SweepProfilesLandOnTheTrueSurfaces) {
   EXPECT_NEAR(angles.back().pan_rad, 0.5 * o.geometry.sweep_angle_rad, 2e-3);
 }
 
-}  // namespace
+}  // namespace stripe_cell_test
 }  // namespace rangefit::sim

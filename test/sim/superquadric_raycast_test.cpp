@@ -6,7 +6,7 @@
 #include <random>
 
 namespace rangefit::sim {
-namespace {
+namespace superquadric_raycast_test {
 
 Eigen::Isometry3d pose(const Eigen::Vector3d& t, const Eigen::Vector3d& axis, double angle) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -121,5 +121,5 @@ TEST(SceneRenderer, NoiseIsSeeded) {
   EXPECT_NE(a.cloud.points[5], c.cloud.points[5]);
 }
 
-}  // namespace
+}  // namespace superquadric_raycast_test
 }  // namespace rangefit::sim

@@ -10,7 +10,7 @@
 #include "sim/stripe_scan.hpp"
 
 namespace rangefit::sim {
-namespace {
+namespace varied_scene_test {
 
 constexpr std::array<VariedTarget, 7> kTargets = {
     VariedTarget::kSphere, VariedTarget::kCylinder,     VariedTarget::kBox, VariedTarget::kCone,
@@ -406,5 +406,5 @@ TEST(StripeSweep, FanAndSweepCoverTheBox) {
 
 static_assert(kTuningSeedBase + kTuningSeedCount <= kHeldOutSeedBase);
 
-}  // namespace
+}  // namespace varied_scene_test
 }  // namespace rangefit::sim

@@ -2,10 +2,9 @@
 
 namespace rangefit::sim {
 
-using namespace drivers::can::powercube;  // NOLINT
-
 void SimPowerCubeModule::on_frame(const drivers::can::CanFrame& f,
                                   drivers::can::CanTransport& bus) {
+  using namespace drivers::can::powercube;  // NOLINT: codec names read better unqualified here
   const Message m = decode(f);
   if (m.kind != Kind::kPositionRequest || m.module != module_) return;
   ++requests_;

@@ -17,7 +17,7 @@
 #include "web_daemon.hpp"
 
 namespace rangefit::test {
-namespace {
+namespace interfaces_test {
 using nlohmann::json;
 
 // The 12 mm bore the plate puts under the CSS; CAD prior 0.8 mm off the true entrance.
@@ -296,5 +296,5 @@ TEST(Interfaces, MoreWaitingClientsThanServerThreadsLeaveTheStateAnswering) {
   EXPECT_EQ(daemon.stop(), 0) << daemon.log();
 }
 
-}  // namespace
+}  // namespace interfaces_test
 }  // namespace rangefit::test

@@ -11,7 +11,7 @@
 #include "detect/bore/bore_result.hpp"
 
 namespace rangefit::daemon {
-namespace {
+namespace service_backend_test {
 
 std::string config_error(const std::string& toml) { return parse_config(toml, "t.toml").error; }
 
@@ -127,5 +127,5 @@ TEST(ResultBoard, WaitersGetTheirOwnNewResultAndOldOnesAreForgotten) {
   EXPECT_FALSE(stopping.get());
 }
 
-}  // namespace
+}  // namespace service_backend_test
 }  // namespace rangefit::daemon

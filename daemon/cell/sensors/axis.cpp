@@ -7,7 +7,7 @@
 namespace rangefit::daemon::real_sensors {
 namespace {
 
-std::vector<NamedDriver> make_drivers(const DeviceConfig& d, const CellConfig& config,
+std::vector<NamedDriver> axis_drivers(const DeviceConfig& d, const CellConfig& config,
                                       hal::Clock&) {
   std::vector<NamedDriver> out;
   out.push_back({d.name, std::make_unique<drivers::FhppAxis>(fhpp_axis_config(
@@ -18,6 +18,6 @@ std::vector<NamedDriver> make_drivers(const DeviceConfig& d, const CellConfig& c
 }  // namespace
 
 extern const RealSensor axis;
-const RealSensor axis{"axis", make_drivers, nullptr};
+const RealSensor axis{"axis", axis_drivers, nullptr};
 
 }  // namespace rangefit::daemon::real_sensors

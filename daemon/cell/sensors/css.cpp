@@ -15,7 +15,7 @@
 namespace rangefit::daemon::real_sensors {
 namespace {
 
-std::vector<NamedDriver> make_drivers(const DeviceConfig& d, const CellConfig&, hal::Clock& clock) {
+std::vector<NamedDriver> css_drivers(const DeviceConfig& d, const CellConfig&, hal::Clock& clock) {
   drivers::css_usb::LibusbOptions usb;
   unsigned vid = 0, pid = 0;
   if (d.transport.rfind("usb:", 0) == 0 &&
@@ -34,8 +34,8 @@ std::vector<NamedDriver> make_drivers(const DeviceConfig& d, const CellConfig&, 
   return out;
 }
 
-ScanOutcome scan(RealDevices& cell, const DeviceConfig& device, const ScanRequest& request,
-                 ScanControl control) {
+ScanOutcome css_scan(RealDevices& cell, const DeviceConfig& device, const ScanRequest& request,
+                     ScanControl control) {
   std::string why;
   auto* joints = cell.motion_as<hal::JointSource>(device, &why);
   auto* css = joints ? cell.driver_as<hal::CssSource>(device.name, &why) : nullptr;
@@ -72,6 +72,6 @@ ScanOutcome scan(RealDevices& cell, const DeviceConfig& device, const ScanReques
 }  // namespace
 
 extern const RealSensor css;
-const RealSensor css{"css", make_drivers, scan};
+const RealSensor css{"css", css_drivers, css_scan};
 
 }  // namespace rangefit::daemon::real_sensors

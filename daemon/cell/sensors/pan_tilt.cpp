@@ -13,8 +13,8 @@
 namespace rangefit::daemon::real_sensors {
 namespace {
 
-std::vector<NamedDriver> make_drivers(const DeviceConfig& d, const CellConfig& config,
-                                      hal::Clock&) {
+std::vector<NamedDriver> pan_tilt_drivers(const DeviceConfig& d, const CellConfig& config,
+                                          hal::Clock&) {
   const auto head = pan_tilt_config(d);
   std::vector<NamedDriver> out;
   out.push_back({d.name, ranger_driver(d, config.fusion.pan_tilt.geometry.ranger)});
@@ -25,8 +25,8 @@ std::vector<NamedDriver> make_drivers(const DeviceConfig& d, const CellConfig& c
   return out;
 }
 
-ScanOutcome scan(RealDevices& cell, const DeviceConfig& device, const ScanRequest& request,
-                 ScanControl control) {
+ScanOutcome pan_tilt_scan(RealDevices& cell, const DeviceConfig& device, const ScanRequest& request,
+                          ScanControl control) {
   const std::string head_name = pan_tilt_angles_name(device.name);
   std::string why;
   auto* ranger = cell.driver_as<hal::RangerSource>(device.name, &why);
@@ -65,6 +65,6 @@ ScanOutcome scan(RealDevices& cell, const DeviceConfig& device, const ScanReques
 }  // namespace
 
 extern const RealSensor pan_tilt;
-const RealSensor pan_tilt{"pan_tilt", make_drivers, scan};
+const RealSensor pan_tilt{"pan_tilt", pan_tilt_drivers, pan_tilt_scan};
 
 }  // namespace rangefit::daemon::real_sensors

@@ -8,8 +8,8 @@
 namespace rangefit::daemon::real_sensors {
 namespace {
 
-std::vector<NamedDriver> make_drivers(const DeviceConfig& d, const CellConfig& config,
-                                      hal::Clock&) {
+std::vector<NamedDriver> robot_drivers(const DeviceConfig& d, const CellConfig& config,
+                                       hal::Clock&) {
   std::vector<NamedDriver> out;
   if (d.protocol == JointProtocol::kPowerCube) {
     const auto c = robot_powercube_config(d, config.fusion.css.joint);
@@ -26,6 +26,6 @@ std::vector<NamedDriver> make_drivers(const DeviceConfig& d, const CellConfig& c
 }  // namespace
 
 extern const RealSensor robot;
-const RealSensor robot{"robot", make_drivers, nullptr};
+const RealSensor robot{"robot", robot_drivers, nullptr};
 
 }  // namespace rangefit::daemon::real_sensors

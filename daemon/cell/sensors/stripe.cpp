@@ -8,15 +8,15 @@
 namespace rangefit::daemon::real_sensors {
 namespace {
 
-std::vector<NamedDriver> make_drivers(const DeviceConfig& d, const CellConfig& config,
-                                      hal::Clock&) {
+std::vector<NamedDriver> stripe_drivers(const DeviceConfig& d, const CellConfig& config,
+                                        hal::Clock&) {
   std::vector<NamedDriver> out;
   out.push_back({d.name, ranger_driver(d, config.fusion.stripe_cell.geometry.ranger)});
   return out;
 }
 
-ScanOutcome scan(RealDevices& cell, const DeviceConfig& device, const ScanRequest& request,
-                 ScanControl control) {
+ScanOutcome stripe_scan(RealDevices& cell, const DeviceConfig& device, const ScanRequest& request,
+                        ScanControl control) {
   std::string why;
   auto* axis = cell.motion_as<hal::LinearAxis>(device, &why);
   auto* ranger = axis ? cell.driver_as<hal::RangerSource>(device.name, &why) : nullptr;
@@ -54,6 +54,6 @@ ScanOutcome scan(RealDevices& cell, const DeviceConfig& device, const ScanReques
 }  // namespace
 
 extern const RealSensor stripe;
-const RealSensor stripe{"stripe", make_drivers, scan};
+const RealSensor stripe{"stripe", stripe_drivers, stripe_scan};
 
 }  // namespace rangefit::daemon::real_sensors

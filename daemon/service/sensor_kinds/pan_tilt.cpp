@@ -8,7 +8,7 @@
 namespace rangefit::daemon::sensor_kinds {
 namespace {
 
-std::vector<CanNodeUse> nodes(const DeviceConfig& d) {
+std::vector<CanNodeUse> pan_tilt_nodes(const DeviceConfig& d) {
   return {{"can_node", ranger_node(d), d.can_node == 0},
           {"pan_node", pan_node(d), d.pan_node == 0},
           {"tilt_node", tilt_node(d), d.tilt_node == 0}};
@@ -21,6 +21,6 @@ const SensorKind pan_tilt{.name = "pan_tilt",
                           .cli_name = "pantilt",
                           .scans = true,
                           .fields = {.can_node = true, .pan_node = true, .tilt_node = true},
-                          .can_nodes = nodes};
+                          .can_nodes = pan_tilt_nodes};
 
 }  // namespace rangefit::daemon::sensor_kinds

@@ -6,7 +6,7 @@
 namespace rangefit::daemon::sensor_kinds {
 namespace {
 
-std::vector<CanNodeUse> nodes(const DeviceConfig& d) {
+std::vector<CanNodeUse> robot_nodes(const DeviceConfig& d) {
   // PowerCube modules answer on ids of their own (0x0A0 + module), apart from CiA 402 nodes.
   if (d.protocol == JointProtocol::kPowerCube) return {};
   return {{"can_node", joint_node(d), d.can_node == 0}};
@@ -16,6 +16,6 @@ std::vector<CanNodeUse> nodes(const DeviceConfig& d) {
 
 extern const SensorKind robot;
 const SensorKind robot{
-    .name = "robot", .fields = {.can_node = true, .protocol = true}, .can_nodes = nodes};
+    .name = "robot", .fields = {.can_node = true, .protocol = true}, .can_nodes = robot_nodes};
 
 }  // namespace rangefit::daemon::sensor_kinds

@@ -8,7 +8,7 @@
 namespace rangefit::daemon::sensor_kinds {
 namespace {
 
-std::vector<CanNodeUse> nodes(const DeviceConfig& d) {
+std::vector<CanNodeUse> stripe_nodes(const DeviceConfig& d) {
   return {{"can_node", ranger_node(d), d.can_node == 0}};
 }
 
@@ -21,6 +21,6 @@ const SensorKind stripe{.name = "stripe",
                         .moved_by = "axis",
                         .calibrated_by_service = true,
                         .fields = {.can_node = true},
-                        .can_nodes = nodes};
+                        .can_nodes = stripe_nodes};
 
 }  // namespace rangefit::daemon::sensor_kinds

@@ -13,7 +13,7 @@
 #include "test/support/allocation_watch/allocation_watch.hpp"
 
 namespace rangefit {
-namespace {
+namespace bore_allocation_test {
 
 template <class F>
 std::size_t allocations(F&& f) {
@@ -78,5 +78,5 @@ TEST(BoreAllocations, NoneForConesAndEllipsesOnceTheWorkspaceHoldsALikeScan) {
   }
 }
 
-}  // namespace
+}  // namespace bore_allocation_test
 }  // namespace rangefit

@@ -18,7 +18,7 @@
 #include "test/io/cloud_fixtures.hpp"
 
 namespace rangefit::io {
-namespace {
+namespace pcl_load_test {
 namespace fs = std::filesystem;
 
 class PclLoad : public ::testing::Test {
@@ -122,5 +122,5 @@ TEST_F(PclLoad, PlyLoadsAsPointXYZAndPointNormal) {
   }
 }
 
-}  // namespace
+}  // namespace pcl_load_test
 }  // namespace rangefit::io

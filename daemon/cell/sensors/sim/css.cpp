@@ -10,7 +10,7 @@
 namespace rangefit::daemon::sim_sensors {
 namespace {
 
-ScanOutcome scan(SimCell::Run& run) {
+ScanOutcome css_scan(SimCell::Run& run) {
   run.motion_name = run.device.name + "/joint";
   fusion::CssFusionConfig fc = run.config.fusion.css;
   std::string why;
@@ -52,6 +52,6 @@ ScanOutcome scan(SimCell::Run& run) {
 }  // namespace
 
 extern const SimSensor css;
-const SimSensor css{"css", scan};
+const SimSensor css{"css", css_scan};
 
 }  // namespace rangefit::daemon::sim_sensors

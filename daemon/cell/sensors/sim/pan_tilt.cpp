@@ -8,7 +8,7 @@
 namespace rangefit::daemon::sim_sensors {
 namespace {
 
-ScanOutcome scan(SimCell::Run& run) {
+ScanOutcome pan_tilt_scan(SimCell::Run& run) {
   run.motion_name = run.device.name + "/angles";
   fusion::PanTiltFusionConfig fc = run.config.fusion.pan_tilt;
   double half = 0.0;
@@ -45,6 +45,6 @@ ScanOutcome scan(SimCell::Run& run) {
 }  // namespace
 
 extern const SimSensor pan_tilt;
-const SimSensor pan_tilt{"pan_tilt", scan};
+const SimSensor pan_tilt{"pan_tilt", pan_tilt_scan};
 
 }  // namespace rangefit::daemon::sim_sensors

@@ -8,7 +8,7 @@
 namespace rangefit::daemon::sim_sensors {
 namespace {
 
-ScanOutcome scan(SimCell::Run& run) {
+ScanOutcome stripe_scan(SimCell::Run& run) {
   run.motion_name = run.device.name + "/axis";
   const fusion::StripeCellFusionConfig& fc = run.config.fusion.stripe_cell;
   sim::StripeCellOptions o;
@@ -55,6 +55,6 @@ ScanOutcome scan(SimCell::Run& run) {
 }  // namespace
 
 extern const SimSensor stripe;
-const SimSensor stripe{"stripe", scan};
+const SimSensor stripe{"stripe", stripe_scan};
 
 }  // namespace rangefit::daemon::sim_sensors
