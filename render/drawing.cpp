@@ -1,5 +1,5 @@
 #include "render/drawing.hpp"
-#include "render/text_format.hpp"
+#include "render/legend_text.hpp"
 
 #include <cstdio>
 #include <numbers>
@@ -10,7 +10,7 @@ namespace {
 
 std::string vec(const Eigen::Vector3d& v, const char* digits = "%.3f") {
   const std::string f = std::string(digits) + ", " + digits + ", " + digits;
-  return format(f.c_str(), v.x(), v.y(), v.z());
+  return legend_format(f.c_str(), v.x(), v.y(), v.z());
 }
 
 constexpr double kDeg = 180.0 / std::numbers::pi;
@@ -19,10 +19,11 @@ constexpr double kDeg = 180.0 / std::numbers::pi;
 
 std::string shape_line(const BoreShape& s) {
   if (!s.cone) {
-    return format("ellipse   radius2 %.3f mm, major axis ", s.radius2) + vec(s.major_axis, "%.4f");
+    return legend_format("ellipse   radius2 %.3f mm, major axis ", s.radius2) +
+           vec(s.major_axis, "%.4f");
   }
-  return format("cone      half-angle %.3f deg", s.half_angle * kDeg) +
-         (s.cylinder_radius > 0.0 ? format(", into a cylinder of %.3f mm", s.cylinder_radius)
+  return legend_format("cone      half-angle %.3f deg", s.half_angle * kDeg) +
+         (s.cylinder_radius > 0.0 ? legend_format(", into a cylinder of %.3f mm", s.cylinder_radius)
                                   : std::string());
 }
 
@@ -37,13 +38,13 @@ Drawing bore_drawing(const BoreResult& r) {
     d.legend.push_back("entrance  " + vec(r.entrance) + " mm");
     d.legend.push_back("axis      " + vec(r.axis, "%.4f") + " (out of the bore)");
     d.legend.push_back(
-        format("radius    %.3f mm (before refinement %.3f mm)", r.radius, r.rsf_radius));
+        legend_format("radius    %.3f mm (before refinement %.3f mm)", r.radius, r.rsf_radius));
     if (r.shape) d.legend.push_back(shape_line(*r.shape));
   }
   const BoreCounts& c = r.counts;
-  d.legend.push_back(format("points    %zu in region, %zu plane, %zu wall (%zu in last fit)", c.roi,
-                            c.plane, c.wall, c.wall_final));
-  d.legend.push_back(format("time      %.1f ms", r.time_ms.total));
+  d.legend.push_back(legend_format("points    %zu in region, %zu plane, %zu wall (%zu in last fit)",
+                                   c.roi, c.plane, c.wall, c.wall_final));
+  d.legend.push_back(legend_format("time      %.1f ms", r.time_ms.total));
   return d;
 }
 
@@ -52,7 +53,7 @@ Drawing object_drawing(const ObjectModel& model, const ObjectDetectResult& r) {
   d.legend.push_back(
       model.name +
       (r.found() ? ": found" : ": not found (" + std::string(to_string(r.reason)) + ")") +
-      format(", %d hypotheses, %.1f ms", r.hypotheses_evaluated, r.time.total_ms));
+      legend_format(", %d hypotheses, %.1f ms", r.hypotheses_evaluated, r.time.total_ms));
   for (std::size_t i = 0; i < r.instances.size(); ++i) {
     for (const DetectedPart& p : r.instances[i].parts) {
       Superquadric shape;
@@ -60,11 +61,11 @@ Drawing object_drawing(const ObjectModel& model, const ObjectDetectResult& r) {
         if (mp.name == p.name) shape = mp.shape;
       }
       d.parts.push_back({p.name, shape, p.T_world_part});
-      d.legend.push_back(format("[%zu] ", i) + p.name + "  centre " + vec(p.center(), "%.2f") +
-                         " mm, z-axis " + vec(p.z_axis()));
-      d.legend.push_back(format("      M %.4f  I %zu  S %zu  coverage %.2f  seen through %.2f",
-                                p.scores.measure, p.scores.interior, p.scores.surface,
-                                p.scores.coverage, p.scores.seen_through));
+      d.legend.push_back(legend_format("[%zu] ", i) + p.name + "  centre " +
+                         vec(p.center(), "%.2f") + " mm, z-axis " + vec(p.z_axis()));
+      d.legend.push_back(legend_format(
+          "      M %.4f  I %zu  S %zu  coverage %.2f  seen through %.2f", p.scores.measure,
+          p.scores.interior, p.scores.surface, p.scores.coverage, p.scores.seen_through));
     }
   }
   return d;

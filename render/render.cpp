@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "render/colour_map.hpp"
+#include "render/legend_text.hpp"
 #include "render/model_geometry.hpp"
 #include "render/sensor_direction.hpp"
-#include "render/text_format.hpp"
 
 namespace rangefit::render {
 namespace {
@@ -311,7 +311,7 @@ void draw_panel_frame(cairo_t* cr, const Panel& panel) {
   cairo_move_to(cr, x, y);
   cairo_line_to(cr, x + mm * v.px_per_mm, y);
   cairo_stroke(cr);
-  label(cr, x, y - 6.0, format("%g mm", mm));
+  label(cr, x, y - 6.0, legend_format("%g mm", mm));
   // Separator between the panels.
   set_colour(cr, {70, 72, 80});
   cairo_set_line_width(cr, 1.0);
@@ -343,9 +343,9 @@ void draw_legend(cairo_t* cr, int y0, int width, const std::vector<std::string>&
   }
   set_colour(cr, kTextColour);
   cairo_move_to(cr, bx, by + bar_h + 14.0);
-  cairo_show_text(cr, format("%.1f", key.lo).c_str());
+  cairo_show_text(cr, legend_format("%.1f", key.lo).c_str());
   cairo_move_to(cr, bx + bar_w - 30.0, by + bar_h + 14.0);
-  cairo_show_text(cr, format("%.1f mm", key.hi).c_str());
+  cairo_show_text(cr, legend_format("%.1f mm", key.hi).c_str());
   cairo_move_to(cr, bx, by + bar_h + 14.0 + kLineHeight);
   cairo_show_text(cr, key.label.c_str());
 }
@@ -402,7 +402,7 @@ Rendering render_scan(const PointCloud& cloud, const Drawing& input, const Rende
   const auto [toward, title] = sensor_direction(cloud, drawing, models, o);
   out.sensor.view = look_from(toward, Eigen::Vector3d::UnitZ());
   const Eigen::Vector3d d = out.sensor.view.toward;
-  out.sensor.title = title + format(" (from %.2f, %.2f, %.2f)", d.x(), d.y(), d.z());
+  out.sensor.title = title + legend_format(" (from %.2f, %.2f, %.2f)", d.x(), d.y(), d.z());
   out.top.view = look_from(Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitY());
   out.top.title = "from above (+z, y up)";
   frame(out.sensor, cloud, models, o);
@@ -410,7 +410,7 @@ Rendering render_scan(const PointCloud& cloud, const Drawing& input, const Rende
   out.top.x0 = o.panel_width;
 
   std::vector<std::string> legend = drawing.legend;
-  legend.push_back(format("%zu points", cloud.points.size()));
+  legend.push_back(legend_format("%zu points", cloud.points.size()));
   const int legend_height =
       16 + kLineHeight * static_cast<int>(std::max<std::size_t>(legend.size(), 3));
   out.image = Image(2 * o.panel_width, o.panel_height + legend_height, kBackground);
