@@ -13,17 +13,19 @@
 
 #include "daemon/cli/cli_options.hpp"
 #include "daemon/cli/commands.hpp"
-#include "daemon/cli/json_util.hpp"
 #include "daemon/cli/option_checks.hpp"
 #include "daemon/cli/png_output.hpp"
 #include "daemon/service/bore_fit_json.hpp"
 #include "daemon/service/bore_shape_json.hpp"
 #include "daemon/service/detection_adapter.hpp"
+#include "daemon/service/json_codec.hpp"
 #include "detect/bore/bore_detector.hpp"
 #include "io/cloud_io.hpp"
 
 namespace rangefit::cli {
 namespace {
+
+using daemon::json_vec;
 
 struct BoreArgs {
   std::string cloud;

@@ -14,11 +14,10 @@
 #include <vector>
 
 #include "calib/raw_sweep_text.hpp"
+#include "detect/common/angles.hpp"
 #include "fusion/config.hpp"
 
 namespace rangefit::cli::calibrate {
-
-inline constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 struct CommonArgs {
   std::vector<std::string> scans;

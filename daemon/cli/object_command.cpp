@@ -12,6 +12,7 @@
 #include "daemon/cli/option_checks.hpp"
 #include "daemon/cli/png_output.hpp"
 #include "daemon/service/detection_adapter.hpp"
+#include "daemon/service/json_codec.hpp"
 #include "detect/object/object_detector.hpp"
 #include "io/cloud_io.hpp"
 #include "io/object_model_file.hpp"
@@ -31,7 +32,7 @@ struct ObjectArgs {
   std::string png;
 };
 
-nlohmann::json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+using daemon::json_vec;
 
 nlohmann::json to_json(const ObjectModel& model, const ObjectDetectResult& r) {
   nlohmann::json j;
@@ -41,8 +42,8 @@ nlohmann::json to_json(const ObjectModel& model, const ObjectDetectResult& r) {
   j["hypotheses_evaluated"] = r.hypotheses_evaluated;
   if (r.plane.plane.valid) {
     j["plane"] = {{"removed", r.plane.removed()},
-                  {"point", vec(r.plane.plane.point)},
-                  {"normal", vec(r.plane.plane.normal)},
+                  {"point", json_vec(r.plane.plane.point)},
+                  {"normal", json_vec(r.plane.plane.normal)},
                   {"points", r.plane.plane_points}};
   }
   nlohmann::json instances = nlohmann::json::array();
@@ -51,8 +52,8 @@ nlohmann::json to_json(const ObjectModel& model, const ObjectDetectResult& r) {
     for (const DetectedPart& p : inst.parts) {
       const Eigen::Quaterniond q = p.rotation();
       parts.push_back({{"name", p.name},
-                       {"center", vec(p.center())},
-                       {"z_axis", vec(p.z_axis())},
+                       {"center", json_vec(p.center())},
+                       {"z_axis", json_vec(p.z_axis())},
                        {"quaternion", {q.w(), q.x(), q.y(), q.z()}},
                        {"scores",
                         {{"M", p.scores.measure},
@@ -82,7 +83,7 @@ nlohmann::json to_json(const ObjectModel& model, const ObjectDetectResult& r) {
                           {"check", to_string(x.check)},
                           {"value", x.value},
                           {"limit", x.limit},
-                          {"center", vec(x.centre)}});
+                          {"center", json_vec(x.centre)}});
   }
   j["rejections"] = rejections;
   j["time_ms"] = {{"plane", r.time.plane_ms},

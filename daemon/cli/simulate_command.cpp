@@ -14,12 +14,14 @@
 #include "daemon/cell/sim_cell.hpp"
 #include "daemon/cell/sim_sensor.hpp"
 #include "daemon/cli/commands.hpp"
-#include "daemon/cli/json_util.hpp"
+#include "daemon/service/json_codec.hpp"
 #include "io/cloud_io.hpp"
 #include "sim/scene_loader.hpp"
 
 namespace rangefit::cli {
 namespace {
+
+using daemon::json_vec;
 
 using daemon::CellConfig;
 using daemon::DeviceConfig;

@@ -1,4 +1,5 @@
 #include "daemon/service/bore_shape_json.hpp"
+#include "daemon/service/json_codec.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -7,8 +8,6 @@
 
 namespace rangefit::daemon {
 namespace {
-
-nlohmann::json shape_vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 constexpr double kMaxHalfAngle = 80.0 * std::numbers::pi / 180.0;
 
@@ -30,7 +29,7 @@ nlohmann::json bore_shape_json(const BoreShape& s) {
     }
   } else {
     j["radius2"] = s.radius2;
-    j["major_axis"] = shape_vec(s.major_axis);
+    j["major_axis"] = json_vec(s.major_axis);
     sigma["radius2_mm"] = s.sigma_radius2;
     sigma["major_axis_rad"] = s.sigma_major_axis;
   }

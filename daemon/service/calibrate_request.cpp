@@ -5,10 +5,11 @@
 #include <numbers>
 #include <sstream>
 
+#include "daemon/service/json_codec.hpp"
+#include "detect/common/angles.hpp"
+
 namespace rangefit::daemon {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 std::string text_vec(const Eigen::Vector3d& v) {
   std::ostringstream s;
@@ -16,8 +17,6 @@ std::string text_vec(const Eigen::Vector3d& v) {
   s << "[" << v.x() << ", " << v.y() << ", " << v.z() << "]";
   return s.str();
 }
-
-nlohmann::json json_vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 }  // namespace
 

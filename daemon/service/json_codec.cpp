@@ -4,7 +4,6 @@
 namespace rangefit::daemon {
 namespace {
 
-nlohmann::json to_array(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 Eigen::Vector3d vec_of(const nlohmann::json& j) {
   return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
 }
@@ -37,8 +36,8 @@ nlohmann::json to_json(const ScanRequest& r) {
                       {"kind", to_string(r.kind)},
                       {"model", r.model},
                       {"bore",
-                       {{"position_mm", to_array(r.bore.position_mm)},
-                        {"axis", to_array(r.bore.axis)},
+                       {{"position_mm", json_vec(r.bore.position_mm)},
+                        {"axis", json_vec(r.bore.axis)},
                         {"radius_mm", r.bore.radius_mm}}},
                       {"sensor", r.sensor},
                       {"sweep", {r.sweep_start, r.sweep_end, r.sweep_speed}},
@@ -46,16 +45,16 @@ nlohmann::json to_json(const ScanRequest& r) {
                       {"hypotheses", r.hypotheses},
                       {"trials", r.trials},
                       {"seed", r.seed}};
-  if (r.bore.plane_normal) j["bore"]["plane_normal"] = to_array(*r.bore.plane_normal);
+  if (r.bore.plane_normal) j["bore"]["plane_normal"] = json_vec(*r.bore.plane_normal);
   if (r.bore.outer_radius_mm > 0.0) j["bore"]["outer_radius_mm"] = r.bore.outer_radius_mm;
   if (!r.bore.walls.empty()) j["bore"]["walls"] = r.bore.walls;
   if (r.bore.normal_keep > 0.0) j["bore"]["normal_keep"] = r.bore.normal_keep;
   if (r.bore.half_angle_rad != 0.0) j["bore"]["half_angle_rad"] = r.bore.half_angle_rad;
   if (r.bore.cylinder_radius_mm != 0.0) j["bore"]["cylinder_radius_mm"] = r.bore.cylinder_radius_mm;
   if (r.bore.radius2_mm != 0.0) j["bore"]["radius2_mm"] = r.bore.radius2_mm;
-  if (r.bore.major_axis) j["bore"]["major_axis"] = to_array(*r.bore.major_axis);
-  if (r.view_dir) j["view_dir"] = to_array(*r.view_dir);
-  if (r.sensor_position) j["sensor_position_mm"] = to_array(*r.sensor_position);
+  if (r.bore.major_axis) j["bore"]["major_axis"] = json_vec(*r.bore.major_axis);
+  if (r.view_dir) j["view_dir"] = json_vec(*r.view_dir);
+  if (r.sensor_position) j["sensor_position_mm"] = json_vec(*r.sensor_position);
   if (r.parts != 0) j["parts"] = r.parts;
   if (!r.target.kind.empty()) {
     j["target"] = {{"kind", r.target.kind},
@@ -70,7 +69,7 @@ nlohmann::json to_json(const DetectionResult& r) {
   for (const auto& p : r.parts) {
     const Eigen::Quaterniond q(p.T_world_part.rotation());
     parts.push_back({{"name", p.name},
-                     {"translation_mm", to_array(p.T_world_part.translation())},
+                     {"translation_mm", json_vec(p.T_world_part.translation())},
                      {"quaternion_wxyz", {q.w(), q.x(), q.y(), q.z()}},
                      {"score", p.score},
                      {"instance", p.instance}});

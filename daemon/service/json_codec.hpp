@@ -2,12 +2,16 @@
 // JSON forms of requests and results: the spool's request.json/result.json and what the CLI
 // prints. Units as internally: mm and rad; poses as translation_mm + quaternion_wxyz.
 
+#include <Eigen/Core>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "daemon/service/scan_types.hpp"
 
 namespace rangefit::daemon {
+
+// A vector as the JSON array [x, y, z].
+inline nlohmann::json json_vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 nlohmann::json to_json(const ScanRequest& r);
 nlohmann::json to_json(const DetectionResult& r);

@@ -4,14 +4,10 @@
 #include <numbers>
 #include <sstream>
 
+#include "daemon/service/json_codec.hpp"
 #include "io/object_model_file.hpp"
 
 namespace rangefit::daemon {
-namespace {
-
-nlohmann::json learn_vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
-
-}  // namespace
 
 nlohmann::json learn_json(const LearnResult& r, std::size_t points, std::size_t views) {
   nlohmann::json j;
@@ -24,8 +20,8 @@ nlohmann::json learn_json(const LearnResult& r, std::size_t points, std::size_t 
   j["clusters"] = r.segment.clusters;
   if (r.segment.plane.plane.valid) {
     j["plane"] = {{"removed", r.segment.plane.removed()},
-                  {"point", learn_vec(r.segment.plane.plane.point)},
-                  {"normal", learn_vec(r.segment.plane.plane.normal)},
+                  {"point", json_vec(r.segment.plane.plane.point)},
+                  {"normal", json_vec(r.segment.plane.plane.normal)},
                   {"rms_mm", r.segment.plane.plane.rms}};
   }
   nlohmann::json parts = nlohmann::json::array();
@@ -35,8 +31,8 @@ nlohmann::json learn_json(const LearnResult& r, std::size_t points, std::size_t 
                      {"size", {p.shape.a1, p.shape.a2, p.shape.a3}},
                      {"shape", {p.shape.eps1, p.shape.eps2}},
                      {"taper", {p.shape.kx, p.shape.ky}},
-                     {"center", learn_vec(p.T_world_part.translation())},
-                     {"z_axis", learn_vec(p.T_world_part.linear().col(2))},
+                     {"center", json_vec(p.T_world_part.translation())},
+                     {"z_axis", json_vec(p.T_world_part.linear().col(2))},
                      {"quaternion", {q.w(), q.x(), q.y(), q.z()}},
                      {"points", p.points},
                      {"M", p.measure},

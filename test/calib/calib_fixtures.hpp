@@ -9,14 +9,13 @@
 #include <vector>
 
 #include "calib/stripe_calibration.hpp"
+#include "detect/common/angles.hpp"
 #include "hal/pan_tilt_geometry.hpp"
 #include "hal/samples.hpp"
 #include "hal/stripe_geometry.hpp"
 #include "sim/calibration_scans.hpp"
 
 namespace rangefit::test {
-
-inline constexpr double kDeg = std::numbers::pi / 180.0;
 
 // Cube body diagonal between the laser (down the fan) and the camera (baseline along -y of the
 // cell), turned a little about it so no edge lies in the laser plane.

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "daemon/rangefitd/service.hpp"
+#include "detect/common/angles.hpp"
 #include "detect/learn/model_learning.hpp"
 #include "io/object_model_file.hpp"
 #include "sim/scene_objects.hpp"
@@ -24,8 +25,6 @@
 namespace rangefit::daemon {
 namespace service_teach_test {
 namespace fs = std::filesystem;
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 DaemonConfig stripe_cell(const fs::path& dir, const fs::path& scene) {
   DaemonConfig config;

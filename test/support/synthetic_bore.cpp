@@ -6,10 +6,10 @@
 #include <random>
 #include <vector>
 
+#include "detect/common/angles.hpp"
+
 namespace rangefit::sim {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 // The part in its own frame: top surface z = height(x, y) through the origin, bore entrance at
 // the origin, axis a (out of the bore) tilted by the slant about the part's y axis.
