@@ -161,6 +161,24 @@ struct TargetView {
   }
 };
 
+// Factors::part_lost: per target part, the share of what the sensor would see of it (the target
+// alone hiding itself, the sweep uncut) that the scan does not measure.
+double largest_part_loss(const std::vector<ScenePart>& target, const std::vector<ScenePart>& others,
+                         const StripeSweep& sweep) {
+  const PartCaster alone(target), rest(others);
+  double lost = 0.0;
+  for (std::size_t i = 0; i < target.size(); ++i) {
+    const std::vector<int> part = {static_cast<int>(i)};
+    const double seeable = total_weight(visible_samples(alone, part, sweep, false));
+    if (seeable <= 0.0) continue;
+    const std::vector<SurfaceSample> in_scan = visible_samples(alone, part, sweep, true);
+    const std::vector<bool> hidden = hidden_by(in_scan, rest);
+    const double measured = total_weight(in_scan) * (1.0 - weighted_share(in_scan, hidden));
+    lost = std::max(lost, std::clamp(1.0 - measured / seeable, 0.0, 1.0));
+  }
+  return lost;
+}
+
 VariedScene scan(std::vector<ScenePart> parts, std::vector<int> target_parts, ObjectModel model,
                  const StripeSweep& sweep, VariedScene::Factors factors, std::uint64_t seed,
                  int threads) {
@@ -198,6 +216,7 @@ VariedScene scan_varied_scene(std::vector<ScenePart> parts, std::vector<int> tar
         total_weight(visible_samples(alone, indices(target.size()), sweep, false));
     factors.occlusion = weighted_share(samples, hidden_by(samples, PartCaster(others)));
     factors.outside = seeable > 0.0 ? std::max(0.0, 1.0 - total_weight(samples) / seeable) : 0.0;
+    factors.part_lost = largest_part_loss(target, others, sweep);
   }
   return scan(std::move(parts), std::move(target_parts), std::move(model), sweep,
               std::move(factors), seed, threads);
@@ -314,6 +333,11 @@ VariedScene make_varied_scene(const VariedSceneOptions& o, std::uint64_t seed) {
     f.occlusion = target.share();
     const double measured = total_weight(target.samples);
     f.outside = seeable > 0.0 ? std::max(0.0, 1.0 - measured / seeable) : 0.0;
+    std::vector<ScenePart> others;
+    for (std::size_t i = 1; i < objects.size(); ++i) {
+      others.insert(others.end(), objects[i].parts.begin(), objects[i].parts.end());
+    }
+    f.part_lost = largest_part_loss(objects.front().parts, others, sweep);
   }
   std::vector<ScenePart> parts;
   for (const TableObject& obj : objects) {

@@ -77,6 +77,9 @@ struct VariedScene {
     double occlusion_requested = 0;  // drawn share of the target's measurable surface to hide
     double occlusion = 0;            // achieved: share hidden by all other objects
     double outside = 0;              // share of the target's seeable surface outside the scan
+    // The largest share of one target part's seeable surface the scan lacks, hidden or outside:
+    // a mallet whose shaft lies outside the sweep has lost 1.0 of it, whatever its head shows.
+    double part_lost = 0;
     std::string occluder = "none";   // "none", "wall" or "overhang"
     double lookalike_ratio = 0;      // look-alikes are (1 +- ratio) x the model's sizes
     int lookalikes = 0;

@@ -216,6 +216,42 @@ TEST(VariedScene, AchievedOcclusionIsTheDrawnOneAndWhatTheScanShows) {
   EXPECT_GT(overhangs, 0);
 }
 
+// part_lost: the largest share of one target part that the scan lacks, as the scan's labels show
+// it (each part scanned alone against its points in the scene); at least the whole target's
+// occlusion, and for a one-part target that occlusion.
+TEST(VariedScene, PartLostIsTheLargestShareOfOnePartTheScanLacks) {
+  int larger = 0;
+  for (VariedTarget t : {VariedTarget::kCylinder, VariedTarget::kMallet}) {
+    for (std::uint64_t seed : {21, 22, 23}) {
+      VariedSceneOptions o = exact(t);
+      o.step_min_mm = o.step_max_mm = 1.25;
+      o.max_points = 30000;
+      o.partly_outside_probability = 0.0;
+      const VariedScene s = make_varied_scene(o, seed);
+      std::vector<ScenePart> alone;
+      for (int k : s.target_parts) alone.push_back(s.parts[static_cast<std::size_t>(k)]);
+      const StripeScan scan = scan_stripe(PartCaster(alone), s.sweep, {});
+      double shown_lost = 0.0;
+      for (std::size_t i = 0; i < s.target_parts.size(); ++i) {
+        const auto n_alone =
+            std::count(scan.label.begin(), scan.label.end(), static_cast<std::int32_t>(i));
+        const auto n_scene = std::count(s.label.begin(), s.label.end(), s.target_parts[i]);
+        ASSERT_GT(n_alone, 100) << to_string(t) << " seed " << seed << " part " << i;
+        shown_lost =
+            std::max(shown_lost, 1.0 - static_cast<double>(n_scene) / static_cast<double>(n_alone));
+      }
+      EXPECT_NEAR(s.factors.part_lost, shown_lost, 0.05) << to_string(t) << " seed " << seed;
+      EXPECT_GE(s.factors.part_lost, s.factors.occlusion - 0.02)
+          << to_string(t) << " seed " << seed;
+      if (t == VariedTarget::kCylinder) {
+        EXPECT_NEAR(s.factors.part_lost, s.factors.occlusion, 0.02) << "seed " << seed;
+      }
+      larger += s.factors.part_lost > s.factors.occlusion + 0.05;
+    }
+  }
+  EXPECT_GT(larger, 0);  // a mallet whose occluder took mostly one part
+}
+
 TEST(VariedScene, SensorViewGivesTheEyesOfTheProfileThatMeasuredEachPoint) {
   for (bool pan_tilt : {false, true}) {
     const VariedScene s = make_varied_scene(quick(VariedTarget::kCone, pan_tilt), 5);
