@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "sim/scene_objects.hpp"
 #include "sim/stripe_scan.hpp"
@@ -182,20 +183,28 @@ TEST(VariedScene, FactorsLieInTheirRangesAndVaryOverSeeds) {
 
 // The occluder hides about the share drawn; the share reported is what the scan shows: the
 // target's points in the scene against its points scanned alone.
+// An exact scene at 1.25 mm steps, never cut by the sweep's end, and the scan of its target
+// alone on the same sweep: what the scene's occluders and clutter took is the difference.
+std::pair<VariedScene, StripeScan> scene_and_target_alone(VariedTarget t, std::uint64_t seed,
+                                                          bool pan_tilt) {
+  VariedSceneOptions o = exact(t, pan_tilt);
+  o.step_min_mm = o.step_max_mm = 1.25;
+  o.max_points = 30000;
+  o.partly_outside_probability = 0.0;
+  VariedScene s = make_varied_scene(o, seed);
+  std::vector<ScenePart> alone;
+  for (int k : s.target_parts) alone.push_back(s.parts[static_cast<std::size_t>(k)]);
+  StripeScan scan = scan_stripe(PartCaster(alone), s.sweep, {});
+  return {std::move(s), std::move(scan)};
+}
+
 TEST(VariedScene, AchievedOcclusionIsTheDrawnOneAndWhatTheScanShows) {
   int walls = 0, overhangs = 0;
   for (VariedTarget t : {VariedTarget::kSphere, VariedTarget::kCylinder, VariedTarget::kBox,
                          VariedTarget::kCone, VariedTarget::kMallet, VariedTarget::kThreeSpheres}) {
     for (std::uint64_t seed : {21}) {
       const bool pan_tilt = t == VariedTarget::kCylinder || t == VariedTarget::kMallet;
-      VariedSceneOptions o = exact(t, pan_tilt);
-      o.step_min_mm = o.step_max_mm = 1.25;
-      o.max_points = 30000;
-      o.partly_outside_probability = 0.0;
-      const VariedScene s = make_varied_scene(o, seed);
-      std::vector<ScenePart> alone;
-      for (int k : s.target_parts) alone.push_back(s.parts[static_cast<std::size_t>(k)]);
-      const StripeScan scan = scan_stripe(PartCaster(alone), s.sweep, {});
+      const auto [s, scan] = scene_and_target_alone(t, seed, pan_tilt);
       const auto count = [](const std::vector<std::int32_t>& labels, auto in) {
         return static_cast<double>(std::count_if(labels.begin(), labels.end(), in));
       };
@@ -223,14 +232,7 @@ TEST(VariedScene, PartLostIsTheLargestShareOfOnePartTheScanLacks) {
   int larger = 0;
   for (VariedTarget t : {VariedTarget::kCylinder, VariedTarget::kMallet}) {
     for (std::uint64_t seed : {21, 22, 23}) {
-      VariedSceneOptions o = exact(t);
-      o.step_min_mm = o.step_max_mm = 1.25;
-      o.max_points = 30000;
-      o.partly_outside_probability = 0.0;
-      const VariedScene s = make_varied_scene(o, seed);
-      std::vector<ScenePart> alone;
-      for (int k : s.target_parts) alone.push_back(s.parts[static_cast<std::size_t>(k)]);
-      const StripeScan scan = scan_stripe(PartCaster(alone), s.sweep, {});
+      const auto [s, scan] = scene_and_target_alone(t, seed, false);
       double shown_lost = 0.0;
       for (std::size_t i = 0; i < s.target_parts.size(); ++i) {
         const auto n_alone =
