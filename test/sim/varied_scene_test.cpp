@@ -181,8 +181,6 @@ TEST(VariedScene, FactorsLieInTheirRangesAndVaryOverSeeds) {
   }
 }
 
-// The occluder hides about the share drawn; the share reported is what the scan shows: the
-// target's points in the scene against its points scanned alone.
 // An exact scene at 1.25 mm steps, never cut by the sweep's end, and the scan of its target
 // alone on the same sweep: what the scene's occluders and clutter took is the difference.
 std::pair<VariedScene, StripeScan> scene_and_target_alone(VariedTarget t, std::uint64_t seed,
@@ -198,6 +196,8 @@ std::pair<VariedScene, StripeScan> scene_and_target_alone(VariedTarget t, std::u
   return {std::move(s), std::move(scan)};
 }
 
+// The occluder hides about the share drawn; the share reported is what the scan shows: the
+// target's points in the scene against its points scanned alone.
 TEST(VariedScene, AchievedOcclusionIsTheDrawnOneAndWhatTheScanShows) {
   int walls = 0, overhangs = 0;
   for (VariedTarget t : {VariedTarget::kSphere, VariedTarget::kCylinder, VariedTarget::kBox,
