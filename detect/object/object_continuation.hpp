@@ -23,7 +23,9 @@
 namespace rangefit {
 
 struct ContinuationOptions {
-  double reach = 0.25;   // faces are extended by this share of the part's size
+  // Faces are extended by this share of the part's size, or farther where the band would leave
+  // less than two bands between a point past the face and the extension's own rounded end.
+  double reach = 0.25;
   double band_mm = 1.0;  // a point is on a surface within this distance (the scan's noise)
   // Points this close to the removed table (its normal towards the objects) are not asked: the
   // table continues every bottom face.

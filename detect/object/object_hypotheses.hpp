@@ -81,14 +81,14 @@ PartScores verify_pose(const HypothesisContext& ctx, const Superquadric& part,
                        const Eigen::Isometry3d& T_world_part,
                        std::span<const PlacedPart> explained = {});
 
-// How well the part's own size explains its points: the pose is re-fitted with the part a little
-// smaller and a little larger (G scaled by 1 + du and 1 - du), and a parabola through the three
-// mean squares of G - 1 gives the scale the points want: all over, across the axis and along it.
+// How well the part's own size explains its points: the pose re-fitted with the size let free
+// (size_fit.hpp: a scale across the part's axis and one along it, with their standard errors).
 // A look-alike 4 % larger than the model wants ~1.04 whatever its point count; a part seen only
-// on a plane face gives a flat parabola and no verdict.
+// on a plane face leaves its size free and gives no verdict.
 struct SizeEvidence {
-  bool determined = false;  // at least one parabola is curved enough to place its vertex
-  double scale = 1.0;       // the scale the points want farthest from 1 (vertex of a parabola)
+  bool determined = false;  // the points place at least one of the two scales
+  bool across_open = true;  // ... but not the one across the part's axis (a cap's extent)
+  double scale = 1.0;       // of those they place, the one farthest from 1
   // Robust spread of the distances from the surface of the points near it at the given pose,
   // mm (1.4826 median |d|: the sigma of the range noise for a part that is really there).
   double residual_mm = 0.0;
@@ -96,9 +96,15 @@ struct SizeEvidence {
   // model's size); zero when there were too few points.
   Eigen::Matrix<double, 6, 6> pose_covariance = Eigen::Matrix<double, 6, 6>::Zero();
 };
+// The pose at the model's size fitted to the points' distances from its surface (size_fit.hpp)
+// with robust weights: G - 1 weighs a box's narrow faces and rounded edges over the rest.
+Eigen::Isometry3d polish_pose(const HypothesisContext& ctx, const Superquadric& part,
+                              const Eigen::Isometry3d& T,
+                              std::span<const PlacedPart> explained = {});
+
 SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& part,
                            const Eigen::Isometry3d& T_world_part,
-                           std::span<const PlacedPart> explained = {}, double du = 0.08);
+                           std::span<const PlacedPart> explained = {});
 
 // splitmix64: seeds per hypothesis from (seed, part, index), and the samplers' generator.
 std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t a, std::uint64_t b);

@@ -57,6 +57,14 @@ void values_sse2(const SuperquadricMetric& m, const Eigen::Isometry3d& T,
 double Superquadric::min_size() const { return std::min({a1, a2, a3}); }
 double Superquadric::max_size() const { return std::max({a1, a2, a3}); }
 
+double support(const Superquadric& sq, const Eigen::Vector3d& m) {
+  const double q_xy = 2.0 / (2.0 - sq.eps2), q_z = 2.0 / (2.0 - sq.eps1);
+  const double across =
+      std::pow(std::pow(std::abs(sq.a1 * m.x()), q_xy) + std::pow(std::abs(sq.a2 * m.y()), q_xy),
+               1.0 / q_xy);
+  return std::pow(std::pow(across, q_z) + std::pow(std::abs(sq.a3 * m.z()), q_z), 1.0 / q_z);
+}
+
 bool Superquadric::valid() const {
   const auto finite_pos = [](double v) { return std::isfinite(v) && v > 0.0; };
   const auto in = [](double v, double lo, double hi) {

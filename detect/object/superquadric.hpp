@@ -73,6 +73,13 @@ class SuperquadricMetric {
   bool tapered_ = false;
 };
 
+// The support of the untapered part along a part-frame unit direction m: the largest m . x over
+// its surface. The surface is the unit sphere of nested norms, ((|x| / a1)^(2 / eps2) +
+// (|y| / a2)^(2 / eps2))^(eps2 / eps1) + (|z| / a3)^(2 / eps1), so its support is the nested dual
+// norm with exponents 2 / (2 - eps): a box's a1 |mx| + a2 |my| + a3 |mz|, an ellipsoid's
+// sqrt(sum (a_i m_i)^2). Tapering is ignored.
+double support(const Superquadric& sq, const Eigen::Vector3d& m);
+
 // G = F^eps1 (eq. 2.15 with tapering undone, raised to eps1 as in eq. 5.1) at a point given in
 // the part frame, mm. Finite for every finite input; G < 1 inside, = 1 on the surface.
 double metric(const Superquadric& sq, const Eigen::Vector3d& p_part);
