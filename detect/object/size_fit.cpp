@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include "detect/common/levenberg_marquardt.hpp"
+#include "detect/object/superquadric_eval.hpp"
 
 namespace rangefit {
 namespace {
@@ -16,6 +18,9 @@ using Matrix8d = Eigen::Matrix<double, 8, 8>;
 
 // A direction the points leave free with at least this component along a scale frees the scale.
 constexpr double kFreeComponent = 0.1;
+// A round of weights that moves the part (or its size at its largest extent) by less than this
+// (mm) is the last.
+constexpr double kSettledMm = 1e-3;
 
 struct State {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -49,42 +54,114 @@ std::vector<double> round_factors(const Superquadric& part, const State& s,
 State apply(const State& s, const Vector8d& h, double length, double max_log);
 
 // Height of the scaled, posed part's lowest point above the support plane (n, offset), by its
-// inscribed ellipsoid, whose support along n is sqrt(sum (a_i n.R_i)^2): exact for a part resting
-// on a face or along its axis, and smooth (a box's or a can's own support has a kink wherever a
-// face or an edge is level, and the LM would stall on it).
+// inscribed ellipsoid: exact for a part resting on a face or along its axis, and smooth (a box's
+// or a can's own support has a kink wherever a face or an edge is level, and the LM would stall
+// on it).
 double support_height(const Superquadric& part, const State& s, const Eigen::Vector4d& plane) {
   const Eigen::Vector3d n = plane.head<3>();
-  const Superquadric sq = scaled(part, s);
-  const Eigen::Vector3d m = s.T.linear().transpose() * n;
-  const double support = std::sqrt(std::pow(sq.a1 * m.x(), 2) + std::pow(sq.a2 * m.y(), 2) +
-                                   std::pow(sq.a3 * m.z(), 2));
-  return n.dot(s.T.translation()) - plane[3] - support;
+  Superquadric inscribed = scaled(part, s);
+  inscribed.eps1 = inscribed.eps2 = 1.0;
+  return n.dot(s.T.translation()) - plane[3] - support(inscribed, s.T.linear().transpose() * -n);
 }
 
-LmLinearisation<8> linearise(const Superquadric& part, const State& s,
-                             std::span<const Eigen::Vector3d> points,
-                             const std::vector<double>& factor, double length,
-                             const SizeFitOptions& o, bool with_support, bool free_scales = true) {
-  const SuperquadricMetric m(scaled(part, s));
-  const Eigen::Isometry3d inv = s.T.inverse();
-  LmLinearisation<8> lin;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    if (factor[i] == 0.0) continue;
-    const Eigen::Vector3d q = inv * points[i];
-    Eigen::Vector3d g;
-    const double r = (m.value_and_gradient(q, g) - 1.0) * factor[i];
-    g *= factor[i];
-    // Increments in the part frame, q' = exp(-[w]x) (q - dt): dr/d(dt) = -g, dr/dw = g x q;
-    // the scales: d/d(log s) of G(q / s) = -q . g over the scaled coordinates, per `length` mm
-    // of log s x length so that all eight columns are in mm (the free directions are found by
-    // one threshold).
-    Vector8d j;
-    j << -g, g.cross(q), -(q.x() * g.x() + q.y() * g.y()) / length, -q.z() * g.z() / length;
-    if (!free_scales) j.tail<2>().setZero();
-    lin.cost += 0.5 * r * r;
-    lin.jtj.selfadjointView<Eigen::Upper>().rankUpdate(j);
-    lin.g += j * r;
+// The points of a round in lanes of four (structure of arrays), each with its factor (points of
+// factor 0 left out); the tail is padded with copies of the last point at factor 0.
+struct RoundLanes {
+  std::vector<double> x, y, z, f;
+  std::size_t blocks = 0;
+  RoundLanes(std::span<const Eigen::Vector3d> points, const std::vector<double>& factor) {
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      if (factor[i] == 0.0) continue;
+      x.push_back(points[i].x()), y.push_back(points[i].y()), z.push_back(points[i].z());
+      f.push_back(factor[i]);
+    }
+    blocks = (x.size() + 3) / 4;
+    while (!x.empty() && x.size() < 4 * blocks) {
+      x.push_back(x.back()), y.push_back(y.back()), z.push_back(z.back()), f.push_back(0.0);
+    }
   }
+  [[gnu::always_inline]] static lanes::V4d load(const std::vector<double>& v, std::size_t block) {
+    lanes::V4d out;
+    std::memcpy(&out, v.data() + 4 * block, sizeof out);
+    return out;
+  }
+};
+
+// Sums over the points, four at a time: 0.5 r^2, the upper triangle of J^T J row by row (36),
+// then J^T r (8). Increments in the part frame, q' = exp(-[w]x) (q - dt): dr/d(dt) = -g,
+// dr/dw = g x q; the scales: d/d(log s) of G(q / s) = -q . g over the scaled coordinates, per
+// `length` mm of log s x length so that all eight columns are in mm (the free directions are
+// found by one threshold). The lanes are added in a fixed order, so the AVX2 and SSE2 builds
+// agree bit for bit.
+constexpr int kSums = 1 + 36 + 8;
+[[gnu::always_inline]] inline void point_sums(const SuperquadricMetric& m,
+                                              const Eigen::Matrix3d& Rt, const Eigen::Vector3d& t,
+                                              const RoundLanes& pts, double length, double* out) {
+  using lanes::V4d;
+  V4d acc[kSums] = {};
+  const double inv_length = 1.0 / length;
+  for (std::size_t i = 0; i < pts.blocks; ++i) {
+    const V4d px = RoundLanes::load(pts.x, i) - t.x(), py = RoundLanes::load(pts.y, i) - t.y(),
+              pz = RoundLanes::load(pts.z, i) - t.z();
+    const V4d qx = Rt(0, 0) * px + Rt(0, 1) * py + Rt(0, 2) * pz;
+    const V4d qy = Rt(1, 0) * px + Rt(1, 1) * py + Rt(1, 2) * pz;
+    const V4d qz = Rt(2, 0) * px + Rt(2, 1) * py + Rt(2, 2) * pz;
+    V4d gx, gy, gz;
+    const V4d f = RoundLanes::load(pts.f, i);
+    const V4d r = (m.evaluate<V4d, true>(qx, qy, qz, &gx, &gy, &gz) - 1.0) * f;
+    gx *= f;
+    gy *= f;
+    gz *= f;
+    const V4d j[8] = {-gx,
+                      -gy,
+                      -gz,
+                      gy * qz - gz * qy,
+                      gz * qx - gx * qz,
+                      gx * qy - gy * qx,
+                      -(qx * gx + qy * gy) * inv_length,
+                      -(qz * gz) * inv_length};
+    acc[0] += 0.5 * r * r;
+    int k = 1;
+    for (int a = 0; a < 8; ++a) {
+      for (int b = a; b < 8; ++b) acc[k++] += j[a] * j[b];
+    }
+    for (int a = 0; a < 8; ++a) acc[k++] += j[a] * r;
+  }
+  for (int k = 0; k < kSums; ++k) out[k] = ((acc[k][0] + acc[k][1]) + acc[k][2]) + acc[k][3];
+}
+
+using PointSumsFn = void (*)(const SuperquadricMetric&, const Eigen::Matrix3d&,
+                             const Eigen::Vector3d&, const RoundLanes&, double, double*);
+void point_sums_sse2(const SuperquadricMetric& m, const Eigen::Matrix3d& Rt,
+                     const Eigen::Vector3d& t, const RoundLanes& pts, double length, double* out) {
+  point_sums(m, Rt, t, pts, length, out);
+}
+#ifdef RANGEFIT_LANES_AVX2
+[[gnu::target("avx2")]] void point_sums_avx2(const SuperquadricMetric& m, const Eigen::Matrix3d& Rt,
+                                             const Eigen::Vector3d& t, const RoundLanes& pts,
+                                             double length, double* out) {
+  point_sums(m, Rt, t, pts, length, out);
+}
+#endif
+
+LmLinearisation<8> linearise(const Superquadric& part, const State& s, const RoundLanes& pts,
+                             std::size_t point_count, double length, const SizeFitOptions& o,
+                             bool with_support, const Vector8d& moves) {
+#ifdef RANGEFIT_LANES_AVX2
+  const PointSumsFn kernel = lanes::cpu_has_avx2() ? point_sums_avx2 : point_sums_sse2;
+#else
+  const PointSumsFn kernel = point_sums_sse2;
+#endif
+  double sums[kSums];
+  kernel(SuperquadricMetric(scaled(part, s)), s.T.linear().transpose(), s.T.translation(), pts,
+         length, sums);
+  LmLinearisation<8> lin;
+  lin.cost = sums[0];
+  const double* sum = sums + 1;
+  for (int r = 0; r < 8; ++r) {
+    for (int c = r; c < 8; ++c) lin.jtj(r, c) = *sum++ * moves[r] * moves[c];
+  }
+  for (int r = 0; r < 8; ++r) lin.g[r] = *sum++ * moves[r];
   const double h0 = o.support_plane ? support_height(part, s, *o.support_plane) : 0.0;
   // Outside [-support_below_mm, support_above_mm] the residual is the excess.
   const double excess = h0 < -o.support_below_mm  ? h0 + o.support_below_mm
@@ -93,13 +170,14 @@ LmLinearisation<8> linearise(const Superquadric& part, const State& s,
   if (with_support && o.support_plane && excess != 0.0) {
     // One residual for the table, weighted like support_weight x the points, active only where
     // the part sinks past the slack; its Jacobian by forward differences.
-    const double w = std::sqrt(o.support_weight * static_cast<double>(points.size()));
+    const double w = std::sqrt(o.support_weight * static_cast<double>(point_count));
     Vector8d j;
     constexpr double kStep = 1e-6;
     for (int k = 0; k < 8; ++k) {
       const State nudged = apply(s, kStep * Vector8d::Unit(k), length, o.max_log_scale);
       j[k] = w * (support_height(part, nudged, *o.support_plane) - h0) / kStep;
     }
+    j = j.cwiseProduct(moves);
     const double r = w * excess;
     lin.cost += 0.5 * r * r;
     lin.jtj.selfadjointView<Eigen::Upper>().rankUpdate(j);
@@ -136,36 +214,43 @@ SizeFit fit_size(const Superquadric& part, std::span<const Eigen::Vector3d> poin
   const double length = part.max_size();
   LmOptions lm;
   lm.max_iterations = options.iterations;
+  // The coordinates the fit moves (1) and holds (0): translation, rotation, the two scales.
+  Vector8d moves = Vector8d::Ones();
+  if (!options.free_rotation) moves.segment<3>(3).setZero();
+  Vector8d pose_only = moves;
+  pose_only.tail<2>().setZero();
+  if (!options.free_size) moves = pose_only;
+  const auto fit = [&](const State& start, const RoundLanes& lanes, bool support,
+                       const Vector8d& mask) {
+    return levenberg_marquardt<8>(
+        start, lm,
+        [&](const State& x) {
+          return linearise(part, x, lanes, points.size(), length, options, support, mask);
+        },
+        [&](const State& x, const Vector8d& h) {
+          return apply(x, h.cwiseProduct(mask), length, options.max_log_scale);
+        },
+        [&](const State& x) { return x.T.translation().norm() + 1.0; });
+  };
   std::vector<double> factor;
   for (int round = 0; round < std::max(1, options.rounds); ++round) {
     factor = round_factors(part, s, points, options.cauchy_mm);
-    const auto outcome = levenberg_marquardt<8>(
-        s, lm,
-        [&](const State& x) {
-          return linearise(part, x, points, factor, length, options, true, options.free_size);
-        },
-        [&](const State& x, const Vector8d& h) {
-          Vector8d step = h;
-          if (!options.free_size) step.tail<2>().setZero();
-          return apply(x, step, length, options.max_log_scale);
-        },
-        [&](const State& x) { return x.T.translation().norm() + 1.0; });
-    s = outcome.x;
+    const State before = s;
+    s = fit(s, RoundLanes(points, factor), true, moves).x;
+    // Settled: the weights would not change.
+    const double moved =
+        (s.T.translation() - before.T.translation()).norm() +
+        length *
+            (Eigen::AngleAxisd(before.T.linear().transpose() * s.T.linear()).angle() +
+             std::abs(s.log_across - before.log_across) + std::abs(s.log_along - before.log_along));
+    if (moved < kSettledMm) break;
   }
-  const LmLinearisation<8> lin = linearise(part, s, points, factor, length, options, true);
+  const RoundLanes last(points, factor);
+  const LmLinearisation<8> lin =
+      linearise(part, s, last, points.size(), length, options, true, moves);
   // The model's own size with the pose fitted again from the free fit's (same weights): what
   // the free size gains over it is the size's doing, not a better pose's.
-  const auto at_model = levenberg_marquardt<8>(
-      State{s.T, 0.0, 0.0}, lm,
-      [&](const State& x) {
-        return linearise(part, x, points, factor, length, options, false, false);
-      },
-      [&](const State& x, const Vector8d& h) {
-        Vector8d pose_only = h;
-        pose_only.tail<2>().setZero();
-        return apply(x, pose_only, length, options.max_log_scale);
-      },
-      [&](const State& x) { return x.T.translation().norm() + 1.0; });
+  const auto at_model = fit(State{s.T, 0.0, 0.0}, last, false, pose_only);
   const double start_cost = at_model.lin.cost;
   double weight = 0.0;
   for (double f : factor) weight += f > 0.0 ? 1.0 : 0.0;

@@ -1,10 +1,11 @@
 #pragma once
 // The part's size let free: the pose and two scale factors of the model (across its axis, a1
-// and a2 together; along it, a3) fitted by Levenberg-Marquardt (detect/levenberg_marquardt.hpp)
-// to the points' distances from the surface, with the scales' standard errors from the fit's
-// covariance. The size evidence of the object detector (object_hypotheses.hpp size_evidence):
-// a look-alike 4 % larger or smaller wants its own size whatever its point count, and the
-// standard error says whether the points determine it at all (a box seen on one face does not).
+// and a2 together; along it, a3) fitted by Levenberg-Marquardt
+// (detect/common/levenberg_marquardt.hpp) to the points' distances from the surface, with the
+// scales' standard errors from the fit's covariance. The size evidence of the object detector
+// (object_hypotheses.hpp size_evidence): a look-alike 4 % larger or smaller wants its own size
+// whatever its point count, and the standard error says whether the points determine it at all (a
+// box seen on one face does not).
 //
 // The residual of point i is sqrt(w_i) (G_i - 1) / |grad G_i|, its distance from the surface in
 // mm to first order. |grad G_i| and the robust weight w_i = 1 / (1 + (d_i / c)^2) (Cauchy, d_i
@@ -24,6 +25,7 @@ namespace rangefit {
 
 struct SizeFitOptions {
   bool free_size = true;       // false: the pose alone, at the model's size
+  bool free_rotation = true;   // false: the orientation held (a ball's axis, set by the caller)
   int rounds = 6;              // weight updates
   int iterations = 8;          // LM iterations per round
   double cauchy_mm = 1.0;      // c of the robust weight (at least the noise's few sigma)

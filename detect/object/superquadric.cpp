@@ -57,6 +57,10 @@ void values_sse2(const SuperquadricMetric& m, const Eigen::Isometry3d& T,
 double Superquadric::min_size() const { return std::min({a1, a2, a3}); }
 double Superquadric::max_size() const { return std::max({a1, a2, a3}); }
 
+bool Superquadric::ball() const {
+  return a1 == a3 && a2 == a3 && eps1 == 1.0 && eps2 == 1.0 && kx == 0.0 && ky == 0.0;
+}
+
 double support(const Superquadric& sq, const Eigen::Vector3d& m) {
   const double q_xy = 2.0 / (2.0 - sq.eps2), q_z = 2.0 / (2.0 - sq.eps1);
   const double across =

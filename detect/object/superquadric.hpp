@@ -33,6 +33,8 @@ struct Superquadric {
   double max_size() const;
   // True when sizes are positive and finite, eps in [0.1, 2] and taper in [-1, 1].
   bool valid() const;
+  // True for a ball (equal sizes, eps 1, no taper): its pose has no orientation.
+  bool ball() const;
 };
 
 // Precomputed exponents of one part for fast repeated evaluation (the pose fit calls this per
