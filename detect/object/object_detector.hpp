@@ -134,8 +134,9 @@ struct ObjectDetectOptions {
   double residual_noise_factor = 2.0;
   double max_residual_floor_mm = 0.3;
   // And little of the scan carries on past its flat faces (object_continuation.hpp): the points
-  // outside it on one of its faces extended by up to 25 %, as a share of its surface points (at
-  // most 0.003 on the true objects of the tuning scenes, 0.013-0.16 on longer look-alikes).
+  // outside it on one of its faces extended by up to 25 % (farther at high noise), as a share of
+  // its surface points (at most 0.003 on the true objects of the tuning scenes, 0.013-0.16 on
+  // longer look-alikes).
   // Rejects a part posed on one end of a longer or wider look-alike.
   double max_continuation = 0.01;
   int max_candidates = 20;            // candidates checked for coverage before giving up

@@ -310,7 +310,7 @@ NearSurface near_surface(const HypothesisContext& ctx, const Superquadric& part,
   return n;
 }
 
-std::vector<Eigen::Vector3d> within(const NearSurface& n, double band_mm) {
+std::vector<Eigen::Vector3d> points_within(const NearSurface& n, double band_mm) {
   std::vector<Eigen::Vector3d> out;
   for (std::size_t i = 0; i < n.points.size(); ++i) {
     if (n.distance[i] <= band_mm) out.push_back(n.points[i]);
@@ -363,7 +363,8 @@ Eigen::Isometry3d polish_pose(const HypothesisContext& ctx, const Superquadric& 
   so.rounds = kPolishRounds;
   so.cauchy_mm = std::max(kPolishCauchyMm, kPolishCauchyNoises * ctx.table_noise_mm);
   const SizeFit f = fit_size(
-      part, within(n, std::max(kPolishBandMm, kPolishBandSpreads * 1.4826 * n.median)), T, so);
+      part, points_within(n, std::max(kPolishBandMm, kPolishBandSpreads * 1.4826 * n.median)), T,
+      so);
   return f.ok ? f.T_world_part : T;
 }
 
@@ -377,7 +378,7 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
   const NearSurface n = near_surface(ctx, part, T, explained);
   if (n.points.size() < 3 * kMinPatchPoints) return e;
   e.residual_mm = 1.4826 * n.median;
-  const std::vector<Eigen::Vector3d> sel = within(n, std::max(1.0, 3.0 * n.median));
+  const std::vector<Eigen::Vector3d> sel = points_within(n, std::max(1.0, 3.0 * n.median));
   if (sel.size() < 3 * kMinPatchPoints) return e;
   PoseFitOptions fit;
   fit.max_iterations = std::min(o.iterations, kSizeFitIterations);  // from a converged pose
@@ -401,8 +402,9 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
       so.support_plane = bound.plane;
       so.support_below_mm = bound.below_mm;
       so.support_above_mm = bound.above_mm;
-      const SizeFit free = fit_size(
-          part, within(n, std::max(check.band_mm, kSizeBandSigmas * e.residual_mm)), start, so);
+      const SizeFit free =
+          fit_size(part, points_within(n, std::max(check.band_mm, kSizeBandSigmas * e.residual_mm)),
+                   start, so);
       if (!free.ok) return std::optional<SizeVerdict>();
       v = size_verdict(free, noise);
       if (!v.determined || std::abs(v.scale - 1.0) <= o.max_size_deviation) break;

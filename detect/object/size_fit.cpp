@@ -93,12 +93,12 @@ struct RoundLanes {
 // `length` mm of log s x length so that all eight columns are in mm (the free directions are
 // found by one threshold). The lanes are added in a fixed order, so the AVX2 and SSE2 builds
 // agree bit for bit.
-constexpr int kSums = 1 + 36 + 8;
+constexpr int kSizeSums = 1 + 36 + 8;
 [[gnu::always_inline]] inline void point_sums(const SuperquadricMetric& m,
                                               const Eigen::Matrix3d& Rt, const Eigen::Vector3d& t,
                                               const RoundLanes& pts, double length, double* out) {
   using lanes::V4d;
-  V4d acc[kSums] = {};
+  V4d acc[kSizeSums] = {};
   const double inv_length = 1.0 / length;
   for (std::size_t i = 0; i < pts.blocks; ++i) {
     const V4d px = RoundLanes::load(pts.x, i) - t.x(), py = RoundLanes::load(pts.y, i) - t.y(),
@@ -127,7 +127,7 @@ constexpr int kSums = 1 + 36 + 8;
     }
     for (int a = 0; a < 8; ++a) acc[k++] += j[a] * r;
   }
-  for (int k = 0; k < kSums; ++k) out[k] = ((acc[k][0] + acc[k][1]) + acc[k][2]) + acc[k][3];
+  for (int k = 0; k < kSizeSums; ++k) out[k] = ((acc[k][0] + acc[k][1]) + acc[k][2]) + acc[k][3];
 }
 
 using PointSumsFn = void (*)(const SuperquadricMetric&, const Eigen::Matrix3d&,
@@ -144,15 +144,15 @@ void point_sums_sse2(const SuperquadricMetric& m, const Eigen::Matrix3d& Rt,
 }
 #endif
 
-LmLinearisation<8> linearise(const Superquadric& part, const State& s, const RoundLanes& pts,
-                             std::size_t point_count, double length, const SizeFitOptions& o,
-                             bool with_support, const Vector8d& moves) {
+LmLinearisation<8> linearise_sized(const Superquadric& part, const State& s, const RoundLanes& pts,
+                                   std::size_t point_count, double length, const SizeFitOptions& o,
+                                   bool with_support, const Vector8d& moves) {
 #ifdef RANGEFIT_LANES_AVX2
   const PointSumsFn kernel = lanes::cpu_has_avx2() ? point_sums_avx2 : point_sums_sse2;
 #else
   const PointSumsFn kernel = point_sums_sse2;
 #endif
-  double sums[kSums];
+  double sums[kSizeSums];
   kernel(SuperquadricMetric(scaled(part, s)), s.T.linear().transpose(), s.T.translation(), pts,
          length, sums);
   LmLinearisation<8> lin;
@@ -225,7 +225,7 @@ SizeFit fit_size(const Superquadric& part, std::span<const Eigen::Vector3d> poin
     return levenberg_marquardt<8>(
         start, lm,
         [&](const State& x) {
-          return linearise(part, x, lanes, points.size(), length, options, support, mask);
+          return linearise_sized(part, x, lanes, points.size(), length, options, support, mask);
         },
         [&](const State& x, const Vector8d& h) {
           return apply(x, h.cwiseProduct(mask), length, options.max_log_scale);
@@ -247,7 +247,7 @@ SizeFit fit_size(const Superquadric& part, std::span<const Eigen::Vector3d> poin
   }
   const RoundLanes last(points, factor);
   const LmLinearisation<8> lin =
-      linearise(part, s, last, points.size(), length, options, true, moves);
+      linearise_sized(part, s, last, points.size(), length, options, true, moves);
   // The model's own size with the pose fitted again from the free fit's (same weights): what
   // the free size gains over it is the size's doing, not a better pose's.
   const auto at_model = fit(State{s.T, 0.0, 0.0}, last, false, pose_only);
