@@ -109,5 +109,28 @@ TEST(ObjectSize, AnEmptyTableHasNoBox) {
   EXPECT_FALSE(detect(s, 33).found());
 }
 
+// Varied tuning scenes whose look-alike box, 5-13 % thinner or longer than the model, was taken
+// for it at 0.2-0.8 mm noise: the sizes the points want were within the 3 % allowed by the pose
+// refitted at three sizes, and the free-size fit reads them. With the box there (seeds 64, 166,
+// 216) the box is found; in object-free scenes among such look-alikes (seeds 92, 99, 119)
+// nothing is, nor a ball beside a spheroid 4 % taller (seed 51: the model a ball, its scales
+// asked along the table's normal).
+TEST(ObjectSize, TellsTheBoxFromLookAlikesAFewPerCentThinnerOrLonger) {
+  for (std::uint64_t seed : {64u, 166u, 216u}) {
+    std::string why;
+    EXPECT_TRUE(found_target(sim::VariedTarget::kBox, seed, &why))
+        << "seed " << seed << ": " << why;
+  }
+  for (std::uint64_t seed : {92u, 99u, 119u, 51u}) {
+    sim::VariedSceneOptions so;
+    so.target = sim::VariedTarget::kNone;  // the seed draws the model
+    const sim::VariedScene s = sim::make_varied_scene(so, seed);
+    const ObjectDetectResult r = detect(s, seed);
+    EXPECT_FALSE(r.found()) << "seed " << seed << ": "
+                            << describe(r, {s.factors.scan.triangulation_deg,
+                                            s.factors.scan.camera_side});
+  }
+}
+
 }  // namespace object_size_test
 }  // namespace rangefit
