@@ -153,9 +153,11 @@ TEST(ObjectLookAlike, ContinuationSeesAWiderTopAtHighNoise) {
   EXPECT_GT(surface_continuation(model, corner, wider, wider_tree, o).share, 0.05);
 }
 
-// Varied tuning scenes (sim/varied_scene.hpp) at 0.6-0.8 mm noise where the detector took a
-// standing look-alike 18-20 % wider for the box, fitted on one corner of its top: seed 169, and
-// seed 134, whose box stands a quarter hidden behind a wall.
+// Varied tuning scenes (sim/varied_scene.hpp) at 0.6-0.8 mm noise with a standing look-alike
+// 18-20 % wider than the box: fitted on one corner of its top, it reads the model's size from the
+// faces it shows, and only its top carrying on past the model's edges tells it apart (the
+// detector took it once its size evidence changed and before the continuation reached past the
+// noise band). Seed 169, and seed 134, whose box stands a quarter hidden behind a wall.
 TEST(ObjectLookAlike, FindsTheBoxNotAWiderOneAtHighNoise) {
   for (std::uint64_t seed : {134u, 169u}) {
     sim::VariedSceneOptions so;
