@@ -4,13 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <vector>
 
 #include "detect/common/levenberg_marquardt.hpp"
 #include "detect/common/pca.hpp"
-#include "detect/object/superquadric_eval.hpp"
+#include "detect/object/point_lanes.hpp"
 
 namespace rangefit {
 namespace {
@@ -21,28 +20,6 @@ using Matrix6d = Eigen::Matrix<double, 6, 6>;
 // Cost 0.5 sum r^2 (eq. 2.49), the Gauss-Newton matrix J^T J and the gradient g = J^T r for the
 // increment [dt (world), w (part frame)] about T.
 using Linearisation = LmLinearisation<6>;
-
-// The points in lanes of four (structure of arrays); the tail is padded with copies of the last
-// point at weight 0. Plain doubles, loaded with memcpy (unaligned loads).
-struct PointLanes {
-  std::vector<double> x, y, z, w;
-  std::size_t blocks = 0;
-  explicit PointLanes(std::span<const Eigen::Vector3d> points) : blocks((points.size() + 3) / 4) {
-    for (std::size_t i = 0; i < 4 * blocks; ++i) {
-      const bool real = i < points.size();
-      const Eigen::Vector3d& p = points[real ? i : points.size() - 1];
-      x.push_back(p.x());
-      y.push_back(p.y());
-      z.push_back(p.z());
-      w.push_back(real ? 1.0 : 0.0);
-    }
-  }
-  [[gnu::always_inline]] static lanes::V4d load(const std::vector<double>& v, std::size_t block) {
-    lanes::V4d out;
-    std::memcpy(&out, v.data() + 4 * block, sizeof out);
-    return out;
-  }
-};
 
 // Sums per point, in the part frame (dt of the increment in the part frame, where dq/d(dt) =
 // -I): 0.5 r^2, the upper triangle of J^T J row by row (21), then J^T r (6). Four points at a
@@ -55,17 +32,8 @@ constexpr int kSums = 28;
   using lanes::V4d;
   V4d acc[kSums] = {};
   for (std::size_t i = 0; i < pts.blocks; ++i) {
-    const V4d px = PointLanes::load(pts.x, i) - t.x(), py = PointLanes::load(pts.y, i) - t.y(),
-              pz = PointLanes::load(pts.z, i) - t.z();
-    const V4d qx = Rt(0, 0) * px + Rt(0, 1) * py + Rt(0, 2) * pz;
-    const V4d qy = Rt(1, 0) * px + Rt(1, 1) * py + Rt(1, 2) * pz;
-    const V4d qz = Rt(2, 0) * px + Rt(2, 1) * py + Rt(2, 2) * pz;
-    V4d gx, gy, gz;
-    const V4d w = PointLanes::load(pts.w, i);
-    const V4d r = (m.evaluate<V4d, true>(qx, qy, qz, &gx, &gy, &gz) - 1.0) * w;
-    gx *= w;
-    gy *= w;
-    gz *= w;
+    const WeightedResiduals e = weighted_residuals(m, Rt, t, pts, i);
+    const V4d &qx = e.qx, &qy = e.qy, &qz = e.qz, &r = e.r, &gx = e.gx, &gy = e.gy, &gz = e.gz;
     // q = exp(-[w]x) (R^T (p - t) - dt): dr/d(dt) = -grad^T, dr/dw = (grad x q)^T.
     const V4d j[6] = {-gx, -gy, -gz, gy * qz - gz * qy, gz * qx - gx * qz, gx * qy - gy * qx};
     acc[0] += 0.5 * r * r;

@@ -4,11 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <vector>
 
 #include "detect/common/levenberg_marquardt.hpp"
-#include "detect/object/superquadric_eval.hpp"
+#include "detect/object/point_lanes.hpp"
 
 namespace rangefit {
 namespace {
@@ -64,29 +63,6 @@ double support_height(const Superquadric& part, const State& s, const Eigen::Vec
   return n.dot(s.T.translation()) - plane[3] - support(inscribed, s.T.linear().transpose() * -n);
 }
 
-// The points of a round in lanes of four (structure of arrays), each with its factor (points of
-// factor 0 left out); the tail is padded with copies of the last point at factor 0.
-struct RoundLanes {
-  std::vector<double> x, y, z, f;
-  std::size_t blocks = 0;
-  RoundLanes(std::span<const Eigen::Vector3d> points, const std::vector<double>& factor) {
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      if (factor[i] == 0.0) continue;
-      x.push_back(points[i].x()), y.push_back(points[i].y()), z.push_back(points[i].z());
-      f.push_back(factor[i]);
-    }
-    blocks = (x.size() + 3) / 4;
-    while (!x.empty() && x.size() < 4 * blocks) {
-      x.push_back(x.back()), y.push_back(y.back()), z.push_back(z.back()), f.push_back(0.0);
-    }
-  }
-  [[gnu::always_inline]] static lanes::V4d load(const std::vector<double>& v, std::size_t block) {
-    lanes::V4d out;
-    std::memcpy(&out, v.data() + 4 * block, sizeof out);
-    return out;
-  }
-};
-
 // Sums over the points, four at a time: 0.5 r^2, the upper triangle of J^T J row by row (36),
 // then J^T r (8). Increments in the part frame, q' = exp(-[w]x) (q - dt): dr/d(dt) = -g,
 // dr/dw = g x q; the scales: d/d(log s) of G(q / s) = -q . g over the scaled coordinates, per
@@ -96,22 +72,13 @@ struct RoundLanes {
 constexpr int kSizeSums = 1 + 36 + 8;
 [[gnu::always_inline]] inline void point_sums(const SuperquadricMetric& m,
                                               const Eigen::Matrix3d& Rt, const Eigen::Vector3d& t,
-                                              const RoundLanes& pts, double length, double* out) {
+                                              const PointLanes& pts, double length, double* out) {
   using lanes::V4d;
   V4d acc[kSizeSums] = {};
   const double inv_length = 1.0 / length;
   for (std::size_t i = 0; i < pts.blocks; ++i) {
-    const V4d px = RoundLanes::load(pts.x, i) - t.x(), py = RoundLanes::load(pts.y, i) - t.y(),
-              pz = RoundLanes::load(pts.z, i) - t.z();
-    const V4d qx = Rt(0, 0) * px + Rt(0, 1) * py + Rt(0, 2) * pz;
-    const V4d qy = Rt(1, 0) * px + Rt(1, 1) * py + Rt(1, 2) * pz;
-    const V4d qz = Rt(2, 0) * px + Rt(2, 1) * py + Rt(2, 2) * pz;
-    V4d gx, gy, gz;
-    const V4d f = RoundLanes::load(pts.f, i);
-    const V4d r = (m.evaluate<V4d, true>(qx, qy, qz, &gx, &gy, &gz) - 1.0) * f;
-    gx *= f;
-    gy *= f;
-    gz *= f;
+    const WeightedResiduals e = weighted_residuals(m, Rt, t, pts, i);
+    const V4d &qx = e.qx, &qy = e.qy, &qz = e.qz, &r = e.r, &gx = e.gx, &gy = e.gy, &gz = e.gz;
     const V4d j[8] = {-gx,
                       -gy,
                       -gz,
@@ -131,20 +98,20 @@ constexpr int kSizeSums = 1 + 36 + 8;
 }
 
 using PointSumsFn = void (*)(const SuperquadricMetric&, const Eigen::Matrix3d&,
-                             const Eigen::Vector3d&, const RoundLanes&, double, double*);
+                             const Eigen::Vector3d&, const PointLanes&, double, double*);
 void point_sums_sse2(const SuperquadricMetric& m, const Eigen::Matrix3d& Rt,
-                     const Eigen::Vector3d& t, const RoundLanes& pts, double length, double* out) {
+                     const Eigen::Vector3d& t, const PointLanes& pts, double length, double* out) {
   point_sums(m, Rt, t, pts, length, out);
 }
 #ifdef RANGEFIT_LANES_AVX2
 [[gnu::target("avx2")]] void point_sums_avx2(const SuperquadricMetric& m, const Eigen::Matrix3d& Rt,
-                                             const Eigen::Vector3d& t, const RoundLanes& pts,
+                                             const Eigen::Vector3d& t, const PointLanes& pts,
                                              double length, double* out) {
   point_sums(m, Rt, t, pts, length, out);
 }
 #endif
 
-LmLinearisation<8> linearise_sized(const Superquadric& part, const State& s, const RoundLanes& pts,
+LmLinearisation<8> linearise_sized(const Superquadric& part, const State& s, const PointLanes& pts,
                                    std::size_t point_count, double length, const SizeFitOptions& o,
                                    bool with_support, const Vector8d& moves) {
 #ifdef RANGEFIT_LANES_AVX2
@@ -220,7 +187,7 @@ SizeFit fit_size(const Superquadric& part, std::span<const Eigen::Vector3d> poin
   Vector8d pose_only = moves;
   pose_only.tail<2>().setZero();
   if (!options.free_size) moves = pose_only;
-  const auto fit = [&](const State& start, const RoundLanes& lanes, bool support,
+  const auto fit = [&](const State& start, const PointLanes& lanes, bool support,
                        const Vector8d& mask) {
     return levenberg_marquardt<8>(
         start, lm,
@@ -236,7 +203,7 @@ SizeFit fit_size(const Superquadric& part, std::span<const Eigen::Vector3d> poin
   for (int round = 0; round < std::max(1, options.rounds); ++round) {
     factor = round_factors(part, s, points, options.cauchy_mm);
     const State before = s;
-    s = fit(s, RoundLanes(points, factor), true, moves).x;
+    s = fit(s, PointLanes(points, factor), true, moves).x;
     // Settled: the weights would not change.
     const double moved =
         (s.T.translation() - before.T.translation()).norm() +
@@ -245,7 +212,7 @@ SizeFit fit_size(const Superquadric& part, std::span<const Eigen::Vector3d> poin
              std::abs(s.log_across - before.log_across) + std::abs(s.log_along - before.log_along));
     if (moved < kSettledMm) break;
   }
-  const RoundLanes last(points, factor);
+  const PointLanes last(points, factor);
   const LmLinearisation<8> lin =
       linearise_sized(part, s, last, points.size(), length, options, true, moves);
   // The model's own size with the pose fitted again from the free fit's (same weights): what
