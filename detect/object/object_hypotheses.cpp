@@ -76,9 +76,7 @@ std::size_t uniform_index(std::uint64_t& state, std::size_t n) {
 // not judged (0).
 double sinks_by(const Superquadric& part, const Eigen::Isometry3d& T, const pca::Plane& table) {
   if (part.eps1 > 1.0 || part.eps2 > 1.0 || part.kx != 0.0 || part.ky != 0.0) return 0.0;
-  Superquadric inscribed = part;
-  inscribed.eps1 = inscribed.eps2 = 1.0;
-  return support(inscribed, T.linear().transpose() * -table.normal) -
+  return support(ellipsoid_of(part), T.linear().transpose() * -table.normal) -
          table.normal.dot(T.translation() - table.point);
 }
 
@@ -342,9 +340,8 @@ TableBound table_bound(const HypothesisContext& ctx, const Superquadric& part,
     return b;
   }
   const Eigen::Vector3d down = T.linear().transpose() * -n;
-  Superquadric inscribed = part;
-  inscribed.eps1 = inscribed.eps2 = 1.0;
-  if (std::abs(support(part, down) - support(inscribed, down)) <= std::max(kFaceDownMm, rest)) {
+  if (std::abs(support(part, down) - support(ellipsoid_of(part), down)) <=
+      std::max(kFaceDownMm, rest)) {
     b.plane = plane;
     b.below_mm = rest;
     b.above_mm = std::numeric_limits<double>::infinity();

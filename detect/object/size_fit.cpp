@@ -58,9 +58,8 @@ State apply(const State& s, const Vector8d& h, double length, double max_log);
 // on it).
 double support_height(const Superquadric& part, const State& s, const Eigen::Vector4d& plane) {
   const Eigen::Vector3d n = plane.head<3>();
-  Superquadric inscribed = scaled(part, s);
-  inscribed.eps1 = inscribed.eps2 = 1.0;
-  return n.dot(s.T.translation()) - plane[3] - support(inscribed, s.T.linear().transpose() * -n);
+  return n.dot(s.T.translation()) - plane[3] -
+         support(ellipsoid_of(scaled(part, s)), s.T.linear().transpose() * -n);
 }
 
 // Sums over the points, four at a time: 0.5 r^2, the upper triangle of J^T J row by row (36),
@@ -216,9 +215,10 @@ SizeFit fit_size(const Superquadric& part, std::span<const Eigen::Vector3d> poin
   const LmLinearisation<8> lin =
       linearise_sized(part, s, last, points.size(), length, options, true, moves);
   // The model's own size with the pose fitted again from the free fit's (same weights): what
-  // the free size gains over it is the size's doing, not a better pose's.
-  const auto at_model = fit(State{s.T, 0.0, 0.0}, last, false, pose_only);
-  const double start_cost = at_model.lin.cost;
+  // the free size gains over it is the size's doing, not a better pose's. At a fixed size the
+  // fit is that already.
+  const double start_cost =
+      options.free_size ? fit(State{s.T, 0.0, 0.0}, last, false, pose_only).lin.cost : lin.cost;
   double weight = 0.0;
   for (double f : factor) weight += f > 0.0 ? 1.0 : 0.0;
   if (weight <= 8.0) return out;

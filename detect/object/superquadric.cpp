@@ -57,6 +57,12 @@ void values_sse2(const SuperquadricMetric& m, const Eigen::Isometry3d& T,
 double Superquadric::min_size() const { return std::min({a1, a2, a3}); }
 double Superquadric::max_size() const { return std::max({a1, a2, a3}); }
 
+Superquadric ellipsoid_of(const Superquadric& sq) {
+  Superquadric out = sq;
+  out.eps1 = out.eps2 = 1.0;
+  return out;
+}
+
 bool Superquadric::ball() const {
   return a1 == a3 && a2 == a3 && eps1 == 1.0 && eps2 == 1.0 && kx == 0.0 && ky == 0.0;
 }

@@ -82,6 +82,10 @@ class SuperquadricMetric {
 // sqrt(sum (a_i m_i)^2). Tapering is ignored.
 double support(const Superquadric& sq, const Eigen::Vector3d& m);
 
+// The ellipsoid of the part's half sizes (eps1 = eps2 = 1, taper kept): inscribed in a box or a
+// can, smooth where their support has kinks.
+Superquadric ellipsoid_of(const Superquadric& sq);
+
 // G = F^eps1 (eq. 2.15 with tapering undone, raised to eps1 as in eq. 5.1) at a point given in
 // the part frame, mm. Finite for every finite input; G < 1 inside, = 1 on the surface.
 double metric(const Superquadric& sq, const Eigen::Vector3d& p_part);
