@@ -65,6 +65,53 @@ struct RingTally {
   }
 };
 
+// A ring strip's samples, rows (rings, outermost first) by columns (around the ring), tallied by
+// RingTally once the samples at the edge of a hiding surface's shadow are taken out: a sample
+// next to a hidden one is measurable by a hair's breadth of the occupancy grid, and the scan
+// points that would cover it lie in the shadow's blurred edge (a wall's edge cells, the noise).
+// Counted as uncovered, the few of them decide a strip of a dozen samples: a true box by a wall
+// had 3 of its end's 11.
+class RingStrip {
+ public:
+  RingStrip(int rows, int cols, bool cyclic)
+      : rows_(rows), cols_(cols), cyclic_(cyclic), v_(static_cast<std::size_t>(rows * cols)) {}
+  Sample& at(int row, int col) { return v_[static_cast<std::size_t>(row * cols_ + col)]; }
+  // Rows [0, outer_rows) against [outer_rows, rows) (all rows when rows is 0). `whole_columns`:
+  // a shadow anywhere in a sample's column or the next ones takes it out (a wide strip's shadow
+  // edge runs across several rings).
+  RingTally tally(int outer_rows, int rows = 0, bool whole_columns = false) {
+    RingTally t;
+    for (int r = 0; r < (rows > 0 ? rows : rows_); ++r) {
+      for (int c = 0; c < cols_; ++c) {
+        Sample v = at(r, c);
+        if (r < outer_rows && v != Sample::kCovered && measurable(v) &&
+            by_shadow(r, c, whole_columns ? rows_ : 1)) {
+          v = Sample::kHidden;
+        }
+        t.add(v, r < outer_rows);
+      }
+    }
+    return t;
+  }
+
+ private:
+  bool by_shadow(int row, int col, int reach) {
+    for (int dr = -reach; dr <= reach; ++dr) {
+      for (int dc = -1; dc <= 1; ++dc) {
+        const int r = row + dr;
+        int c = col + dc;
+        if (cyclic_) c = (c + cols_) % cols_;
+        if (r < 0 || r >= rows_ || c < 0 || c >= cols_) continue;
+        if (at(r, c) == Sample::kHidden) return true;
+      }
+    }
+    return false;
+  }
+  int rows_, cols_;
+  bool cyclic_;
+  std::vector<Sample> v_;
+};
+
 // Where the ray from the part centre along d leaves the part (G = 1), part frame. G is
 // homogeneous of degree 2 without taper (G(s d) = s^2 G(d)); with taper it is still increasing
 // along the ray (the tapered part is star-shaped about its centre), so bisection finishes it.
@@ -217,25 +264,39 @@ class SampleJudge {
 // would have shown it on to the cap, and the share of the outer rings' measurable samples with
 // no scan points near them is how much of the end is missing. A true part whose end the scan
 // does not show for another reason (grazed, behind a wall) shows little of the inner rings
-// either. Per end (-z, +z); 0 where not judged.
-std::array<double, 2> open_ends(const Superquadric& sq, const CoverageOptions& o,
+// either. The shares per end (-z, +z) at the first scale, then at the second; 0 where not
+// judged.
+std::array<double, 4> open_ends(const Superquadric& sq, const CoverageOptions& o,
                                 SampleJudge& judge) {
-  std::array<double, 2> open_at{0.0, 0.0};
+  std::array<double, 4> open_at{0.0, 0.0, 0.0, 0.0};
   if (sq.eps1 > kFlatEdgeExponent || sq.kx != 0.0 || sq.ky != 0.0 || o.end_rings <= 0) {
     return open_at;
   }
-  const double step = o.end_strip / o.end_rings;  // of the half-length
+  // Two scales: the outer rings against as many farther in, and all those against rings as far
+  // again at twice the spacing. A part that reaches past its look-alike's end by more than the
+  // strip (a can 14 % shorter, the model fitted flush with its other end) leaves the inner rings
+  // of the first scale bare as well, and only the second judges it.
+  const int rings = o.end_rings;
+  const double step = o.end_strip / rings;  // of the half-length
   for (double side : {-1.0, 1.0}) {
-    RingTally t;
-    for (int k = 0; k < 2 * o.end_rings; ++k) {
-      const double u = 1.0 - (k + 0.5) * step;  // z / a3
-      const double eta = side * std::asin(std::pow(u, 1.0 / sq.eps1));
+    RingStrip strip(3 * rings, o.end_ring_samples, true);
+    for (int k = 0; k < 3 * rings; ++k) {
+      const double u = k < 2 * rings ? 1.0 - (k + 0.5) * step  // z / a3
+                                     : 1.0 - 2.0 * o.end_strip - (k - 2 * rings + 0.5) * 2.0 * step;
+      const double eta = side * std::asin(std::pow(std::max(u, 0.0), 1.0 / sq.eps1));
       for (int j = 0; j < o.end_ring_samples; ++j) {
         const double omega = 2.0 * std::numbers::pi * (j + 0.5) / o.end_ring_samples;
-        t.add(judge(surface_point(sq, eta, omega)), k < o.end_rings);
+        strip.at(k, j) = judge(surface_point(sq, eta, omega));
       }
     }
-    if (const auto share = t.open_share(o.min_end_samples)) open_at[side > 0.0] = *share;
+    const std::size_t end = side > 0.0 ? 1 : 0;
+    if (const auto share = strip.tally(rings, 2 * rings).open_share(o.min_end_samples)) {
+      open_at[end] = *share;
+    }
+    // The wider scale's inner rings are as many samples at twice the spacing.
+    if (const auto share = strip.tally(2 * rings, 0, true).open_share(o.min_end_samples)) {
+      open_at[2 + end] = *share;
+    }
   }
   return open_at;
 }
@@ -271,7 +332,7 @@ double open_rim(const Superquadric& sq, const CoverageOptions& o, SampleJudge& j
     if (axis != 2) cap.eps1 = cap.eps2 = std::max(sq.eps1, sq.eps2);
     for (double side : {-1.0, 1.0}) {
       for (int sector = 0; sector < kRimSectors; ++sector) {
-        RingTally t;
+        RingStrip strip(2 * o.rim_rings, o.rim_sector_samples, false);
         for (int k = 0; k < 2 * o.rim_rings; ++k) {
           const double rho = 1.0 - (k + 0.5) * o.rim_strip / o.rim_rings;
           for (int j = 0; j < o.rim_sector_samples; ++j) {
@@ -280,9 +341,10 @@ double open_rim(const Superquadric& sq, const CoverageOptions& o, SampleJudge& j
             const Eigen::Vector3d c = cap_ring_point(cap, side, rho, omega);
             Eigen::Vector3d q;
             q[u] = c.x(), q[v] = c.y(), q[axis] = c.z();
-            t.add(judge(q), k < o.rim_rings);
+            strip.at(k, j) = judge(q);
           }
         }
+        const RingTally t = strip.tally(o.rim_rings);
         if (const auto share = t.open_share(o.min_end_samples)) worst = std::max(worst, *share);
       }
     }
@@ -317,7 +379,7 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
     covered += v == Sample::kCovered;
     seen_through += v == Sample::kSeenThrough;
   }
-  const std::array<double, 2> open_at = open_ends(sq, o, judge);
+  const std::array<double, 4> open_at = open_ends(sq, o, judge);
   const double rim = open_rim(sq, o, judge);
   SurfaceCoverage c;
   double below = 0.0, lowest = INFINITY;
@@ -336,8 +398,9 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
   c.min_size_mm = sq.min_size();
   c.max_size_mm = sq.max_size();
   c.facing = facing;
-  c.open_end = std::max(open_at[0], open_at[1]);
   c.open_end_at[0] = open_at[0], c.open_end_at[1] = open_at[1];
+  c.open_end_far_at[0] = open_at[2], c.open_end_far_at[1] = open_at[3];
+  c.open_end = *std::max_element(open_at.begin(), open_at.end());
   c.open_rim = rim;
   if (measured == 0) return c;
   c.measurable = measured;

@@ -36,10 +36,10 @@ struct CoverageOptions {
   double plane_margin_mm = 5.0;
   // The side wall by each flat end of a part with flat caps (eps1 <= 0.5, no taper): end_rings
   // rings of end_ring_samples samples spread over end_strip of its half-length from the cap, and
-  // as many farther in (object_coverage.cpp). A
-  // part fitted to a shorter look-alike lying along the sweep (its caps face along the sweep and
-  // show no points) reaches past the look-alike's end, where the sensor saw no surface; the few
-  // of the 200 samples there are lost among the rest.
+  // as many farther in; then all of those against end_rings rings over twice end_strip farther in
+  // (object_coverage.cpp open_ends). A part fitted to a shorter look-alike lying along the sweep
+  // (its caps face along the sweep and show no points) reaches past the look-alike's end, where the
+  // sensor saw no surface; the few of the 200 samples there are lost among the rest.
   double end_strip = 0.2;
   int end_rings = 4;
   int end_ring_samples = 16;
@@ -64,9 +64,13 @@ struct SurfaceCoverage {
   double covered = 0.0;         // share of them with a scan point near them
   double seen_through = 0.0;    // share of them the sensor saw past: free space
   double open_end = 0.0;        // of the measurable samples by a flat end whose side wall the
-                                // scan shows farther in, the largest share (of the two ends)
-                                // with no scan points near them
-  double open_end_at[2] = {0.0, 0.0};  // the same per end: the one at -z, the one at +z
+                                // scan shows farther in, the largest share (of the two ends and
+                                // both scales) with no scan points near them
+  // Per end (the one at -z, the one at +z): the share over end_strip against as far again
+  // farther in; and over twice end_strip against as far again (a part reaching past the
+  // surface's end by more than end_strip).
+  double open_end_at[2] = {0.0, 0.0};
+  double open_end_far_at[2] = {0.0, 0.0};
   double open_rim = 0.0;        // of the measurable samples by a flat cap's edge, where the scan
                                 // shows the cap farther in, the largest share (per cap and
                                 // sector) with no scan points near them

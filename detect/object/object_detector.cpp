@@ -373,20 +373,39 @@ struct Judged {
   Eigen::Isometry3d passed_at = Eigen::Isometry3d::Identity();  // T, or its polish (judge_part)
 };
 
+// slide_pose along the part's own z-axis only (a box slid along x or y would leave the table).
+Eigen::Isometry3d slide_along_axis(const HypothesisContext& ctx, const Superquadric& part,
+                                   const Eigen::Isometry3d& T, const Eigen::Vector3d& prefer) {
+  const Eigen::Isometry3d to = slide_pose(ctx, part, T, prefer);
+  const Eigen::Vector3d z = T.linear().col(2);
+  Eigen::Isometry3d along = T;
+  along.translation() += z * z.dot(to.translation() - T.translation());
+  return along;
+}
+
 // A single part's candidate rejected because the scan carries on past one of its flat faces may
 // be the part itself, fitted short of its wall's end: the fit leaves a lying box or can free to
 // slide along its side walls (object_axial_slide.hpp), and a start on one end's patch stays
 // there. Slid to where its wall's points end and refined again (nullopt: it does not move), it
 // is judged as a candidate of its own (select_instances). A longer look-alike's wall is not slid
-// along.
+// along. The same for one rejected because the scan shows no side wall by one of its ends: the
+// fit placed it past where its wall ends on that side (its other end hidden), and `prefer` slides
+// it back as far as the wall's run allows.
 std::optional<PartHypothesis> slid_along_wall(const HypothesisContext& ctx,
-                                              const Superquadric& part,
-                                              const Eigen::Isometry3d& T) {
-  const Eigen::Isometry3d slid = slide_pose(ctx, part, T, Eigen::Vector3d::Zero());
+                                              const Superquadric& part, const Eigen::Isometry3d& T,
+                                              const Eigen::Vector3d& prefer) {
+  // Along its axis only when an end is open: the part rests on its other faces.
+  const auto slide = [&](const Eigen::Isometry3d& from) {
+    return prefer.isZero() ? slide_pose(ctx, part, from, prefer)
+                           : slide_along_axis(ctx, part, from, prefer);
+  };
+  const Eigen::Isometry3d slid = slide(T);
   if (same_place(slid, T, part)) return std::nullopt;
   PartHypothesis h;
   h.valid = true;
+  // The refinement leaves the part free along its wall, and may take it back: slid once more.
   h.T_world_part = refine_pose(ctx, part, slid);
+  if (!prefer.isZero()) h.T_world_part = slide(h.T_world_part);
   if (same_place(h.T_world_part, T, part)) return std::nullopt;
   h.scores = verify_pose(ctx, part, h.T_world_part);
   return h;
@@ -657,7 +676,9 @@ void refine_jointly(const HypothesisContext& ctx, const ObjectModel& model,
     T = least;
     if (linked.isApprox(least)) continue;
     const SurfaceCoverage c = surface_coverage(shape, linked, ctx.points, *ctx.tree, cover);
-    if (c.open_end <= ctx.options->max_open_end_compound) T = linked;
+    if (std::max(c.open_end_at[0], c.open_end_at[1]) <= ctx.options->max_open_end_compound) {
+      T = linked;
+    }
   }
   for (std::size_t p = 0; p < n; ++p) {
     const int rank_sum = inst.parts[p].scores.rank_sum;
@@ -878,13 +899,25 @@ const Judged* judged_before(const ObjectModel& model, const Hypotheses& hyps,
   return nullptr;
 }
 
-// A single part rejected for carrying on past a flat face, slid along its wall
-// (slid_along_wall) and confirmed there: `inst` is moved to the slid pose and true is returned.
+// A single part rejected for carrying on past a flat face or for an open end, slid along its
+// wall (slid_along_wall) and confirmed there: `inst` is moved to the slid pose and true is
+// returned.
 bool slide_to_confirm(const HypothesisContext& ctx, const ObjectModel& model,
-                      const CoverageOptions& cover, double noise_mm, DetectedInstance& inst) {
-  if (model.parts.size() != 1) return false;
-  const std::optional<PartHypothesis> h =
-      slid_along_wall(ctx, model.parts[0].shape, inst.parts[0].T_world_part);
+                      const CoverageOptions& cover, double noise_mm, Check failed,
+                      DetectedInstance& inst) {
+  if (model.parts.size() != 1 || (failed != Check::kContinues && failed != Check::kOpenEnd)) {
+    return false;
+  }
+  const Superquadric& part = model.parts[0].shape;
+  const Eigen::Isometry3d& T = inst.parts[0].T_world_part;
+  Eigen::Vector3d prefer = Eigen::Vector3d::Zero();
+  if (failed == Check::kOpenEnd) {
+    const SurfaceCoverage c = surface_coverage(part, T, ctx.points, *ctx.tree, cover);
+    const double minus = std::max(c.open_end_at[0], c.open_end_far_at[0]);
+    const double plus = std::max(c.open_end_at[1], c.open_end_far_at[1]);
+    prefer.z() = plus > minus ? -part.a3 : part.a3;
+  }
+  const std::optional<PartHypothesis> h = slid_along_wall(ctx, part, T, prefer);
   if (!h) return false;
   DetectedInstance slid = inst;
   slid.parts[0].T_world_part = h->T_world_part;
@@ -893,6 +926,26 @@ bool slide_to_confirm(const HypothesisContext& ctx, const ObjectModel& model,
   if (confirm(ctx, model, cover, noise_mm, nullptr, slid)) return false;
   inst = std::move(slid);
   return true;
+}
+
+// A confirmed single part with flat ends whose wall's points run past one end and stop short of
+// the other (its far end hidden) is slid along its axis until they end with it, and kept there
+// when it is confirmed there as well. The continuation check does not see a few millimetres past
+// the part's rounded edge, and the fit leaves the part free along its wall.
+void settle_along_wall(const HypothesisContext& ctx, const ObjectModel& model,
+                       const CoverageOptions& cover, double noise_mm, DetectedInstance& inst) {
+  if (model.parts.size() != 1) return;
+  const Superquadric& part = model.parts[0].shape;
+  const Eigen::Isometry3d& T = inst.parts[0].T_world_part;
+  constexpr double kMinMoveMm = 0.5;
+  const Eigen::Isometry3d along = slide_along_axis(ctx, part, T, Eigen::Vector3d::Zero());
+  if ((along.translation() - T.translation()).norm() < kMinMoveMm) return;
+  DetectedInstance slid = inst;
+  slid.parts[0].T_world_part = along;
+  slid.parts[0].scores = verify_pose(ctx, part, along);
+  slid.parts[0].scores.rank_sum = inst.parts[0].scores.rank_sum;
+  if (confirm(ctx, model, cover, noise_mm, nullptr, slid)) return;
+  inst = std::move(slid);
 }
 
 // Selection: the ranked vote's combinations (5.1.2, extended by the links, 5.1.3) confirmed in
@@ -938,10 +991,11 @@ void select_instances(const HypothesisContext& ctx, const ObjectModel& model,
             confirm(ctx, model, cover, noise_mm, judged_before(model, hyps, inst), inst)) {
       result.rejections.push_back(*why);
       rejected.push_back(std::move(centres));
-      if (why->check != Check::kContinues || !slide_to_confirm(ctx, model, cover, noise_mm, inst))
-        continue;
+      if (!slide_to_confirm(ctx, model, cover, noise_mm, why->check, inst)) continue;
       centres = {inst.parts[0].center()};
       if (std::any_of(accepted.begin(), accepted.end(), clash)) continue;
+    } else {
+      settle_along_wall(ctx, model, cover, noise_mm, inst);
     }
     for (std::size_t p = 0; p < model.parts.size(); ++p) centres.push_back(inst.parts[p].center());
     accepted.push_back(std::move(centres));

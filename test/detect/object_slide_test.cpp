@@ -1,7 +1,9 @@
-// A single part rejected because the scan carries on past one of its flat faces is slid along its
-// wall to where the wall's points end and judged there (object_detector.cpp slide_to_confirm): a
-// lying box or can fitted from a patch near one end is left free along its side walls by the
-// pose fit, and every hypothesis of the varied tuning scenes below stopped 15-20 mm short.
+// A single part rejected because the scan carries on past one of its flat faces, or because one
+// of its ends shows no wall, is slid along its wall to where the wall's points end and judged
+// there (object_detector.cpp slide_to_confirm); a confirmed one whose wall runs past one end is
+// settled there (settle_along_wall): a lying box or can fitted from a patch near one end is left
+// free along its side walls by the pose fit, and every hypothesis of the varied tuning scenes
+// below stopped short of one end or reached past it.
 #include <gtest/gtest.h>
 
 #include "test/detect/varied_target.hpp"
@@ -20,6 +22,20 @@ TEST(ObjectSlide, FindsTheLyingBoxOfAVariedSceneSlidAlongItsWall) {
 // The lying cylinder behind a wall (30 % hidden, 23 deg, camera -y, 1 mm noise): 17 mm short.
 TEST(ObjectSlide, FindsTheLyingCylinderOfAVariedSceneSlidAlongItsWall) {
   expect_varied_target_found(sim::VariedTarget::kCylinder, 197);
+}
+
+// The box lying behind a wall (27 % hidden, 29 deg, camera -y, 0.53 mm noise) whose far end the
+// wall hides: every candidate reached 6 mm past the end the scan shows, and its wall there was
+// bare (open end 0.5).
+TEST(ObjectSlide, FindsTheLyingBoxSlidBackFromTheEndWhoseWallIsBare) {
+  expect_varied_target_found(sim::VariedTarget::kBox, 184);
+}
+
+// The box lying under an overhang that hides one end (16 % hidden, 33 deg, camera -y, 0.77 mm
+// noise): confirmed 6.4 mm into the hidden end, its wall's points running on past the other end
+// by as much, within the rounded edge the continuation check does not look at.
+TEST(ObjectSlide, SettlesTheLyingBoxWhereItsWallsPointsEnd) {
+  expect_varied_target_found(sim::VariedTarget::kBox, 185);
 }
 
 }  // namespace object_slide_test
