@@ -112,6 +112,40 @@ class RingStrip {
   std::vector<Sample> v_;
 };
 
+// The open shares of a strip by an edge (RingTally::open_share) at two scales: `rings` rings
+// over `strip` (a share of the size, from the edge inwards) against as many farther in; and all
+// of those against `rings` rings at twice the spacing farther in, judged only where the first
+// scale is not (its inner rings bare too: a part reaching past the surface's end by more than
+// the strip) and its rings show a bare sample. sample(depth, column) judges the sample at that
+// depth (share of the size from the edge) and column.
+template <class JudgeAt>
+std::array<std::optional<double>, 2> open_shares(int rings, int cols, bool cyclic, double strip,
+                                                 int min_samples, JudgeAt&& sample) {
+  const double step = strip / rings;
+  RingStrip s(3 * rings, cols, cyclic);
+  const auto fill = [&](int first, int last) {
+    for (int k = first; k < last; ++k) {
+      const double depth =
+          k < 2 * rings ? (k + 0.5) * step : 2.0 * strip + (k - 2 * rings + 0.5) * 2.0 * step;
+      for (int j = 0; j < cols; ++j) s.at(k, j) = sample(depth, j);
+    }
+  };
+  fill(0, 2 * rings);
+  std::array<std::optional<double>, 2> out;
+  out[0] = s.tally(rings, 2 * rings).open_share(min_samples);
+  if (out[0]) return out;
+  bool bare = false;
+  for (int k = 0; k < 2 * rings && !bare; ++k) {
+    for (int j = 0; j < cols && !bare; ++j) {
+      bare = measurable(s.at(k, j)) && s.at(k, j) != Sample::kCovered;
+    }
+  }
+  if (!bare) return out;
+  fill(2 * rings, 3 * rings);
+  out[1] = s.tally(2 * rings, 0, true).open_share(min_samples);
+  return out;
+}
+
 // Where the ray from the part centre along d leaves the part (G = 1), part frame. G is
 // homogeneous of degree 2 without taper (G(s d) = s^2 G(d)); with taper it is still increasing
 // along the ray (the tapered part is star-shaped about its centre), so bisection finishes it.
@@ -272,31 +306,17 @@ std::array<double, 4> open_ends(const Superquadric& sq, const CoverageOptions& o
   if (sq.eps1 > kFlatEdgeExponent || sq.kx != 0.0 || sq.ky != 0.0 || o.end_rings <= 0) {
     return open_at;
   }
-  // Two scales: the outer rings against as many farther in, and all those against rings as far
-  // again at twice the spacing. A part that reaches past its look-alike's end by more than the
-  // strip (a can 14 % shorter, the model fitted flush with its other end) leaves the inner rings
-  // of the first scale bare as well, and only the second judges it.
-  const int rings = o.end_rings;
-  const double step = o.end_strip / rings;  // of the half-length
   for (double side : {-1.0, 1.0}) {
-    RingStrip strip(3 * rings, o.end_ring_samples, true);
-    for (int k = 0; k < 3 * rings; ++k) {
-      const double u = k < 2 * rings ? 1.0 - (k + 0.5) * step  // z / a3
-                                     : 1.0 - 2.0 * o.end_strip - (k - 2 * rings + 0.5) * 2.0 * step;
-      const double eta = side * std::asin(std::pow(std::max(u, 0.0), 1.0 / sq.eps1));
-      for (int j = 0; j < o.end_ring_samples; ++j) {
-        const double omega = 2.0 * std::numbers::pi * (j + 0.5) / o.end_ring_samples;
-        strip.at(k, j) = judge(surface_point(sq, eta, omega));
-      }
-    }
+    const auto shares = open_shares(
+        o.end_rings, o.end_ring_samples, true, o.end_strip, o.min_end_samples,
+        [&](double depth, int j) {
+          const double eta = side * std::asin(std::pow(std::max(1.0 - depth, 0.0), 1.0 / sq.eps1));
+          const double omega = 2.0 * std::numbers::pi * (j + 0.5) / o.end_ring_samples;
+          return judge(surface_point(sq, eta, omega));
+        });
     const std::size_t end = side > 0.0 ? 1 : 0;
-    if (const auto share = strip.tally(rings, 2 * rings).open_share(o.min_end_samples)) {
-      open_at[end] = *share;
-    }
-    // The wider scale's inner rings are as many samples at twice the spacing.
-    if (const auto share = strip.tally(2 * rings, 0, true).open_share(o.min_end_samples)) {
-      open_at[2 + end] = *share;
-    }
+    open_at[end] = shares[0].value_or(0.0);
+    open_at[2 + end] = shares[1].value_or(0.0);
   }
   return open_at;
 }
@@ -319,10 +339,13 @@ Eigen::Vector3d cap_ring_point(const Superquadric& sq, double side, double rho, 
 // strip of top face where the sensor saw none; a true part hidden by its edge (overhang, wall,
 // shadow) shows its hiding surface in front of the strip (hidden, no evidence). The caps are the
 // +-z ones, and for a part whose cross-section is flat-sided too (a box) those at +-x and +-y.
-double open_rim(const Superquadric& sq, const CoverageOptions& o, SampleJudge& judge) {
-  if (sq.eps1 > kFlatEdgeExponent || sq.kx != 0.0 || sq.ky != 0.0 || o.rim_rings <= 0) return 0.0;
+std::array<double, 2> open_rim(const Superquadric& sq, const CoverageOptions& o,
+                               SampleJudge& judge) {
+  std::array<double, 2> worst{0.0, 0.0};
+  if (sq.eps1 > kFlatEdgeExponent || sq.kx != 0.0 || sq.ky != 0.0 || o.rim_rings <= 0) {
+    return worst;
+  }
   const bool boxy = sq.eps2 <= kFlatEdgeExponent;
-  double worst = 0.0;
   for (int axis = boxy ? 0 : 2; axis < 3; ++axis) {
     // Cap frame: its normal is part axis `axis`, its first in-plane axis the next one.
     const int u = (axis + 1) % 3, v = (axis + 2) % 3;
@@ -332,20 +355,18 @@ double open_rim(const Superquadric& sq, const CoverageOptions& o, SampleJudge& j
     if (axis != 2) cap.eps1 = cap.eps2 = std::max(sq.eps1, sq.eps2);
     for (double side : {-1.0, 1.0}) {
       for (int sector = 0; sector < kRimSectors; ++sector) {
-        RingStrip strip(2 * o.rim_rings, o.rim_sector_samples, false);
-        for (int k = 0; k < 2 * o.rim_rings; ++k) {
-          const double rho = 1.0 - (k + 0.5) * o.rim_strip / o.rim_rings;
-          for (int j = 0; j < o.rim_sector_samples; ++j) {
-            const double omega = 2.0 * std::numbers::pi *
-                                 (sector - 0.5 + (j + 0.5) / o.rim_sector_samples) / kRimSectors;
-            const Eigen::Vector3d c = cap_ring_point(cap, side, rho, omega);
-            Eigen::Vector3d q;
-            q[u] = c.x(), q[v] = c.y(), q[axis] = c.z();
-            strip.at(k, j) = judge(q);
-          }
-        }
-        const RingTally t = strip.tally(o.rim_rings);
-        if (const auto share = t.open_share(o.min_end_samples)) worst = std::max(worst, *share);
+        const auto shares = open_shares(
+            o.rim_rings, o.rim_sector_samples, false, o.rim_strip, o.min_end_samples,
+            [&](double depth, int j) {
+              const double omega = 2.0 * std::numbers::pi *
+                                   (sector - 0.5 + (j + 0.5) / o.rim_sector_samples) / kRimSectors;
+              const Eigen::Vector3d c = cap_ring_point(cap, side, 1.0 - depth, omega);
+              Eigen::Vector3d q;
+              q[u] = c.x(), q[v] = c.y(), q[axis] = c.z();
+              return judge(q);
+            });
+        worst[0] = std::max(worst[0], shares[0].value_or(0.0));
+        worst[1] = std::max(worst[1], shares[1].value_or(0.0));
       }
     }
   }
@@ -380,7 +401,7 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
     seen_through += v == Sample::kSeenThrough;
   }
   const std::array<double, 4> open_at = open_ends(sq, o, judge);
-  const double rim = open_rim(sq, o, judge);
+  const std::array<double, 2> rim = open_rim(sq, o, judge);
   SurfaceCoverage c;
   double below = 0.0, lowest = INFINITY;
   if (o.removed_plane && o.removed_plane->valid) {
@@ -401,7 +422,8 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
   c.open_end_at[0] = open_at[0], c.open_end_at[1] = open_at[1];
   c.open_end_far_at[0] = open_at[2], c.open_end_far_at[1] = open_at[3];
   c.open_end = *std::max_element(open_at.begin(), open_at.end());
-  c.open_rim = rim;
+  c.open_rim = rim[0];
+  c.open_rim_far = rim[1];
   if (measured == 0) return c;
   c.measurable = measured;
   c.covered = static_cast<double>(covered) / measured;

@@ -74,6 +74,7 @@ struct SurfaceCoverage {
   double open_rim = 0.0;        // of the measurable samples by a flat cap's edge, where the scan
                                 // shows the cap farther in, the largest share (per cap and
                                 // sector) with no scan points near them
+  double open_rim_far = 0.0;    // the same over twice rim_strip against as far again farther in
   double below_plane_mm = 0.0;  // how far the part (as modelled) reaches through the removed plane
   double lowest_mm = 0.0;       // height of its lowest point above the removed plane, its flat
                                 // faces' rounded edges taken as sharp (refined on the surface's

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <numbers>
 #include <optional>
 #include <thread>
@@ -228,9 +229,11 @@ std::optional<Rejection> misfit(const HypothesisContext& ctx, const Superquadric
   if (e.determined && std::abs(e.scale - 1.0) > o.max_size_deviation) {
     return Rejection{0, Check::kSize, e.scale - 1.0, o.max_size_deviation, T.translation()};
   }
-  // Size across its axis left open by the fit: the extent of its flat caps is the evidence left.
-  if (e.across_open && judge_sink && seen.open_rim > o.max_open_rim) {
-    return Rejection{0, Check::kOpenRim, seen.open_rim, o.max_open_rim, T.translation()};
+  // The extent of its flat caps: a narrower look-alike's missing strip of cap, wherever the fit
+  // placed it, and where the fit left the size across the axis open, also one farther in.
+  const double rim = e.across_open ? std::max(seen.open_rim, seen.open_rim_far) : seen.open_rim;
+  if (judge_sink && rim > o.max_open_rim) {
+    return Rejection{0, Check::kOpenRim, rim, o.max_open_rim, T.translation()};
   }
   const double sink_limit =
       o.sink_floor_mm + o.sink_noise_factor * noise_mm + o.sink_sigma_factor * sigma;

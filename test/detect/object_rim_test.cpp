@@ -60,6 +60,22 @@ TEST(ObjectRim, TheCylinderOfVariedScenesIsNotANarrowerStandingCan) {
   }
 }
 
+// Object-free varied tuning scenes with a standing box as tall as the model and narrower: 6 %
+// (seed 168, 41 deg, +y), the size fit reading 1.01 (its one scale across the axis is tied by the
+// height), and 18 % (seed 195, 36 deg, -y), the model's top overhanging it by 9 mm, beyond the
+// first scale's strip (the scenes search for the box). Both were taken for the box while the rim
+// was judged only where the size was open, at one scale.
+TEST(ObjectRim, ObjectFreeScenesWithNarrowerStandingBoxesHaveNoBox) {
+  for (std::uint64_t seed : {168u, 195u}) {
+    sim::VariedSceneOptions so;
+    so.target = sim::VariedTarget::kNone;
+    const sim::VariedScene s = sim::make_varied_scene(so, seed);  // the model drawn: the box
+    ASSERT_EQ(s.model.parts[0].shape.a3, test::box_model().a3) << "seed " << seed;
+    const ObjectDetectResult r = test::detect_in(s, seed);
+    EXPECT_FALSE(r.found()) << "seed " << seed << ": " << describe(r);
+  }
+}
+
 sim::VariedScene standing_alone(const Superquadric& sq, const StripeGeometry& g,
                                 std::uint64_t seed) {
   return test::stripe_scan({test::placed("box", sq, {0, 0, sq.a3}, Eigen::Vector3d::UnitZ())},
