@@ -17,6 +17,7 @@
 #include "sim/varied_scene.hpp"
 #include "test/detect/object_scenes.hpp"
 #include "test/detect/stripe_scan_fixture.hpp"
+#include "test/detect/varied_target.hpp"
 
 namespace rangefit {
 namespace object_lookalike_test {
@@ -160,14 +161,7 @@ TEST(ObjectLookAlike, ContinuationSeesAWiderTopAtHighNoise) {
 // noise band). Seed 169, and seed 134, whose box stands a quarter hidden behind a wall.
 TEST(ObjectLookAlike, FindsTheBoxNotAWiderOneAtHighNoise) {
   for (std::uint64_t seed : {134u, 169u}) {
-    sim::VariedSceneOptions so;
-    so.target = sim::VariedTarget::kBox;
-    const sim::VariedScene s = sim::make_varied_scene(so, seed);
-    const ObjectDetectResult r = detect(s, seed);
-    ASSERT_TRUE(r.found()) << "seed " << seed << ": " << describe(r);
-    EXPECT_TRUE(test::true_positive(r.instances[0].parts[0].T_world_part,
-                                    s.parts[static_cast<std::size_t>(s.target_parts[0])]))
-        << "seed " << seed << ": " << describe(r);
+    test::expect_varied_target_found(sim::VariedTarget::kBox, seed);
   }
 }
 
@@ -178,14 +172,7 @@ TEST(ObjectLookAlike, FindsTheBoxNotAWiderOneAtHighNoise) {
 // seed 215, whose cylinder stands under an overhang).
 TEST(ObjectLookAlike, FindsTheCylinderNotAShorterLyingCan) {
   for (std::uint64_t seed : {85u, 215u}) {
-    sim::VariedSceneOptions so;
-    so.target = sim::VariedTarget::kCylinder;
-    const sim::VariedScene s = sim::make_varied_scene(so, seed);
-    const ObjectDetectResult r = detect(s, seed);
-    ASSERT_TRUE(r.found()) << "seed " << seed << ": " << describe(r);
-    EXPECT_TRUE(test::true_positive(r.instances[0].parts[0].T_world_part,
-                                    s.parts[static_cast<std::size_t>(s.target_parts[0])]))
-        << "seed " << seed << ": " << describe(r);
+    test::expect_varied_target_found(sim::VariedTarget::kCylinder, seed);
   }
 }
 
