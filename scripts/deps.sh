@@ -11,7 +11,7 @@ packages=(
   openssl  # scripts/make_dds_security.sh: the DDS Security test's CA and signed documents
   dpkg-dev file  # cpack -G DEB: dpkg-shlibdeps (and file) fill the package's Depends
   ccache  # .ci/run: compile results kept outside the clone
-  clang libclang-rt-14-dev  # RANGEFIT_FUZZ=ON: the libFuzzer harnesses of test/fuzz
+  clang libclang-rt-14-dev  # .ci/run: the ASan+UBSan suite and the libFuzzer harnesses of test/fuzz
   libcairo2-dev fonts-dejavu-core  # render/: pictures of scans and detections, legend font
   zlib1g-dev liblzf-dev  # drivers/: CRC-32 (zlib's crc32); io/: PCD binary_compressed (liblzf)
   libcpp-httplib-dev  # api/: the HTTP/JSON interface for robot controllers

@@ -175,7 +175,10 @@ RenderedScene render_scene(const std::vector<ScenePart>& parts, const SceneView&
       if (label == -2) continue;
       Eigen::Vector3d p = view.eye + best * dir;
       if (view.noise_sigma_mm > 0.0) {
-        p += view.noise_sigma_mm * Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+        // One draw per statement, z first: a seed makes the same scan whatever order a compiler
+        // evaluates a call's arguments in (z, y, x is the order the recorded scans were made in).
+        const double nz = noise(rng), ny = noise(rng), nx = noise(rng);
+        p += view.noise_sigma_mm * Eigen::Vector3d(nx, ny, nz);
       }
       out.cloud.grid.index[static_cast<std::size_t>(r) * view.width + c] =
           static_cast<std::int32_t>(out.cloud.points.size());

@@ -85,8 +85,11 @@ bool put(TableObject& o, std::size_t anchors, const std::vector<TableObject>& pl
   for (int i = 0; i < kPlacementTries; ++i) {
     place(o, 0.0, 0.0, 0.0);
     const Eigen::Vector3d half = 0.5 * object_bounds(o).sizes();
-    Eigen::Vector2d xy(d.uniform(ws.min().x() + half.x(), ws.max().x() - half.x()),
-                       d.uniform(ws.min().y() + half.y(), ws.max().y() - half.y()));
+    // One draw per statement: a call's arguments are evaluated in an unspecified order (GCC
+    // right to left, clang left to right), and a seed must make the same scene with either.
+    const double y = d.uniform(ws.min().y() + half.y(), ws.max().y() - half.y());
+    const double x = d.uniform(ws.min().x() + half.x(), ws.max().x() - half.x());
+    Eigen::Vector2d xy(x, y);
     if (anchors > 0 && d.chance(near_probability)) {
       const TableObject& anchor =
           placed[static_cast<std::size_t>(d.integer(0, static_cast<int>(anchors) - 1))];

@@ -6,11 +6,9 @@
 
 namespace rangefit::drivers::css_usb {
 
-CssUsbDriver::CssUsbDriver(std::unique_ptr<UsbTransport> transport, CssUsbOptions options,
-                           hal::Clock& clock)
+CssUsbDriver::CssUsbDriver(std::unique_ptr<UsbTransport> transport, CssUsbOptions options)
     : transport_(std::move(transport)),
       options_(std::move(options)),
-      clock_(clock),
       queue_(options_.queue_capacity),
       translator_(options_.clock) {
   transport_->set_event_handler([this](TransportEvent e) { on_event(e); });

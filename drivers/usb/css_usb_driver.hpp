@@ -35,9 +35,9 @@ struct CssUsbOptions {
 
 class CssUsbDriver final : public hal::CssSource {
  public:
-  // `clock` must be CLOCK_MONOTONIC, the base the transport stamps in (bulk completions and the
+  // Revolutions are stamped in the transport's base, CLOCK_MONOTONIC (bulk completions and the
   // GET_TIME windows of UsbTransport::control_in_timed); the driver takes no stamps of its own.
-  CssUsbDriver(std::unique_ptr<UsbTransport> transport, CssUsbOptions options, hal::Clock& clock);
+  CssUsbDriver(std::unique_ptr<UsbTransport> transport, CssUsbOptions options);
   ~CssUsbDriver() override;
 
   std::string name() const override { return options_.name; }
@@ -64,7 +64,6 @@ class CssUsbDriver final : public hal::CssSource {
 
   std::unique_ptr<UsbTransport> transport_;
   CssUsbOptions options_;
-  hal::Clock& clock_;
   hal::BoundedQueue<hal::CssRevolution> queue_;
 
   mutable std::mutex translator_mutex_;  // event thread (feed) vs supervisor (exchanges)

@@ -37,6 +37,7 @@
 #include "detect/object/pose_fit.hpp"
 #include "test/bench/object_varied_report.hpp"
 #include "test/detect/object_scenes.hpp"
+#include "test/support/ordered_draws.hpp"
 
 namespace rangefit {
 namespace {
@@ -87,8 +88,9 @@ struct PoseFitProblem {
     std::uniform_real_distribution<double> eta(-1.5, 1.5), omega(-1.4, 1.4);
     std::normal_distribution<double> noise(0.0, 0.1);
     for (int i = 0; i < 50; ++i) {
-      pts.push_back(truth * surface_point(part, eta(rng), omega(rng)) +
-                    Eigen::Vector3d(noise(rng), noise(rng), noise(rng)));
+      const Eigen::Vector3d n = test::draw3(noise, rng);  // in the order of the recorded data
+      const double w = omega(rng), e = eta(rng);
+      pts.push_back(truth * surface_point(part, e, w) + n);
     }
     start = truth;
     start.translation() += Eigen::Vector3d(2, -1, 1.5);

@@ -41,7 +41,8 @@ inline hal::StripeCellGeometry perturbed_cell(const hal::StripeCellGeometry& nom
   hal::StripeCellGeometry g = nominal;
   for (int i = 0; i < 3; ++i) g.ranger_position_cell_mm[i] += mm * draw(rng);
   for (int i = 0; i < 3; ++i) g.ranger_rpy_cell_rad[i] += deg * kDeg * draw(rng);
-  const Eigen::Vector3d tilt(deg * kDeg * draw(rng), 0.0, deg * kDeg * draw(rng));
+  const double tz = draw(rng), tx = draw(rng);  // in the order of the recorded data
+  const Eigen::Vector3d tilt(deg * kDeg * tx, 0.0, deg * kDeg * tz);
   g.axis_direction_cell =
       (Eigen::AngleAxisd(tilt.x(), Eigen::Vector3d::UnitX()) *
        Eigen::AngleAxisd(tilt.z(), Eigen::Vector3d::UnitZ()) * nominal.axis_direction_cell)

@@ -9,6 +9,7 @@
 #include "calib/css_calibration.hpp"
 #include "calib_fixtures.hpp"
 #include "sim/calibration_scans.hpp"
+#include "test/support/ordered_draws.hpp"
 
 namespace rangefit::test {
 
@@ -26,8 +27,9 @@ inline CssMountTruth perturbed_mount(const hal::CssGeometry& g, std::uint64_t se
   std::mt19937_64 rng(seed);
   CssMountTruth t;
   t.mount = calib::nominal_mount(g);
-  t.mount.translation() += Eigen::Vector3d(0.0, 10.0 * draw(rng), 10.0 * draw(rng));
-  const Eigen::Vector3d w(draw(rng), draw(rng), draw(rng));
+  const double dz = draw(rng), dy = draw(rng);  // in the order of the recorded data
+  t.mount.translation() += Eigen::Vector3d(0.0, 10.0 * dy, 10.0 * dz);
+  const Eigen::Vector3d w = test::draw3(draw, rng);
   t.mount.linear() =
       t.mount.linear() * Eigen::AngleAxisd(3.0 * kDeg, w.normalized()).toRotationMatrix();
   t.omega_zero = 3.0 * kDeg * draw(rng);

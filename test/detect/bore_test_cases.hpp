@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "detect/bore/bore_detector.hpp"
+#include "test/support/ordered_draws.hpp"
 #include "test/support/synthetic_bore.hpp"
 
 namespace rangefit::test {
@@ -30,10 +31,11 @@ struct BoreCase {
 inline Eigen::Isometry3d random_pose(std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const Eigen::Vector3d axis = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+  const Eigen::Vector3d axis = test::draw3(u, rng).normalized();
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = Eigen::AngleAxisd(0.6 * u(rng), axis).toRotationMatrix();
-  T.translation() = Eigen::Vector3d(100 * u(rng), 100 * u(rng), 300 + 50 * u(rng));
+  T.translation() =
+      Eigen::Vector3d(100, 100, 50).asDiagonal() * test::draw3(u, rng) + Eigen::Vector3d(0, 0, 300);
   return T;
 }
 
@@ -42,8 +44,8 @@ inline BorePrior perturbed_prior(const sim::SyntheticBoreTruth& truth, std::uint
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   BorePrior prior;
-  prior.entrance = truth.entrance + 0.3 * Eigen::Vector3d(u(rng), u(rng), u(rng));
-  const Eigen::Vector3d tilt = truth.axis.cross(Eigen::Vector3d(u(rng), u(rng), u(rng)));
+  prior.entrance = truth.entrance + 0.3 * test::draw3(u, rng);
+  const Eigen::Vector3d tilt = truth.axis.cross(test::draw3(u, rng));
   prior.axis = (truth.axis + 0.035 * tilt.normalized()).normalized();
   prior.radius = truth.radius;
   prior.plane_normal = truth.plane_normal;

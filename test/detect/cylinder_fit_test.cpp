@@ -28,7 +28,8 @@ Fragment fragment(double r, double sigma, unsigned seed, int stray_every = 0) {
     const double a = phi(rng);
     const Eigen::Vector3d radial(std::cos(a), std::sin(a), 0.0);
     const double stray = stray_every > 0 && i % stray_every == 0 ? 0.6 : 0.0;
-    f.points.push_back(Eigen::Vector3d(1, 2, z(rng)) + (r + noise(rng) + stray) * radial);
+    const double n = noise(rng);  // before z: the order of the recorded data
+    f.points.push_back(Eigen::Vector3d(1, 2, z(rng)) + (r + n + stray) * radial);
     f.normals.push_back(-radial);
   }
   return f;

@@ -9,6 +9,7 @@
 #include "detect/object/superquadric.hpp"
 #include "detect/object/superquadric_eval.hpp"
 #include "test/detect/object_scenes.hpp"
+#include "test/support/ordered_draws.hpp"
 
 namespace rangefit {
 namespace lanes_test {
@@ -64,7 +65,7 @@ TEST(Lanes, SuperquadricLanesEqualTheScalarMetric) {
   std::vector<Eigen::Vector3d> pts = {
       {0, 0, 0},     {0, 0, 50},  {1e200, 0, 0},  {std::nan(""), 1, 2},
       {0, 0, 1e308}, {0, 0, -40}, {1e-300, 0, 0}, {5, -5, 40}};
-  for (int i = 0; i < 400; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
+  for (int i = 0; i < 400; ++i) pts.push_back(test::draw3(u, rng));
   for (const Superquadric& sq : parts) {
     const SuperquadricMetric m(sq);
     for (std::size_t i = 0; i + 4 <= pts.size(); i += 4) {
@@ -92,7 +93,7 @@ TEST(Lanes, BatchValuesMatchThePointwiseMetric) {
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(-60.0, 60.0);
   std::vector<Eigen::Vector3d> pts;
-  for (int i = 0; i < 103; ++i) pts.emplace_back(u(rng), u(rng), u(rng));  // not a multiple of 4
+  for (int i = 0; i < 103; ++i) pts.push_back(test::draw3(u, rng));  // not a multiple of 4
   const std::vector<std::uint32_t> idx = {5, 0, 102, 7, 7, 50, 1};
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "detect/common/normals_grid.hpp"
+#include "test/support/ordered_draws.hpp"
 #include "test/support/synthetic_bore.hpp"
 
 namespace rangefit {
@@ -123,10 +124,11 @@ TEST(Normals, BinnedBallCountsExactlyThePointsWithinTheRadius) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-5.0, 5.0);
   std::vector<Eigen::Vector3d> pts;
-  for (int i = 0; i < 3000; ++i) pts.emplace_back(u(rng), u(rng), 0.3 * u(rng));
+  const Eigen::Vector3d squash(1.0, 1.0, 0.3);
+  for (int i = 0; i < 3000; ++i) pts.push_back(squash.asDiagonal() * test::draw3(u, rng));
   const NeighbourGrid grid(pts, Eigen::Vector3d(0.2, -0.1, 1.0), 0.4);
   for (int q = 0; q < 50; ++q) {
-    const Eigen::Vector3d p(u(rng), u(rng), 0.3 * u(rng));
+    const Eigen::Vector3d p = squash.asDiagonal() * test::draw3(u, rng);
     double n = 0.0;
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     for (const auto& x : pts) {

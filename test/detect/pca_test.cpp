@@ -37,7 +37,8 @@ TEST(Pca, PlaneFitRecoversTiltedNoisyPlane) {
   const Eigen::Vector3d e1 = normal.unitOrthogonal(), e2 = normal.cross(e1);
   std::vector<Eigen::Vector3d> pts;
   for (int i = 0; i < 500; ++i) {
-    pts.push_back(Eigen::Vector3d(1, 2, 3) + u(rng) * e1 + u(rng) * e2 + noise(rng) * normal);
+    const double n = noise(rng), b = u(rng), a = u(rng);  // the order of the recorded data
+    pts.push_back(Eigen::Vector3d(1, 2, 3) + a * e1 + b * e2 + n * normal);
   }
   const Plane plane = fit_plane(pts);
   ASSERT_TRUE(plane.valid);

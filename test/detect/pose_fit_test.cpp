@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "test/detect/object_scenes.hpp"
+#include "test/support/ordered_draws.hpp"
 
 namespace rangefit {
 namespace pose_fit_test {
@@ -19,8 +20,9 @@ std::vector<Eigen::Vector3d> surface_samples(const Superquadric& sq, const Eigen
   std::normal_distribution<double> noise(0.0, sigma > 0.0 ? sigma : 1.0);
   std::vector<Eigen::Vector3d> out;
   for (int i = 0; i < n; ++i) {
-    Eigen::Vector3d p = T * surface_point(sq, eta(rng), omega(rng));
-    if (sigma > 0.0) p += sigma * Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+    const double w = omega(rng), e = eta(rng);  // in the order of the recorded data
+    Eigen::Vector3d p = T * surface_point(sq, e, w);
+    if (sigma > 0.0) p += sigma * test::draw3(noise, rng);
     out.push_back(p);
   }
   return out;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "test/detect/object_scenes.hpp"
+#include "test/support/ordered_draws.hpp"
 
 namespace rangefit {
 namespace size_fit_test {
@@ -23,12 +24,13 @@ std::vector<Eigen::Vector3d> seen_from(const Superquadric& sq, const Eigen::Isom
   std::normal_distribution<double> noise(0.0, 1.0);
   std::vector<Eigen::Vector3d> out;
   for (int i = 0; i < 4000; ++i) {
-    const Eigen::Vector3d q = surface_point(sq, eta(rng), omega(rng));
+    const double w = omega(rng), e = eta(rng);  // in the order of the recorded data
+    const Eigen::Vector3d q = surface_point(sq, e, w);
     Eigen::Vector3d g;
     metric_and_gradient(sq, q, g);
     const Eigen::Vector3d p = T * q;
     if ((T.linear() * g).dot(eye - p) <= 0.0) continue;
-    out.push_back(p + sigma * Eigen::Vector3d(noise(rng), noise(rng), noise(rng)));
+    out.push_back(p + sigma * test::draw3(noise, rng));
   }
   return out;
 }

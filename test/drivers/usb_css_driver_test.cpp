@@ -28,7 +28,7 @@ struct Rig {
     options.retry_min = milliseconds(10);
     options.retry_max = milliseconds(40);
     options.clock.min_fit_span = milliseconds(100);
-    driver = std::make_unique<CssUsbDriver>(std::move(transport), options, clock);
+    driver = std::make_unique<CssUsbDriver>(std::move(transport), options);
   }
   // Reads until n revolutions have arrived (or the wait bound is hit).
   std::vector<hal::CssRevolution> collect(std::size_t n) {
@@ -36,7 +36,6 @@ struct Rig {
     for (int i = 0; i < 400 && out.size() < n; ++i) driver->read(out, milliseconds(10));
     return out;
   }
-  hal::MonotonicClock clock;
   FakeCssDevice* device = nullptr;
   std::unique_ptr<CssUsbDriver> driver;
 };

@@ -43,7 +43,7 @@ struct UsbRig {
     o.rate_centi_hz = rate_centi_hz;  // 70 Hz: ten times real time unless a test says otherwise
     o.clock.counter_bits = g.clock.counter_bits;
     o.retry_max = 500ms;
-    driver = std::make_unique<CssUsbDriver>(std::make_unique<LibusbTransport>(), o, clock);
+    driver = std::make_unique<CssUsbDriver>(std::make_unique<LibusbTransport>(), o);
   }
   // Reads until `n` revolutions have arrived in total (or `limit` passes).
   bool collect(std::size_t n, std::chrono::milliseconds limit = 10000ms) {
@@ -56,7 +56,6 @@ struct UsbRig {
   }
   hal::DeviceHealth health() const { return driver->health(); }
 
-  hal::MonotonicClock clock;
   CssGadget gadget;
   std::unique_ptr<CssUsbDriver> driver;
   std::vector<hal::CssRevolution> got;

@@ -193,8 +193,10 @@ TEST(RayCaster, EmbreeAgreesWithBruteForceOnAMeshAndPrimitives) {
   std::uniform_real_distribution<double> u(-30.0, 30.0);
   int hits = 0;
   for (int i = 0; i < 2000; ++i) {
-    const Eigen::Vector3d o(u(rng), u(rng), 285.8 + 100.0);
-    const Eigen::Vector3d target(u(rng), u(rng), 285.8 - 10.0);
+    const double oy = u(rng), ox = u(rng);  // in the order of the recorded data
+    const Eigen::Vector3d o(ox, oy, 285.8 + 100.0);
+    const double ty = u(rng), tx = u(rng);
+    const Eigen::Vector3d target(tx, ty, 285.8 - 10.0);
     const Ray r{o, (target - o).normalized(), 0.0, 1e4};
     const Hit a = caster.cast(r), b = caster.cast_brute_force(r);
     ASSERT_EQ(a.valid, b.valid);

@@ -1,4 +1,5 @@
 #include "sim/superquadric_raycast.hpp"
+#include "test/support/ordered_draws.hpp"
 
 #include <gtest/gtest.h>
 
@@ -52,9 +53,9 @@ TEST(SuperquadricRaycast, HitPointsLieOnTheSurfaceForAllShapes) {
     const Eigen::Isometry3d T = pose({10, -20, 30}, {1, 2, 3}, 0.7);
     int hits = 0;
     for (int i = 0; i < 300; ++i) {
-      const Eigen::Vector3d origin(u(rng) * 300, u(rng) * 300, 400);
-      const Eigen::Vector3d target =
-          T.translation() + Eigen::Vector3d(u(rng), u(rng), u(rng)) * sq.max_size();
+      const double oy = u(rng), ox = u(rng);  // in the order of the recorded data
+      const Eigen::Vector3d origin(ox * 300, oy * 300, 400);
+      const Eigen::Vector3d target = T.translation() + test::draw3(u, rng) * sq.max_size();
       const Eigen::Vector3d dir = (target - origin).normalized();
       const auto t = intersect_superquadric(sq, T, origin, dir, 1e9);
       if (!t) continue;

@@ -209,8 +209,9 @@ TEST(VariedScene, AchievedOcclusionIsTheDrawnOneAndWhatTheScanShows) {
         return static_cast<double>(std::count_if(labels.begin(), labels.end(), in));
       };
       const double n_alone = count(scan.label, [](std::int32_t l) { return l >= 0; });
-      const double n_scene = count(s.label, [&](std::int32_t l) {
-        return std::find(s.target_parts.begin(), s.target_parts.end(), l) != s.target_parts.end();
+      const std::vector<int>& parts = s.target_parts;  // a lambda cannot name a binding
+      const double n_scene = count(s.label, [&parts](std::int32_t l) {
+        return std::find(parts.begin(), parts.end(), l) != parts.end();
       });
       ASSERT_GT(n_alone, 300.0) << to_string(t) << " seed " << seed;
       const double shown = 1.0 - n_scene / n_alone;

@@ -15,7 +15,7 @@
 namespace rangefit::daemon::real_sensors {
 namespace {
 
-std::vector<NamedDriver> css_drivers(const DeviceConfig& d, const CellConfig&, hal::Clock& clock) {
+std::vector<NamedDriver> css_drivers(const DeviceConfig& d, const CellConfig&, hal::Clock&) {
   drivers::css_usb::LibusbOptions usb;
   unsigned vid = 0, pid = 0;
   if (d.transport.rfind("usb:", 0) == 0 &&
@@ -30,7 +30,7 @@ std::vector<NamedDriver> css_drivers(const DeviceConfig& d, const CellConfig&, h
   o.name = d.name;
   std::vector<NamedDriver> out;
   out.push_back({d.name, std::make_unique<drivers::css_usb::CssUsbDriver>(
-                             std::make_unique<drivers::css_usb::LibusbTransport>(usb), o, clock)});
+                             std::make_unique<drivers::css_usb::LibusbTransport>(usb), o)});
   return out;
 }
 
