@@ -9,7 +9,6 @@ namespace {
 
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
-using Vector9d = Eigen::Matrix<double, 9, 1>;
 
 struct CssState {
   double omega_zero = 0.0;
@@ -40,7 +39,7 @@ LmLinearisation<9> linearise(const CssState& st, const std::vector<Prepared>& pt
     const double c = p.c;
     const double r = (len - radius) / c;
     const Vector3d Atu = A.transpose() * u;
-    Vector9d j;
+    LmVector<9> j;
     j[0] = -Atu.dot(Vector3d::UnitY().cross(m));  // d/d omega_zero of R_y(omega - omega_zero)
     j[1] = Atu.y();
     j[2] = Atu.z();
@@ -68,7 +67,7 @@ void set_weights(const CssState& st, std::vector<Prepared>& pts) {
   }
 }
 
-CssState css_step(const CssState& s, const Vector9d& h) {
+CssState css_step(const CssState& s, const LmVector<9>& h) {
   CssState o = s;
   o.omega_zero += h[0];
   o.t_m.y() += h[1];

@@ -15,7 +15,6 @@ namespace {
 
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
-using Vector8d = Eigen::Matrix<double, 8, 1>;
 
 constexpr double kMinTiltSpreadRad = 0.1 * 3.14159265358979323846 / 180.0;
 
@@ -77,7 +76,7 @@ LmLinearisation<8> linearise(const HeadState& s, const std::vector<PlanePoint>& 
     const Vector3d u = Ry * (p.raw.q + s.t_s);  // after the tilt
     const Vector3d v = Rx * u;                  // after the pan
     const double r = n.dot(v + s.t_w) - pl.offset_mm;
-    Vector8d j;
+    LmVector<8> j;
     j.head<3>() = (Rx * Ry).transpose() * n;
     j.segment<3>(3) = n;
     // d R_x(a) / da = [e_x]x R_x(a), and a = pan - pan_zero; the same for the tilt inside.
@@ -90,7 +89,7 @@ LmLinearisation<8> linearise(const HeadState& s, const std::vector<PlanePoint>& 
   return lin;
 }
 
-HeadState head_step(const HeadState& s, const Vector8d& h) {
+HeadState head_step(const HeadState& s, const LmVector<8>& h) {
   HeadState o = s;
   o.t_s += h.head<3>();
   o.t_w += h.segment<3>(3);
@@ -232,7 +231,7 @@ PanTiltCalibrationResult calibrate_pan_tilt(const PanTiltCalibrationInput& input
   result.geometry.tilt_zero_rad = st.tilt_zero;
   // Inverted with unit diagonal: the angles' rows are ~(750 mm)^2 times the translations', too
   // far apart for a rank test on the raw matrix.
-  const Vector8d d = fit.lin.jtj.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+  const LmVector<8> d = fit.lin.jtj.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
   const PanTiltMatrix8d scaled = d.asDiagonal() * fit.lin.jtj * d.asDiagonal();
   const Eigen::SelfAdjointEigenSolver<PanTiltMatrix8d> eig(scaled);
   if (eig.info() != Eigen::Success || !(eig.eigenvalues()[0] > 1e-12 * eig.eigenvalues()[7])) {
@@ -241,7 +240,7 @@ PanTiltCalibrationResult calibrate_pan_tilt(const PanTiltCalibrationInput& input
   }
   const double sigma2 = 2.0 * fit.lin.cost / std::max(1.0, n - 8.0);
   result.covariance = sigma2 * d.asDiagonal() * scaled.inverse() * d.asDiagonal();
-  const Vector8d sd = result.covariance.diagonal().cwiseSqrt();
+  const LmVector<8> sd = result.covariance.diagonal().cwiseSqrt();
   result.t_s_sigma_mm = sd.head<3>();
   result.t_w_sigma_mm = sd.segment<3>(3);
   result.zero_sigma_rad = sd.tail<2>();

@@ -5,7 +5,6 @@
 namespace rangefit::calib {
 
 using Eigen::Vector3d;
-using StripeVector = Eigen::Matrix<double, 8, 1>;
 
 void axis_tangents(const Vector3d& d, Vector3d& u1, Vector3d& u2) {
   const Vector3d helper = std::abs(d.x()) < 0.9 ? Vector3d::UnitX() : Vector3d::UnitY();
@@ -26,7 +25,7 @@ LmLinearisation<8> linearise(const StripeState& s, const std::vector<StripePlane
     const CubePlane& pl = planes[static_cast<std::size_t>(p.plane)];
     const Vector3d& n = pl.normal;
     const double r = n.dot(R * p.q + t - p.axis_mm * s.axis) - pl.offset_mm;
-    StripeVector j;
+    LmVector<8> j;
     j.head<3>() = n;
     j.segment<3>(3) = p.q.cross(R.transpose() * n);  // R exp([w]x) q ~ R (q + w x q)
     j[6] = -p.axis_mm * n.dot(u1);
@@ -38,7 +37,7 @@ LmLinearisation<8> linearise(const StripeState& s, const std::vector<StripePlane
   return lin;
 }
 
-StripeState stripe_step(const StripeState& s, const StripeVector& h) {
+StripeState stripe_step(const StripeState& s, const LmVector<8>& h) {
   StripeState out = s;
   out.T_cell_ranger.translation() += h.head<3>();
   const Vector3d w = h.segment<3>(3);

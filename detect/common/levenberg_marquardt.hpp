@@ -22,11 +22,15 @@ struct LmOptions {
 
 enum class LmStop { kGradient, kStep, kMaxIterations };
 
+// A state's parameters, a step h or a residual's Jacobian row: N values.
+template <int N>
+using LmVector = Eigen::Matrix<double, N, 1>;
+
 template <int N>
 struct LmLinearisation {
   double cost = 0.0;  // 0.5 sum r^2 (eq. 2.49)
   Eigen::Matrix<double, N, N> jtj = Eigen::Matrix<double, N, N>::Zero();
-  Eigen::Matrix<double, N, 1> g = Eigen::Matrix<double, N, 1>::Zero();  // J^T r
+  LmVector<N> g = LmVector<N>::Zero();  // J^T r
 };
 
 template <int N, class State>
@@ -43,7 +47,7 @@ struct LmOutcome {
 template <int N, class State, class Linearise, class Step, class Scale>
 LmOutcome<N, State> levenberg_marquardt(const State& initial, const LmOptions& options,
                                         Linearise&& linearise, Step&& step, Scale&& scale) {
-  using Vector = Eigen::Matrix<double, N, 1>;
+  using Vector = LmVector<N>;
   LmOutcome<N, State> out{initial, linearise(initial)};
   LmLinearisation<N>& lin = out.lin;
   out.initial_cost = lin.cost;
