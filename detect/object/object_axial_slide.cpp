@@ -12,20 +12,26 @@ namespace {
 constexpr double kEndless = 10.0;
 
 // The shift along one axis of half size `a` that puts the contiguous run of wall coordinates
-// `u` (sorted) that starts within the part inside [-a, a], closest to `prefer`; 0 when no shift
-// does.
+// `u` (sorted) with the most points within the part inside [-a, a], closest to `prefer`; 0 when
+// no shift does. Runs end at gaps wider than max_gap_share x a: a few stray points within the
+// part (another object's, a shadow's edge) are not its wall.
 double shift_for(const std::vector<double>& u, double a, double prefer,
                  const AxialSlideOptions& o) {
-  const auto first = std::lower_bound(u.begin(), u.end(), -a);
-  const auto last = std::upper_bound(u.begin(), u.end(), a);
-  if (last - first < o.min_wall_points) return 0.0;
   const double gap = o.max_gap_share * a;
-  auto hi = last - 1;
-  while (hi + 1 != u.end() && *(hi + 1) - *hi <= gap) ++hi;
-  auto lo = first;
-  while (lo != u.begin() && *lo - *(lo - 1) <= gap) --lo;
-  const double s_min = *hi - a, s_max = *lo + a;  // shifts that contain [*lo, *hi]
-  if (s_min > s_max) return 0.0;                  // the wall is longer than the part
+  std::ptrdiff_t best_within = 0;
+  std::size_t lo = 0, hi = 0;
+  for (std::size_t begin = 0; begin < u.size();) {
+    std::size_t end = begin + 1;  // the run is [begin, end)
+    while (end < u.size() && u[end] - u[end - 1] <= gap) ++end;
+    const auto first = std::lower_bound(u.begin() + static_cast<std::ptrdiff_t>(begin),
+                                        u.begin() + static_cast<std::ptrdiff_t>(end), -a);
+    const auto last = std::upper_bound(first, u.begin() + static_cast<std::ptrdiff_t>(end), a);
+    if (last - first > best_within) best_within = last - first, lo = begin, hi = end - 1;
+    begin = end;
+  }
+  if (best_within < o.min_wall_points) return 0.0;
+  const double s_min = u[hi] - a, s_max = u[lo] + a;  // shifts that contain [u[lo], u[hi]]
+  if (s_min > s_max) return 0.0;                      // the wall is longer than the part
   return std::clamp(prefer, s_min, s_max);
 }
 

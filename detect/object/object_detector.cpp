@@ -335,6 +335,18 @@ bool pose_may_fail(const Rejection& why, const Superquadric& part) {
   return pose_dependent && !part.ball() && std::abs(why.value) <= kNearMiss * why.limit;
 }
 
+// A candidate that fails a check of how well it is posed by at most a fifth of the limit: the
+// part may be there, posed a little off (a lying box started on its top face, its yaw still to
+// find). Its points stay RANSAC seeds, so that later hypotheses may pose it better.
+bool near_miss(const Rejection& why) {
+  constexpr double kNearMissShare = 0.2;
+  const bool posing = why.check == Check::kMeasure || why.check == Check::kSize ||
+                      why.check == Check::kResidual || why.check == Check::kFloating ||
+                      why.check == Check::kBelowPlane || why.check == Check::kOpenEnd ||
+                      why.check == Check::kOpenRim || why.check == Check::kContinues;
+  return posing && std::abs(why.value) <= (1.0 + kNearMissShare) * why.limit;
+}
+
 // judge_at at the given pose, and where a single part fails a check that depends on how well it
 // is posed, once more at its pose fitted to the points' distances (object_hypotheses.hpp
 // polish_pose). `T` becomes the pose that passed.
@@ -363,7 +375,8 @@ std::optional<Rejection> judge_part(const HypothesisContext& ctx, const Superqua
 // found again by `confirmations` hypotheses, for a compound model (its hypotheses stay in the
 // vote, but a look-alike of the part is not fitted again and again while the real part waits;
 // and for a single-part model asked for K instances, each of the first K - 1 established).
-// A set-aside place's points are no longer drawn as RANSAC seeds. A single-part model stops
+// A set-aside place's points are no longer drawn as RANSAC seeds, unless it failed by a near
+// miss (near_miss). A single-part model stops
 // once K leaders have passed and been found again by `confirmations` hypotheses each. Batches are
 // fixed, so the stop and the set-aside points are deterministic.
 // A place judged during the search: its pose, scores and verdict, so that the final candidates
@@ -423,13 +436,13 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Sup
                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   const std::size_t m = static_cast<std::size_t>(compound ? o.compound_hypotheses : o.hypotheses);
   std::vector<PartHypothesis> all(m);
-  std::vector<PlacedPart> set_aside;
+  std::vector<PlacedPart> set_aside, seeds_aside;
   std::size_t established = 0;
   HypothesisContext ctx = base;
   std::size_t done = 0;
   while (done < m) {
     const std::size_t end = std::min(m, done + static_cast<std::size_t>(o.batch));
-    ctx.seed_excluded = set_aside;
+    ctx.seed_excluded = seeds_aside;
     run_batch(ctx, part, part_index, done, end, threads, all);
     done = end;
     if (!o.early_stop || done >= m) continue;
@@ -451,6 +464,7 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Sup
     judged.push_back(std::move(j));
     if (rejected) {
       set_aside.push_back({part, T});
+      if (!near_miss(*judged.back().why)) seeds_aside.push_back({part, T});
       continue;
     }
     int agree = 0;
@@ -464,6 +478,7 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Sup
     // One more place established: a single-part model stops once it has its K instances.
     if (!compound && ++established >= static_cast<std::size_t>(o.instances)) break;
     set_aside.push_back({part, T});
+    seeds_aside.push_back({part, T});
   }
   all.resize(done);
   return all;
@@ -901,13 +916,15 @@ const Judged* judged_before(const ObjectModel& model, const Hypotheses& hyps,
   return nullptr;
 }
 
-// A single part rejected for carrying on past a flat face or for an open end, slid along its
+// A single part rejected for carrying on past a flat face, for an open end or for a cap whose
+// rim reaches past the face the scan shows (all three: posed off along its wall), slid along its
 // wall (slid_along_wall) and confirmed there: `inst` is moved to the slid pose and true is
 // returned.
 bool slide_to_confirm(const HypothesisContext& ctx, const ObjectModel& model,
                       const CoverageOptions& cover, double noise_mm, Check failed,
                       DetectedInstance& inst) {
-  if (model.parts.size() != 1 || (failed != Check::kContinues && failed != Check::kOpenEnd)) {
+  if (model.parts.size() != 1 ||
+      (failed != Check::kContinues && failed != Check::kOpenEnd && failed != Check::kOpenRim)) {
     return false;
   }
   const Superquadric& part = model.parts[0].shape;
@@ -1124,6 +1141,7 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
   if (options.rest_on_plane && cover.removed_plane) {
     ctx.table = cover.removed_plane;
     ctx.table_noise_mm = noise_mm;
+    ctx.rests_on_table = model.parts.size() == 1;
   }
   Hypotheses hyps = search_parts(ctx, model, cover, noise_mm);  // 5.1.2
   result.hypotheses_evaluated = hyps.evaluated;

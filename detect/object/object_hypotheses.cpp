@@ -80,6 +80,36 @@ double sinks_by(const Superquadric& part, const Eigen::Isometry3d& T, const pca:
          table.normal.dot(T.translation() - table.point);
 }
 
+// How far the posed part's lowest point stands above the table (< 0: below it), by its own
+// support; nullopt for tapered and pinched (eps > 1) parts, which it does not bound. Unlike
+// sinks_by's inscribed ellipsoid, a box tilted onto an edge (the fig. 5.18 box, 20 deg) rests.
+std::optional<double> lowest_above(const Superquadric& part, const Eigen::Isometry3d& T,
+                                   const pca::Plane& table) {
+  if (part.eps1 > 1.0 || part.eps2 > 1.0 || part.kx != 0.0 || part.ky != 0.0) return std::nullopt;
+  return table.normal.dot(T.translation() - table.point) -
+         support(part, T.linear().transpose() * -table.normal);
+}
+
+// The part slid within the plane of the patch it was started on (which does not place it along
+// itself) until its lowest point touches the table, where it stands square on it (on a face, or
+// along or across its axis). Unmoved where the patch faces the table's normal (a top face places
+// the part's height itself), where the start is tilted (the moments within a flat patch follow
+// its outline; slid down, a start tilted on the fig. 5.18 box's face misfit its patch), or where
+// lowest_above does not judge the part.
+Eigen::Isometry3d settled(const Superquadric& part, const Eigen::Isometry3d& T,
+                          const Eigen::Vector3d& patch_normal, const pca::Plane& table) {
+  constexpr double kMinInPlane = 0.3;   // |table normal within the patch's plane|: ~17 deg tilt
+  constexpr double kSquareCos = 0.985;  // an axis within ~10 deg of the table's normal
+  const Eigen::Vector3d along = table.normal - table.normal.dot(patch_normal) * patch_normal;
+  const double rise = along.norm();  // height gained per mm moved along `along`
+  const std::optional<double> above = lowest_above(part, T, table);
+  const bool square = (T.linear().transpose() * table.normal).cwiseAbs().maxCoeff() >= kSquareCos;
+  if (rise < kMinInPlane || !above || !square) return T;
+  Eigen::Isometry3d out = T;
+  out.translation() -= (*above / rise) * (along / rise);
+  return out;
+}
+
 // RANSAC patch radius: the smallest size (5.1.2), wider for an elongated part (a shaft), whose
 // small patches are nearly round bits of a thin cylinder and leave its axis to chance.
 double patch_radius(const Superquadric& part) {
@@ -452,7 +482,18 @@ PartHypothesis generate_hypothesis(const HypothesisContext& ctx, const Superquad
       return sinks_by(part, T, *ctx.table) <= table_margin;
     };
   }
+  const auto rests = [&](const Eigen::Isometry3d& T) {
+    const std::optional<double> above = lowest_above(part, T, *ctx.table);
+    return !above || std::abs(*above) <= table_margin;
+  };
+  if (ctx.table && ctx.rests_on_table) {
+    init.preferred = rests;
+    init.settle = [&](const Eigen::Isometry3d& T, const Eigen::Vector3d& patch_normal) {
+      return settled(part, T, patch_normal, *ctx.table);
+    };
+  }
   double best_measure = std::numeric_limits<double>::infinity();
+  bool best_rests = false;
   for (int trial = 0; trial < o.trials; ++trial) {
     // A random seed point and a random patch within the smallest size parameter (5.1.2); seeds
     // on candidates already set aside are drawn again (a few times: they may be most points).
@@ -485,8 +526,13 @@ PartHypothesis generate_hypothesis(const HypothesisContext& ctx, const Superquad
       T = refine(ctx, part, T, none, scratch);
       measure = verify_pose(ctx, part, T).measure;
     }
-    if (measure < best_measure) {
+    // A trial whose part rests on the table, as the model's part must, wins over one that does
+    // not, whatever their M: on a flat patch M is the noise, wherever the patch is.
+    if (!std::isfinite(measure)) continue;
+    const bool resting = !init.preferred || rests(T);
+    if (resting > best_rests || (resting == best_rests && measure < best_measure)) {
       best_measure = measure;
+      best_rests = resting;
       best.valid = true;
       best.T_world_part = T;
     }

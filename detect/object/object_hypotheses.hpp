@@ -35,6 +35,9 @@ struct HypothesisContext {
   // part sinks into it by more than table_margin_mm() are not taken.
   std::optional<pca::Plane> table;
   double table_noise_mm = 0.0;  // the scan's range noise, as the table shows it
+  // The part must rest on the table (a single-part model; ObjectDetectOptions::rest_on_plane):
+  // RANSAC starts are slid onto it, and those that rest on it win over those that do not.
+  bool rests_on_table = false;
 };
 
 // How far a part of this smallest size may reach through the table, or stand above it, and still

@@ -197,6 +197,7 @@ PoseFitResult fit_pose_from_moments(const Superquadric& sq, std::span<const Eige
     signs = 1;
   }
   best.measure = std::numeric_limits<double>::infinity();
+  bool best_preferred = false;
   for (int zi = 0; zi < 3; ++zi) {
     // z along moment direction zi, x along the next one; the centre sits behind the patch by the
     // size of the part along whichever axis the normal became.
@@ -210,10 +211,17 @@ PoseFitResult fit_pose_from_moments(const Superquadric& sq, std::span<const Eige
       Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
       T.linear() = R;
       T.translation() = c - (s == 0 ? 1.0 : -1.0) * depth * normal;
+      if (init.settle) T = init.settle(T, normal);
       const PoseFitResult r = fit_pose(sq, points, T, short_options);
-      if (r.ok() && r.measure < best.measure &&
-          (!init.admissible || init.admissible(r.T_world_part)))
+      if (!r.ok() || !std::isfinite(r.measure) ||
+          (init.admissible && !init.admissible(r.T_world_part))) {
+        continue;
+      }
+      const bool preferred = !init.preferred || init.preferred(r.T_world_part);
+      if (preferred > best_preferred || (preferred == best_preferred && r.measure < best.measure)) {
         best = r;
+        best_preferred = preferred;
+      }
     }
   }
   if (!std::isfinite(best.measure)) return best;

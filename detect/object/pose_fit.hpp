@@ -66,6 +66,15 @@ struct MomentInitOptions {
   // fits every candidate equally well, and the one picked by M alone may be a part standing
   // through the table when the other would rest on it. None accepted: no fit (not ok()).
   std::function<bool(const Eigen::Isometry3d&)> admissible;
+  // When set, an admissible candidate it accepts wins over one it does not, whatever their M
+  // (e.g. a part that rests on the table where the part must).
+  std::function<bool(const Eigen::Isometry3d&)> preferred;
+  // When set, each candidate is moved by it before its short fit; it gets the candidate and the
+  // patch's normal. A flat patch does not place a part along itself: a patch high on a standing
+  // box's face starts the box floating, and the lying box that its end face would make rests in
+  // the same place; slid down the face onto the table, the one whose face does not reach the
+  // patch misfits it.
+  std::function<Eigen::Isometry3d(const Eigen::Isometry3d&, const Eigen::Vector3d&)> settle;
 };
 
 // Thesis 5.1.2: the z-axis is tried along each of the three central-moment directions of the

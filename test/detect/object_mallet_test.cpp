@@ -64,6 +64,18 @@ TEST(AxialSlide, LeavesLongerAndHiddenWallsAlone) {
   EXPECT_NEAR(slide_to_wall(kCan, at_z(5.0), hidden, hidden_tree, o).translation().z(), 20.0, 0.5);
 }
 
+// A few stray points on the wall's line within the part's length but apart from its run (another
+// object's, a shadow's edge) do not stand for the wall: the part, posed 19 mm past its wall's end
+// with its other end hidden, is slid onto the run, as far as `prefer` asks and the run allows.
+TEST(AxialSlide, SlidesOntoTheWallsRunNotOntoStrayPoints) {
+  std::vector<Eigen::Vector3d> pts = wall(-31.0, 80.0);  // the can at z = 19, its far end hidden
+  for (double z = -48.0; z <= -44.0; z += 1.0) pts.emplace_back(0.0, 30.0, z);
+  const KdTree tree(pts);
+  AxialSlideOptions o;
+  o.prefer = Eigen::Vector3d(0.0, 0.0, 50.0);
+  EXPECT_NEAR(slide_to_wall(kCan, at_z(0.0), pts, tree, o).translation().z(), 19.0, 0.5);
+}
+
 // Varied stripe scenes (tuning seeds; sim/varied_scene.hpp) where the detector placed the mallet
 // wrongly: seed 7, a head lying with its caps along the sweep, fitted 4 mm short of its wall's
 // end and rejected as continuing past it; seed 28, its shaft 3-4 mm off along its axis; seed 15,
