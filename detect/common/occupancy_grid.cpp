@@ -63,30 +63,40 @@ bool OccupancyGrid::occupied(const Eigen::Vector3d& p) const {
 double OccupancyGrid::first_hit(const Eigen::Vector3d& from, const Eigen::Vector3d& to,
                                 double skip_mm) const {
   if (bits_.empty()) return -1.0;
-  const Eigen::Vector3d d = to - from;
-  const double length = d.norm();
-  if (!(length > 0.0) || !std::isfinite(length)) return -1.0;
-  const Eigen::Vector3d u = d / length;
   // Clip the walk to the box: outside it there are no points.
   const Eigen::Vector3d hi =
       lo_ + cell_ * Eigen::Vector3d(static_cast<double>(nx_), static_cast<double>(ny_),
                                     static_cast<double>(nz_));
-  double t0 = std::max(0.0, skip_mm), t1 = length;
-  for (int a = 0; a < 3; ++a) {
-    if (std::abs(u[a]) < 1e-12) {
-      if (from[a] < lo_[a] || from[a] > hi[a]) return -1.0;
-      continue;
-    }
-    double ta = (lo_[a] - from[a]) / u[a], tb = (hi[a] - from[a]) / u[a];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-  }
+  const std::optional<BoxWalk> w = walk_in_box(from, to, skip_mm, lo_, hi);
+  if (!w) return -1.0;
   const double step = 0.5 * cell_;
-  for (double t = t0; t <= t1; t += step) {
-    if (occupied(from + t * u)) return t;
+  for (double t = w->begin; t <= w->end; t += step) {
+    if (occupied(from + t * w->u)) return t;
   }
   return -1.0;
+}
+
+std::optional<BoxWalk> walk_in_box(const Eigen::Vector3d& from, const Eigen::Vector3d& to,
+                                   double skip_mm, const Eigen::Vector3d& lo,
+                                   const Eigen::Vector3d& hi) {
+  const Eigen::Vector3d d = to - from;
+  const double length = d.norm();
+  if (!(length > 0.0) || !std::isfinite(length)) return std::nullopt;
+  BoxWalk w;
+  w.u = d / length;
+  w.begin = std::max(0.0, skip_mm), w.end = length;
+  for (int a = 0; a < 3; ++a) {
+    if (std::abs(w.u[a]) < 1e-12) {
+      if (from[a] < lo[a] || from[a] > hi[a]) return std::nullopt;
+      continue;
+    }
+    double ta = (lo[a] - from[a]) / w.u[a], tb = (hi[a] - from[a]) / w.u[a];
+    if (ta > tb) std::swap(ta, tb);
+    w.begin = std::max(w.begin, ta);
+    w.end = std::min(w.end, tb);
+  }
+  if (w.begin > w.end) return std::nullopt;
+  return w;
 }
 
 }  // namespace rangefit

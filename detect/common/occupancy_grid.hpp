@@ -7,10 +7,22 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
 namespace rangefit {
+
+// A walk along the line from `from` towards `to`, clipped to the box [lo, hi] and started after
+// `skip_mm`: the unit direction and the distances [begin, end] of the walk from `from`; nullopt
+// for a degenerate line, or one that misses the box.
+struct BoxWalk {
+  Eigen::Vector3d u = Eigen::Vector3d::Zero();
+  double begin = 0.0, end = -1.0;
+};
+std::optional<BoxWalk> walk_in_box(const Eigen::Vector3d& from, const Eigen::Vector3d& to,
+                                   double skip_mm, const Eigen::Vector3d& lo,
+                                   const Eigen::Vector3d& hi);
 
 class OccupancyGrid {
  public:

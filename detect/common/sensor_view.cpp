@@ -39,19 +39,18 @@ bool valid(const SensorView& v) {
   return false;
 }
 
-Eyes sensor_eyes(const SensorView& v, const Eigen::Vector3d& p) {
+std::optional<double> sweep_position(const SensorView& v, const Eigen::Vector3d& p) {
   switch (v.kind) {
     case SensorView::Kind::kUnknown:
-      return {};
     case SensorView::Kind::kPoint:
-      return {1, {v.origin, Eigen::Vector3d::Zero()}};
+      return std::nullopt;
     case SensorView::Kind::kLinearSweep: {
       // The plane through origin + s d with normal n holds p: n.(p - o - s d) = 0.
       const double nd = v.plane_normal.dot(v.direction);
-      if (std::abs(nd) < 1e-12) return {};
+      if (std::abs(nd) < 1e-12) return std::nullopt;
       const double s = v.plane_normal.dot(p - v.origin) / nd;
-      if (!(s >= v.sweep_min && s <= v.sweep_max)) return {};
-      return two_eyes(v.origin + s * v.direction, v.camera_offset);
+      if (!(s >= v.sweep_min && s <= v.sweep_max)) return std::nullopt;
+      return s;
     }
     case SensorView::Kind::kRotarySweep: {
       // R(t) n . (p - c) = n . (o - c) (a turn keeps dot products). With a the axis:
@@ -63,7 +62,7 @@ Eyes sensor_eyes(const SensorView& v, const Eigen::Vector3d& p) {
       const double B = n_perp.dot(q), C = a.cross(v.plane_normal).dot(q);
       const double k = v.plane_normal.dot(v.origin - v.pivot);
       const double r = std::hypot(B, C);
-      if (r < 1e-12 || std::abs(k - A) > r) return {};
+      if (r < 1e-12 || std::abs(k - A) > r) return std::nullopt;
       const double phi = std::atan2(C, B), delta = std::acos(std::clamp((k - A) / r, -1.0, 1.0));
       const double mid = 0.5 * (v.sweep_min + v.sweep_max);
       double best = 0.0, best_dist = INFINITY;
@@ -76,12 +75,27 @@ Eyes sensor_eyes(const SensorView& v, const Eigen::Vector3d& p) {
           best_dist = std::abs(t - mid);
         }
       }
-      if (!std::isfinite(best_dist)) return {};
-      const Eigen::AngleAxisd R(best, a);
-      return two_eyes(v.pivot + R * (v.origin - v.pivot), R * v.camera_offset);
+      if (!std::isfinite(best_dist)) return std::nullopt;
+      return best;
     }
   }
-  return {};
+  return std::nullopt;
+}
+
+SweepPose sweep_pose(const SensorView& v, double s) {
+  if (v.kind == SensorView::Kind::kRotarySweep) {
+    const Eigen::AngleAxisd R(s, v.direction);
+    return {v.pivot + R * (v.origin - v.pivot), R * v.plane_normal, R * v.camera_offset};
+  }
+  return {v.origin + s * v.direction, v.plane_normal, v.camera_offset};
+}
+
+Eyes sensor_eyes(const SensorView& v, const Eigen::Vector3d& p) {
+  if (v.kind == SensorView::Kind::kPoint) return {1, {v.origin, Eigen::Vector3d::Zero()}};
+  const std::optional<double> s = sweep_position(v, p);
+  if (!s) return {};
+  const SweepPose pose = sweep_pose(v, *s);
+  return two_eyes(pose.apex, pose.camera_offset);
 }
 
 }  // namespace rangefit

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <optional>
 
 namespace rangefit {
 
@@ -44,6 +45,16 @@ struct Eyes {
   std::array<Eigen::Vector3d, 2> at{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
 };
 Eyes sensor_eyes(const SensorView& view, const Eigen::Vector3d& p);
+
+// Sweeps: the sweep position (mm or rad) whose laser plane holds p, within [sweep_min,
+// sweep_max]; nullopt otherwise and for the other kinds.
+std::optional<double> sweep_position(const SensorView& view, const Eigen::Vector3d& p);
+
+// Sweeps: the laser fan's apex, its plane's normal and the camera's offset at sweep position s.
+struct SweepPose {
+  Eigen::Vector3d apex, plane_normal, camera_offset;
+};
+SweepPose sweep_pose(const SensorView& view, double s);
 
 // False for non-finite fields, a non-unit direction or normal, an empty sweep, or a linear sweep
 // that runs inside its own laser plane (it would never sweep the plane across anything).

@@ -228,16 +228,34 @@ double lowest_height(const Superquadric& sq, const Eigen::Isometry3d& T, const p
   return best;
 }
 
+// The camera's line of sight is walked through the laser's shadow in steps of this many
+// occupancy cells: a shadow that hides anything (a wall's, an overhang's) is many cells wide.
+constexpr double kShadowStepCells = 2.0;
+
 // What the scan says of a surface sample q (part frame) of the part posed at T.
 class SampleJudge {
  public:
   SampleJudge(const SuperquadricMetric& m, const Eigen::Isometry3d& T,
-              std::span<const Eigen::Vector3d> points, const KdTree& tree,
-              const CoverageOptions& o, double tol, const FarEyes& far)
-      : m_(m), T_(T), points_(points), tree_(tree), o_(o), tol_(tol), far_(far),
+              std::span<const Eigen::Vector3d> points, const KdTree& tree, const CoverageOptions& o,
+              double tol, const FarEyes& far)
+      : m_(m),
+        T_(T),
+        points_(points),
+        tree_(tree),
+        o_(o),
+        tol_(tol),
+        far_(far),
         // Lines of sight start this far from the surface: its own points and its pose error stay
         // out (along an oblique line of sight, farther from the sample).
-        clearance_(o.occupancy ? tol + o.occupancy->cell_mm() : tol) {}
+        clearance_(o.occupancy ? tol + o.occupancy->cell_mm() : tol),
+        to_part_(T.inverse()),
+        // G grows with the square of the radial scale: this is `tol` outside the smallest size.
+        own_surface_(std::pow(1.0 + tol / m.model().min_size(), 2)),
+        casts_([this](const Eigen::Vector3d& w) { return m_.value(to_part_ * w) > own_surface_; }) {
+  }
+
+  SampleJudge(const SampleJudge&) = delete;  // casts_ holds `this`
+  SampleJudge& operator=(const SampleJudge&) = delete;
 
   Sample operator()(const Eigen::Vector3d& q) {
     Eigen::Vector3d grad;
@@ -264,8 +282,17 @@ class SampleJudge {
       if (incidence <= kMinIncidenceCosine) return Sample::kNoEvidence;
       skip[k] = clearance_ / incidence;
     }
+    // The camera's line of sight (the second eye) may also pass where the laser never reached (a
+    // wall's grazed face, laser_shadow.hpp): the sample may be hidden there, unless what cast the
+    // shadow is the part's own surface.
     for (int k = 0; k < eyes.count && o_.occupancy; ++k) {
       if (o_.occupancy->first_hit(p, eyes.at[k], skip[k]) >= 0.0) return Sample::kHidden;
+      if (k > 0 && o_.laser_shadow &&
+          o_.laser_shadow->first_shadowed(p, eyes.at[k], skip[k],
+                                          kShadowStepCells * o_.occupancy->cell_mm(), tol_,
+                                          casts_) >= 0.0) {
+        return Sample::kHidden;
+      }
     }
     tree_.knn_search(p, 1, nbr_);
     const double nearest = nbr_.empty() ? INFINITY : (points_[nbr_[0]] - p).norm();
@@ -289,6 +316,10 @@ class SampleJudge {
   double tol_;
   const FarEyes& far_;
   double clearance_;
+  // The scan's surface on or inside the posed part casts no shadow over it (LaserShadow::Casts).
+  Eigen::Isometry3d to_part_;
+  double own_surface_;
+  LaserShadow::Casts casts_;
   std::vector<std::uint32_t> nbr_;
 };
 

@@ -16,6 +16,7 @@
 #include <span>
 
 #include "detect/common/kdtree.hpp"
+#include "detect/common/laser_shadow.hpp"
 #include "detect/common/occupancy_grid.hpp"
 #include "detect/common/pca.hpp"
 #include "detect/common/sensor_view.hpp"
@@ -55,6 +56,9 @@ struct CoverageOptions {
   // occluded, and a line of sight that runs on past a sample to a measured cell saw past it.
   // Without it nothing counts as occluded or seen past.
   const OccupancyGrid* occupancy = nullptr;
+  // The laser's shadow of the scan (with a stripe ranger's sensor): a camera's line of sight
+  // through it is not known to be clear. Only with `occupancy`.
+  const LaserShadow* laser_shadow = nullptr;
 };
 
 struct SurfaceCoverage {

@@ -8,13 +8,15 @@
 //   object_benchmark --methods [--seeds N] thesis methods A-D vs ours, like table 5.5
 //   object_benchmark --noise [--seeds N]  TP rate vs noise on the three-sphere scene (fig. 5.29)
 //   object_benchmark --varied [--seeds N] [--per-factor] [--pan-tilt] [--no-sensor] [--held-out]
-//                    [--target TARGET] [--failures] [--first N]
+//                    [--target TARGET] [--failures] [--first N] [--detector-seeds K]
 //                                         TP, wrong, missed and false positives on seeded varied
 //                                         stripe scans (object_varied_report.hpp), per target
 //                                         (or one) and per factor; tuning seeds (from the N-th,
 //                                         default 1), or the held-out ones; --failures lists
-//                                         the failing seeds
-//   object_benchmark --varied-case TARGET SEED [--pan-tilt] [--no-sensor]
+//                                         the failing seeds; --detector-seeds K detects each
+//                                         scene with K detector seeds and prints the rate
+//                                         per detector seed beside the pooled one
+//   object_benchmark --varied-case TARGET SEED [--pan-tilt] [--no-sensor] [--detector-seed K]
 //                                         one varied scene in detail: drawn parts, result,
 //                                         rejections and the scene part each place is on
 #include <benchmark/benchmark.h>
@@ -408,13 +410,12 @@ void print_noise(int seeds) {
 }  // namespace rangefit
 
 int main(int argc, char** argv) {
-  int seeds = 100;
+  int seeds = 100, case_repetition = 0;
   bool tp = false, methods = false, noise = false, varied = false;
-  bool per_factor = false, pan_tilt = false, sensor_known = true, held_out = false;
-  bool list_failures = false;
+  rangefit::bench::VariedRun run;
   std::vector<char*> rest = {argv[0]};
   std::string case_target, only_target;
-  std::uint64_t case_seed = 0, first = 1;
+  std::uint64_t case_seed = 0;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--tp")) {
       tp = true;
@@ -425,24 +426,28 @@ int main(int argc, char** argv) {
     } else if (!std::strcmp(argv[i], "--varied")) {
       varied = true;
     } else if (!std::strcmp(argv[i], "--per-factor")) {
-      per_factor = true;
+      run.per_factor = true;
     } else if (!std::strcmp(argv[i], "--pan-tilt")) {
-      pan_tilt = true;
+      run.pan_tilt = true;
     } else if (!std::strcmp(argv[i], "--no-sensor")) {
-      sensor_known = false;
+      run.sensor_known = false;
     } else if (!std::strcmp(argv[i], "--failures")) {
-      list_failures = true;
+      run.list_failures = true;
     } else if (!std::strcmp(argv[i], "--held-out")) {
-      held_out = true;
+      run.held_out = true;
     } else if (!std::strcmp(argv[i], "--varied-case") && i + 2 < argc) {
       case_target = argv[++i];
       case_seed = std::strtoull(argv[++i], nullptr, 10);
     } else if (!std::strcmp(argv[i], "--target") && i + 1 < argc) {
       only_target = argv[++i];
     } else if (!std::strcmp(argv[i], "--first") && i + 1 < argc) {
-      first = std::strtoull(argv[++i], nullptr, 10);
+      run.first = std::strtoull(argv[++i], nullptr, 10);
     } else if (!std::strcmp(argv[i], "--seeds") && i + 1 < argc) {
       seeds = std::max(1, std::atoi(argv[++i]));
+    } else if (!std::strcmp(argv[i], "--detector-seeds") && i + 1 < argc) {
+      run.detector_seeds = std::max(1, std::atoi(argv[++i]));
+    } else if (!std::strcmp(argv[i], "--detector-seed") && i + 1 < argc) {
+      case_repetition = std::max(0, std::atoi(argv[++i]));
     } else {
       rest.push_back(argv[i]);
     }
@@ -451,23 +456,23 @@ int main(int argc, char** argv) {
   if (methods) rangefit::print_methods(seeds);
   if (noise) rangefit::print_noise(seeds);
   if (varied) {
-    const auto only = rangefit::sim::varied_target_from(only_target);
-    if (!only_target.empty() && !only) {
+    run.seeds = seeds;
+    run.only = rangefit::sim::varied_target_from(only_target);
+    if (!only_target.empty() && !run.only) {
       std::fprintf(stderr, "unknown target %s\n", only_target.c_str());
       return 2;
     }
     // --first N: tuning seeds from the N-th on; the held-out seeds always start at their base,
     // and a tuning range must stay inside the tuning set.
-    if (first < 1 || (held_out && first != 1) ||
-        first - 1 + static_cast<std::uint64_t>(seeds) > rangefit::sim::kTuningSeedCount) {
+    if (run.first < 1 || (run.held_out && run.first != 1) ||
+        run.first - 1 + static_cast<std::uint64_t>(seeds) > rangefit::sim::kTuningSeedCount) {
       std::fprintf(stderr, "--first %llu --seeds %d: outside the tuning seeds 1..%llu%s\n",
-                   static_cast<unsigned long long>(first), seeds,
+                   static_cast<unsigned long long>(run.first), seeds,
                    static_cast<unsigned long long>(rangefit::sim::kTuningSeedCount),
-                   held_out ? " (--first is for tuning seeds only)" : "");
+                   run.held_out ? " (--first is for tuning seeds only)" : "");
       return 2;
     }
-    rangefit::bench::print_varied(seeds, per_factor, pan_tilt, sensor_known, held_out, only,
-                                 list_failures, first);
+    rangefit::bench::print_varied(run);
   }
   if (!case_target.empty()) {
     const auto target = rangefit::sim::varied_target_from(case_target);
@@ -475,7 +480,8 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "unknown target %s\n", case_target.c_str());
       return 2;
     }
-    rangefit::bench::print_varied_case(*target, pan_tilt, case_seed, sensor_known);
+    rangefit::bench::print_varied_case(*target, run.pan_tilt, case_seed, run.sensor_known,
+                                       case_repetition);
     return 0;
   }
   if (tp || methods || noise || varied) return 0;

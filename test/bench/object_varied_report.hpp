@@ -23,6 +23,7 @@ namespace rangefit::bench {
 
 struct VariedCase {
   std::uint64_t seed = 0;
+  int repetition = 0;  // which detector seed (detector_seed)
   sim::VariedScene::Factors factors;
   bool found = false, tp = false;
   double ms = 0.0;
@@ -42,19 +43,26 @@ inline bool all_parts_true(const ObjectDetectResult& r, const sim::VariedScene& 
   return true;
 }
 
+// The detector's seed for repetition k of a scene: k = 0 is the scene's own seed, the others move
+// only the detector's random draws (RANSAC seeds, trials), not the scene.
+inline std::uint64_t detector_seed(std::uint64_t scene_seed, int k) {
+  return scene_seed + (static_cast<std::uint64_t>(k) << 32);
+}
+
 inline VariedCase run_varied_case(sim::VariedTarget target, bool pan_tilt, std::uint64_t seed,
-                                  bool sensor_known) {
+                                  bool sensor_known, int repetition = 0) {
   sim::VariedSceneOptions so;
   so.target = target;
   so.pan_tilt = pan_tilt;
   const sim::VariedScene s = sim::make_varied_scene(so, seed);
   ObjectDetectOptions o;
-  o.seed = seed;
+  o.seed = detector_seed(seed, repetition);
   if (sensor_known) o.sensor = s.view;
   const auto t0 = std::chrono::steady_clock::now();
   const ObjectDetectResult r = detect_object(s.model, s.cloud.points, o);
   VariedCase c;
   c.seed = seed;
+  c.repetition = repetition;
   c.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   c.factors = s.factors;
   c.found = r.found();
@@ -143,50 +151,96 @@ inline std::vector<Factor> varied_factors() {
   };
 }
 
-// One block of the report: every target (or only `only`) over `seeds` seeds from `first`.
-inline void print_varied_block(const char* title, std::uint64_t first, int seeds, bool pan_tilt,
-                               bool sensor_known, bool per_factor,
-                               std::optional<sim::VariedTarget> only, bool list_failures) {
-  std::printf("\n%s: seeds %llu..%llu, %s, sensor %s\n", title,
+// What one --varied report runs: the seeds, the sensor, the targets and how each is printed.
+struct VariedRun {
+  int seeds = 100;
+  std::uint64_t first = 1;  // 1-based within the tuning set
+  bool held_out = false;
+  bool pan_tilt = false;
+  bool sensor_known = true;
+  bool per_factor = false;
+  bool list_failures = false;
+  // Each scene detected with this many detector seeds (detector_seed): one run's rate carries
+  // the detector's own luck, about +-4 points on ~100 scenes; the rows then count every
+  // (scene, detector seed) and the per-seed rates are printed beside them.
+  int detector_seeds = 1;
+  std::optional<sim::VariedTarget> only;
+};
+
+// The rate of a row per detector seed ("93.5 / 96.3 / 95.3"), or "" with one detector seed.
+inline std::string per_repetition(const std::vector<VariedCase>& cases, int repetitions,
+                                  bool absent, const std::function<bool(const VariedCase&)>& in) {
+  if (repetitions < 2) return "";
+  std::string out = "   per detector seed:";
+  for (int k = 0; k < repetitions; ++k) {
+    Tally t;
+    for (const VariedCase& c : cases) {
+      if (c.repetition == k && in(c)) t.add(c);
+    }
+    char b[32];
+    std::snprintf(b, sizeof b, "%s%.1f", k ? " / " : " ",
+                  t.n ? 100.0 * (absent ? t.wrong : t.tp) / t.n : 0.0);
+    out += b;
+  }
+  return out;
+}
+
+// One block of the report: every target (or only `run.only`) over `run.seeds` seeds from
+// `first`.
+inline void print_varied_block(const char* title, std::uint64_t first, const VariedRun& run) {
+  const int seeds = run.seeds;
+  std::printf("\n%s: seeds %llu..%llu, %s, sensor %s, %d detector seed%s per scene\n", title,
               static_cast<unsigned long long>(first),
               static_cast<unsigned long long>(first + static_cast<std::uint64_t>(seeds) - 1),
-              pan_tilt ? "pan-tilt head" : "stripe cell", sensor_known ? "known" : "unknown");
+              run.pan_tilt ? "pan-tilt head" : "stripe cell",
+              run.sensor_known ? "known" : "unknown", run.detector_seeds,
+              run.detector_seeds == 1 ? "" : "s");
   const sim::VariedTarget targets[] = {sim::VariedTarget::kSphere, sim::VariedTarget::kCylinder,
                                        sim::VariedTarget::kBox,    sim::VariedTarget::kCone,
                                        sim::VariedTarget::kMallet, sim::VariedTarget::kThreeSpheres,
                                        sim::VariedTarget::kNone};
   for (sim::VariedTarget target : targets) {
-    if (only && target != *only) continue;
+    if (run.only && target != *run.only) continue;
     std::vector<VariedCase> cases;
-    for (int i = 0; i < seeds; ++i) {
-      cases.push_back(
-          run_varied_case(target, pan_tilt, first + static_cast<std::uint64_t>(i), sensor_known));
+    for (int k = 0; k < run.detector_seeds; ++k) {
+      for (int i = 0; i < seeds; ++i) {
+        cases.push_back(run_varied_case(target, run.pan_tilt, first + static_cast<std::uint64_t>(i),
+                                        run.sensor_known, k));
+      }
     }
     const bool absent = target == sim::VariedTarget::kNone;
-    Tally all, light, seen;
-    for (const VariedCase& c : cases) {
-      all.add(c);
-      if (c.factors.occlusion <= 0.4) light.add(c);
-      if (c.factors.part_lost <= 0.4) seen.add(c);
-    }
+    const auto light = [](const VariedCase& c) { return c.factors.occlusion <= 0.4; };
+    const auto seen = [](const VariedCase& c) { return c.factors.part_lost <= 0.4; };
+    const auto any = [](const VariedCase&) { return true; };
+    const auto row = [&](const char* name, const std::function<bool(const VariedCase&)>& in) {
+      Tally t;
+      for (const VariedCase& c : cases) {
+        if (in(c)) t.add(c);
+      }
+      print_tally_row(name, t, absent);
+      const std::string spread = per_repetition(cases, run.detector_seeds, absent, in);
+      if (!spread.empty()) std::printf("  %s\n", spread.c_str());
+    };
     std::printf("%s\n", sim::to_string(target));
-    print_tally_row("all", all, absent);
+    row("all", any);
     // Occlusion is of the whole target; a compound target may have lost one part entirely to it
     // or to the sweep's end (a mallet with its shaft outside the scan): the second row counts
     // the cases where every part still shows 60 % of what the sensor would see of it.
-    if (!absent) print_tally_row("occlusion <= 40 %", light, absent);
-    if (!absent) print_tally_row("each part lost <= 40 %", seen, absent);
-    if (list_failures) {
+    if (!absent) row("occlusion <= 40 %", light);
+    if (!absent) row("each part lost <= 40 %", seen);
+    if (run.list_failures) {
       // The seeds to look at with --varied-case: what went wrong, and how hidden the target was.
       for (const VariedCase& c : cases) {
         if (absent ? !c.found : c.tp) continue;
-        std::printf("    seed %llu %s occlusion %.2f (%s) part lost %.2f noise %.2f\n",
-                    static_cast<unsigned long long>(c.seed), c.found ? "wrong" : "missed",
-                    c.factors.occlusion, c.factors.occluder.c_str(), c.factors.part_lost,
-                    c.factors.scan.noise_mm);
+        std::printf(
+            "    seed %llu (detector seed %d) %s occlusion %.2f (%s) part lost %.2f "
+            "noise %.2f\n",
+            static_cast<unsigned long long>(c.seed), c.repetition, c.found ? "wrong" : "missed",
+            c.factors.occlusion, c.factors.occluder.c_str(), c.factors.part_lost,
+            c.factors.scan.noise_mm);
       }
     }
-    if (!per_factor) continue;
+    if (!run.per_factor) continue;
     for (const Factor& f : varied_factors()) {
       std::vector<std::pair<std::string, Tally>> bins;
       for (const VariedCase& c : cases) {
@@ -208,13 +262,13 @@ inline void print_varied_block(const char* title, std::uint64_t first, int seeds
 // came back, the checks the rejected candidates failed, and which scene part each reported or
 // rejected place is on (the nearest part centre), to see what a false positive was made of.
 inline void print_varied_case(sim::VariedTarget target, bool pan_tilt, std::uint64_t seed,
-                              bool sensor_known) {
+                              bool sensor_known, int repetition = 0) {
   sim::VariedSceneOptions so;
   so.target = target;
   so.pan_tilt = pan_tilt;
   const sim::VariedScene s = sim::make_varied_scene(so, seed);
   ObjectDetectOptions o;
-  o.seed = seed;
+  o.seed = detector_seed(seed, repetition);
   if (sensor_known) o.sensor = s.view;
   const ObjectDetectResult r = detect_object(s.model, s.cloud.points, o);
   const auto& f = s.factors;
@@ -285,18 +339,14 @@ inline void print_varied_case(sim::VariedTarget target, bool pan_tilt, std::uint
   }
 }
 
-// The tuning seeds (from `first`, 1-based within the tuning set, so that a widened tuning set
-// can be run without repeating seeds already looked at), or the held-out seeds (never looked at
-// while tuning: run them only to report, always from the first one).
-inline void print_varied(int seeds, bool per_factor, bool pan_tilt, bool sensor_known,
-                         bool held_out, std::optional<sim::VariedTarget> only = std::nullopt,
-                         bool list_failures = false, std::uint64_t first = 1) {
-  if (held_out) {
-    print_varied_block("Held-out seeds", sim::kHeldOutSeedBase, seeds, pan_tilt, sensor_known,
-                       per_factor, only, list_failures);
+// The tuning seeds (from `run.first`, 1-based within the tuning set, so that a widened tuning
+// set can be run without repeating seeds already looked at), or the held-out seeds (never looked
+// at while tuning: run them only to report, always from the first one).
+inline void print_varied(const VariedRun& run) {
+  if (run.held_out) {
+    print_varied_block("Held-out seeds", sim::kHeldOutSeedBase, run);
   } else {
-    print_varied_block("Tuning seeds", sim::kTuningSeedBase + first - 1, seeds, pan_tilt,
-                       sensor_known, per_factor, only, list_failures);
+    print_varied_block("Tuning seeds", sim::kTuningSeedBase + run.first - 1, run);
   }
 }
 
