@@ -28,7 +28,11 @@ bool sweep(const SensorView& v) {
 
 LaserShadow::LaserShadow(std::span<const Eigen::Vector3d> points, const SensorView& view,
                          double bin_mm) {
-  if (!sweep(view) || !valid(view) || !(bin_mm > 0.0) || !std::isfinite(bin_mm)) return;
+  // Without a camera of its own the laser is the only eye, and its lines of sight are its rays.
+  if (!sweep(view) || !valid(view) || view.camera_offset.squaredNorm() == 0.0 || !(bin_mm > 0.0) ||
+      !std::isfinite(bin_mm)) {
+    return;
+  }
   view_ = view;
   mid_ = 0.5 * (view.sweep_min + view.sweep_max);
   // The fan's basis at mid_: `ahead` from its apex towards the points' centroid, in its plane.
@@ -114,13 +118,11 @@ std::optional<LaserShadow::Ray> LaserShadow::ray_of(const Eigen::Vector3d& p) co
     if (!(forward > 1e-9)) return std::nullopt;
     return Ray{s, v.dot(across_) / forward, v.norm()};
   }
+  // A rotary sweep: turned back into the fan's frame at mid_.
   const std::optional<double> s = sweep_position(view_, p);
   if (!s) return std::nullopt;
-  Eigen::Vector3d v = p - sweep_pose(view_, *s).apex;
-  // In the fan's frame at mid_: a linear sweep only moves the fan, a rotary one turns it.
-  if (view_.kind == SensorView::Kind::kRotarySweep) {
-    v = Eigen::AngleAxisd(mid_ - *s, view_.direction) * v;
-  }
+  const Eigen::Vector3d v =
+      Eigen::AngleAxisd(mid_ - *s, view_.direction) * (p - sweep_pose(view_, *s).apex);
   const double forward = v.dot(ahead_);
   if (!(forward > 1e-9)) return std::nullopt;
   return Ray{*s, v.dot(across_) / forward, v.norm()};

@@ -22,8 +22,9 @@ namespace rangefit {
 class LaserShadow {
  public:
   LaserShadow() = default;  // nothing is in shadow
-  // The range image of `points` as `view`'s laser fan saw them (a linear or rotary sweep; other
-  // views give an empty shadow), in bins about `bin_mm` wide at the points' typical distance.
+  // The range image of `points` as `view`'s laser fan saw them (a linear or rotary sweep with a
+  // camera; other views give an empty shadow), in bins about `bin_mm` wide at the points'
+  // typical distance.
   // The points must outlive the shadow.
   LaserShadow(std::span<const Eigen::Vector3d> points, const SensorView& view, double bin_mm);
 

@@ -1135,9 +1135,7 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
   // A stripe ranger's camera looks along another line than its laser (laser_shadow.hpp). The
   // table shades only what lies below it: the shadow is cast by the rest of the scan.
   const LaserShadow shadow(scan.cloud, cover.sensor, occupancy.cell_mm());
-  if (!shadow.empty() && cover.sensor.camera_offset.squaredNorm() > 0.0) {
-    cover.laser_shadow = &shadow;
-  }
+  if (!shadow.empty()) cover.laser_shadow = &shadow;
   result.time.search_index_ms = ms_since(t0);
   // The scan's range noise, as the table shows it (0 without a plane: the floor alone).
   const double noise_mm = result.plane.removed() ? result.plane.plane.rms : 0.0;

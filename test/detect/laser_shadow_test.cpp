@@ -76,6 +76,9 @@ TEST(LaserShadow, OtherViewsAndBadInputCastNoShadow) {
   point.kind = SensorView::Kind::kPoint;
   EXPECT_TRUE(LaserShadow(table_and_wall_top(), point, 2.0).empty());
   EXPECT_TRUE(LaserShadow(table_and_wall_top(), SensorView{}, 2.0).empty());
+  SensorView one_eye = stripe();
+  one_eye.camera_offset = Eigen::Vector3d::Zero();
+  EXPECT_TRUE(LaserShadow(table_and_wall_top(), one_eye, 2.0).empty());
   EXPECT_TRUE(LaserShadow({}, stripe(), 2.0).empty());
   EXPECT_TRUE(LaserShadow(table_and_wall_top(), stripe(), std::nan("")).empty());
   const std::vector<Eigen::Vector3d> bad = {{std::nan(""), 0, 0}};
