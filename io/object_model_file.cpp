@@ -1,6 +1,7 @@
 #include "io/object_model_file.hpp"
 
 #include <toml++/toml.h>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <fstream>
@@ -46,7 +47,7 @@ ModelPart parse_part(TomlFields f) {
 }
 
 PartLink parse_link(TomlFields f, const std::vector<ModelPart>& parts) {
-  f.only({"parts", "angle_deg", "distance"});
+  f.only({"parts", "angle_deg", "distance", "bearing_deg"});
   f.require("parts", "(two part names)");
   const toml::array* names = f.find("parts")->as_array();
   if (names == nullptr || names->size() != 2 || !(*names)[0].is_string() ||
@@ -67,8 +68,15 @@ PartLink parse_link(TomlFields f, const std::vector<ModelPart>& parts) {
   f.read("angle_deg", angle, 0.0, 180.0);
   f.require("distance", "(mm)");
   f.read("distance", distance, 0.0, 1e9);
+  PartLink link{idx[0], idx[1], angle * std::numbers::pi / 180.0, distance, std::nullopt};
+  if (f.has("bearing_deg")) {
+    std::array<double, 2> bearing{};
+    f.read("bearing_deg", bearing, 0.0, 90.0);
+    link.bearing_rad = {bearing[0] * std::numbers::pi / 180.0,
+                        bearing[1] * std::numbers::pi / 180.0};
+  }
   f.reject_unknown();
-  return PartLink{idx[0], idx[1], angle * std::numbers::pi / 180.0, distance};
+  return link;
 }
 
 }  // namespace
@@ -118,6 +126,10 @@ std::string format_object_model(const ObjectModel& model) {
         << model.parts.at(l.second).name
         << "\"]\nangle_deg = " << l.angle_rad * 180.0 / std::numbers::pi
         << "\ndistance = " << l.distance_mm << "\n";
+    if (l.bearing_rad) {
+      out << "bearing_deg = [" << (*l.bearing_rad)[0] * 180.0 / std::numbers::pi << ", "
+          << (*l.bearing_rad)[1] * 180.0 / std::numbers::pi << "]\n";
+    }
   }
   return out.str();
 }
@@ -150,7 +162,10 @@ void check_writable(const std::filesystem::path& path, const ObjectModel& model)
   }
   for (const PartLink& l : model.links) {
     if (l.first >= model.parts.size() || l.second >= model.parts.size() || l.first == l.second ||
-        !(l.angle_rad >= 0.0 && l.angle_rad <= std::numbers::pi) || !(l.distance_mm >= 0.0)) {
+        !(l.angle_rad >= 0.0 && l.angle_rad <= std::numbers::pi) || !(l.distance_mm >= 0.0) ||
+        (l.bearing_rad && !std::all_of(l.bearing_rad->begin(), l.bearing_rad->end(), [](double b) {
+           return b >= 0.0 && b <= std::numbers::pi / 2.0;
+         }))) {
       throw IoError(path, "invalid link");
     }
   }

@@ -25,7 +25,8 @@ std::vector<DailyObject> daily_life_objects() {
   mug.name = "mug-2";
   mug.parts = {{"body", {38, 38, 48, 0.1, 1.0, 0.0, 0.0}},
                {"handle", {30, 23, 8, 0.5, 1.0, 0.0, 0.0}}};
-  mug.links = {{0, 1, std::numbers::pi / 2.0, 50.0}};
+  mug.links = {{0, 1, std::numbers::pi / 2.0, 50.0,
+                std::array<double, 2>{std::numbers::pi / 2.0, std::numbers::pi / 2.0}}};
   out.push_back({"mug-2", "5.7", mug});
   return out;
 }

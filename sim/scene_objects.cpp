@@ -82,7 +82,8 @@ ObjectModel mallet_model() {
   m.name = "mallet";
   m.parts = {{"head", {30, 30, 56, 0.1, 1.0, 0.0, 0.0}},
              {"shaft", {12, 10, 120, 0.1, 1.0, 0.0, 0.0}}};
-  m.links = {{0, 1, std::numbers::pi / 2.0, 170.0}};
+  m.links = {
+      {0, 1, std::numbers::pi / 2.0, 170.0, std::array<double, 2>{std::numbers::pi / 2.0, 0.0}}};
   return m;
 }
 

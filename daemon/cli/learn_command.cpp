@@ -52,7 +52,12 @@ void print_text(const LearnResult& r) {
   for (const PartLink& l : r.model.links) {
     std::cout << "  link " << r.model.parts[l.first].name << "-" << r.model.parts[l.second].name
               << ": angle " << l.angle_rad * 180.0 / std::numbers::pi << " deg, distance "
-              << l.distance_mm << " mm\n";
+              << l.distance_mm << " mm";
+    if (l.bearing_rad) {
+      std::cout << ", bearings " << (*l.bearing_rad)[0] * 180.0 / std::numbers::pi << " "
+                << (*l.bearing_rad)[1] * 180.0 / std::numbers::pi << " deg";
+    }
+    std::cout << "\n";
   }
 }
 

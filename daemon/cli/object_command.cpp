@@ -71,7 +71,8 @@ nlohmann::json to_json(const ObjectModel& model, const ObjectDetectResult& r) {
     instances.push_back({{"parts", parts},
                          {"rank_sum", inst.rank_sum},
                          {"link_angle_error_rad", inst.link_angle_error_rad},
-                         {"link_distance_error_mm", inst.link_distance_error_mm}});
+                         {"link_distance_error_mm", inst.link_distance_error_mm},
+                         {"link_bearing_error_rad", inst.link_bearing_error_rad}});
   }
   // parts[] of the best instance at the top level; all instances listed as well.
   j["parts"] = r.instances.empty() ? nlohmann::json::array() : instances[0]["parts"];

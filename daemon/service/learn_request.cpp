@@ -43,9 +43,14 @@ nlohmann::json learn_json(const LearnResult& r, std::size_t points, std::size_t 
   j["parts"] = parts;
   nlohmann::json links = nlohmann::json::array();
   for (const PartLink& l : r.model.links) {
-    links.push_back({{"parts", {r.model.parts[l.first].name, r.model.parts[l.second].name}},
-                     {"angle_deg", l.angle_rad * 180.0 / std::numbers::pi},
-                     {"distance_mm", l.distance_mm}});
+    nlohmann::json link = {{"parts", {r.model.parts[l.first].name, r.model.parts[l.second].name}},
+                           {"angle_deg", l.angle_rad * 180.0 / std::numbers::pi},
+                           {"distance_mm", l.distance_mm}};
+    if (l.bearing_rad) {
+      link["bearing_deg"] = {(*l.bearing_rad)[0] * 180.0 / std::numbers::pi,
+                             (*l.bearing_rad)[1] * 180.0 / std::numbers::pi};
+    }
+    links.push_back(std::move(link));
   }
   j["links"] = links;
   j["starts"] = r.starts;

@@ -124,7 +124,8 @@ struct ObjectDetectOptions {
   // its lowest point's height under the pose covariance of its fit (the LM's s^2 (J^T J)^-1). A
   // part whose top and sides are seen is placed to a few hundredths of a millimetre, so a
   // look-alike a few per cent shorter, fitted by its top, sinks deeper than that; a part whose
-  // points leave its height open (only its side seen) is held only to the table margin.
+  // points leave its height open (only its side seen) is held only to the table margin. A
+  // compound object is held to it by at least one of its parts.
   double sink_floor_mm = 1.0;
   double sink_noise_factor = 2.0;
   double sink_sigma_factor = 3.0;
@@ -197,7 +198,8 @@ enum class Check {
   kFloating,       // rest_on_plane: its lowest point is higher above the plane than the rest
                    // tolerance (mm)
   kContinues,      // the scan carries on past its flat faces (share of its surface points)
-  kLink,           // compound: after the joint refinement a link's A (rad) or D (mm) is off
+  kLink,           // compound: after the joint refinement a link's A (rad), D (mm) or bearing
+                   // (mm: the sibling's centre from where the bearings put it) is off
 };
 
 const char* to_string(Check check);
@@ -245,6 +247,9 @@ struct DetectedInstance {
   int rank_sum = 0;                            // total of the vote (lower is better)
   std::vector<double> link_angle_error_rad;    // A per link, eq. 5.5
   std::vector<double> link_distance_error_mm;  // D per link, eq. 5.6
+  // Per link, the larger of the two parts' bearing errors (PartLink::bearing_rad); 0 for a link
+  // without bearings.
+  std::vector<double> link_bearing_error_rad;
 };
 
 struct StageTimes {

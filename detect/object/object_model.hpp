@@ -1,9 +1,12 @@
 #pragma once
 // A known object as the detector sees it (thesis ch. 5): one or a few tapered superquadric parts
 // and, for compound objects, the links between them (5.1.3: the angle between the two z-axes and
-// the distance between the two centres). A plain value type; io/object_model_file reads it.
+// the distance between the two centres, and beyond the thesis where each part's axis points
+// relative to the other's centre). A plain value type; io/object_model_file reads it.
 
+#include <array>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +24,13 @@ struct PartLink {
   std::size_t second = 0;    // index into ObjectModel::parts
   double angle_rad = 0.0;    // nominal angle alpha_k between the parts' z-axes (eq. 5.5)
   double distance_mm = 0.0;  // nominal distance d_k between the part centres (eq. 5.6)
+  // Beyond eq. 5.5-5.6: the angle each part's z-axis makes with the line between the centres,
+  // folded to [0, pi/2] (first, second). Angle and distance leave the second part free to sit
+  // anywhere on a sphere around the first: a mallet's shaft 30 mm along its head's axis from its
+  // middle, or a look-alike's shaft lying in line with the true one at the same distance, passes
+  // them. The bearings fix where it sits (head 90 deg: the shaft's centre in the head's middle
+  // plane; shaft 0 deg: its axis points at the head). Unset: not checked (older model files).
+  std::optional<std::array<double, 2>> bearing_rad;
 };
 
 struct ObjectModel {

@@ -315,8 +315,8 @@ inline void print_varied_case(sim::VariedTarget target, bool pan_tilt, std::uint
               all_parts_true(r, s) ? 1 : 0, r.hypotheses_evaluated, r.time.total_ms);
   for (const DetectedInstance& inst : r.instances) {
     for (std::size_t l = 0; l < inst.link_angle_error_rad.size(); ++l) {
-      std::printf("  link %zu: A %.3f rad D %.1f mm\n", l, inst.link_angle_error_rad[l],
-                  inst.link_distance_error_mm[l]);
+      std::printf("  link %zu: A %.3f rad D %.1f mm B %.3f rad\n", l, inst.link_angle_error_rad[l],
+                  inst.link_distance_error_mm[l], inst.link_bearing_error_rad[l]);
     }
     for (const DetectedPart& p : inst.parts) {
       const PartScores& sc = p.scores;

@@ -1,8 +1,10 @@
 // The shipped demo scene and the shipped model describe the same mallet: data/scenes/
 // cluttered_mallet.toml's head and shaft have the part sizes of data/models/mallet.toml and the
-// link between them is within what the detector accepts as that link (eq. 5.5-5.6).
+// link between them is within what the detector accepts as that link (eq. 5.5-5.6, and the
+// bearings of PartLink).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -47,6 +49,14 @@ TEST(ShippedMallet, SceneAndModelAgreeOnPartsAndTheirLink) {
   const double distance = (pose[0].translation() - pose[1].translation()).norm();
   EXPECT_LT(std::abs(distance - link.distance_mm),
             0.25 * o.link_distance_tolerance * link.distance_mm);
+  // The shaft's centre in the head's middle plane, its axis pointing at the head's centre.
+  ASSERT_TRUE(link.bearing_rad.has_value());
+  const Eigen::Vector3d line = (pose[1].translation() - pose[0].translation()).normalized();
+  for (int p = 0; p < 2; ++p) {
+    EXPECT_NEAR(std::acos(std::min(1.0, std::abs(pose[p].linear().col(2).dot(line)))),
+                (*link.bearing_rad)[static_cast<std::size_t>(p)], 1e-3)
+        << model.parts[static_cast<std::size_t>(p)].name;
+  }
 }
 
 }  // namespace shipped_mallet_test

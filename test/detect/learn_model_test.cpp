@@ -208,9 +208,12 @@ TEST(LearnModel, LearnsTheMalletAsHeadAndShaftWithTheirLink) {
         "  part %zu: %.2f %.2f %.2f e %.3f %.3f k %.3f %.3f, %zu points, residual %.3f mm\n", k,
         s.a1, s.a2, s.a3, s.eps1, s.eps2, s.kx, s.ky, r.parts[k].points, r.parts[k].residual_mm);
   }
-  std::printf("  link: %.2f deg, %.2f mm (truth 90, 170), %.0f ms\n",
-              r.model.links[0].angle_rad * 180.0 / std::numbers::pi, r.model.links[0].distance_mm,
-              r.total_ms);
+  std::printf(
+      "  link: %.2f deg, %.2f mm, bearings %.2f %.2f deg (truth 90, 170, 90 0), %.0f ms\n",
+      r.model.links[0].angle_rad * 180.0 / std::numbers::pi, r.model.links[0].distance_mm,
+      r.model.links[0].bearing_rad.value_or(std::array<double, 2>{})[0] * 180.0 / std::numbers::pi,
+      r.model.links[0].bearing_rad.value_or(std::array<double, 2>{})[1] * 180.0 / std::numbers::pi,
+      r.total_ms);
   // Part 0 is the larger: the head.
   for (std::size_t k = 0; k < 2; ++k) {
     const test::ShapeError e =
@@ -221,6 +224,10 @@ TEST(LearnModel, LearnsTheMalletAsHeadAndShaftWithTheirLink) {
   }
   EXPECT_NEAR(r.model.links[0].angle_rad, std::numbers::pi / 2.0, 0.02);
   EXPECT_NEAR(r.model.links[0].distance_mm, 170.0, 1.0);
+  // Where the shaft sits on the head: in its middle plane, pointing at it.
+  ASSERT_TRUE(r.model.links[0].bearing_rad.has_value());
+  EXPECT_NEAR((*r.model.links[0].bearing_rad)[0], std::numbers::pi / 2.0, 0.02);
+  EXPECT_NEAR((*r.model.links[0].bearing_rad)[1], 0.0, 0.02);
 }
 
 }  // namespace learn_model_test

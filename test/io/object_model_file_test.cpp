@@ -32,6 +32,30 @@ TEST(ObjectModelFile, ReadsTheShippedMalletWithItsLink) {
   EXPECT_EQ(m.links[0].second, 1u);
   EXPECT_NEAR(m.links[0].angle_rad, std::numbers::pi / 2.0, 1e-12);
   EXPECT_DOUBLE_EQ(m.links[0].distance_mm, 170.0);
+  ASSERT_TRUE(m.links[0].bearing_rad.has_value());
+  EXPECT_NEAR((*m.links[0].bearing_rad)[0], std::numbers::pi / 2.0, 1e-12);
+  EXPECT_EQ((*m.links[0].bearing_rad)[1], 0.0);
+}
+
+// A link written before bearings existed reads as one without them; bearings past 90 deg (they
+// are folded: a part's axis has no sign) or not two of them are refused with the field named.
+TEST(ObjectModelFile, LinkBearingsAreOptionalAndChecked) {
+  const std::string parts =
+      "name = \"m\"\n[[part]]\nname = \"a\"\nsize = [1, 1, 1]\nshape = [1, 1]\n"
+      "[[part]]\nname = \"b\"\nsize = [1, 1, 1]\nshape = [1, 1]\n"
+      "[[link]]\nparts = [\"a\", \"b\"]\nangle_deg = 90\ndistance = 10\n";
+  EXPECT_FALSE(parse_object_model(parts, "m.toml").links[0].bearing_rad.has_value());
+  const ObjectModel with = parse_object_model(parts + "bearing_deg = [45, 0]\n", "m.toml");
+  ASSERT_TRUE(with.links[0].bearing_rad.has_value());
+  EXPECT_NEAR((*with.links[0].bearing_rad)[0], std::numbers::pi / 4.0, 1e-12);
+  const ObjectModel back = parse_object_model(format_object_model(with), "m.toml");
+  ASSERT_TRUE(back.links[0].bearing_rad.has_value());
+  EXPECT_NEAR((*back.links[0].bearing_rad)[0], std::numbers::pi / 4.0, 1e-12);
+  for (const char* bad : {"bearing_deg = [120, 0]\n", "bearing_deg = [45]\n",
+                          "bearing_deg = [-1, 0]\n", "bearing_deg = \"x\"\n"}) {
+    const std::string e = model_error(parts + bad);
+    EXPECT_NE(e.find("bearing_deg"), std::string::npos) << bad << ": " << e;
+  }
 }
 
 TEST(ObjectModelFile, ReadsAllShippedModelsAsValidParts) {

@@ -22,7 +22,8 @@ ObjectModel learnt_mallet() {
   m.parts.push_back({"part0", Superquadric{30.1234567891, 29.87654321, 56.5, 0.1, 0.987654321,
                                            -0.123456789, 0.333333333333}});
   m.parts.push_back({"part1", Superquadric{12.0, 10.0, 120.0, 0.1000000001, 1.0, 0.0, 0.0}});
-  m.links.push_back({0, 1, std::numbers::pi / 2.0 - 0.0123, 169.87654321});
+  m.links.push_back({0, 1, std::numbers::pi / 2.0 - 0.0123, 169.87654321,
+                     std::array<double, 2>{1.5, 0.0123456789}});
   return m;
 }
 
@@ -50,6 +51,9 @@ TEST(ObjectModelWrite, WrittenFileReadsBackAsTheSameModel) {
   EXPECT_EQ(back.links[0].second, 1u);
   EXPECT_NEAR(back.links[0].angle_rad, m.links[0].angle_rad, 1e-14);
   EXPECT_EQ(back.links[0].distance_mm, m.links[0].distance_mm);
+  ASSERT_TRUE(back.links[0].bearing_rad.has_value());
+  EXPECT_NEAR((*back.links[0].bearing_rad)[0], 1.5, 1e-14);
+  EXPECT_NEAR((*back.links[0].bearing_rad)[1], 0.0123456789, 1e-14);
   // The comment is there for a person, as TOML comments.
   std::ifstream in(file);
   std::stringstream text;
@@ -82,6 +86,10 @@ TEST(ObjectModelWrite, RefusesModelsThatWouldNotReadBack) {
   ObjectModel dangling = learnt_mallet();
   dangling.links[0].second = 7;
   EXPECT_THROW(write_object_model(file, dangling), IoError);
+  EXPECT_FALSE(std::filesystem::exists(file));
+  ObjectModel past_right_angle = learnt_mallet();
+  past_right_angle.links[0].bearing_rad = std::array<double, 2>{2.0, 0.0};
+  EXPECT_THROW(write_object_model(file, past_right_angle), IoError);
   EXPECT_FALSE(std::filesystem::exists(file));
   EXPECT_THROW(write_object_model(dir.path("no/such/dir/m.toml"), learnt_mallet()), IoError);
 }
