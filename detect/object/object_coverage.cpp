@@ -330,9 +330,10 @@ class SampleJudge {
 // no scan points near them is how much of the end is missing. A true part whose end the scan
 // does not show for another reason (grazed, behind a wall) shows little of the inner rings
 // either. The shares per end (-z, +z) at the first scale, then at the second; 0 where not
-// judged.
+// judged. `hidden`: per end, not judged at the first scale (false for a part without flat ends).
 std::array<double, 4> open_ends(const Superquadric& sq, const CoverageOptions& o,
-                                SampleJudge& judge) {
+                                SampleJudge& judge, std::array<bool, 2>& hidden) {
+  hidden = {false, false};
   std::array<double, 4> open_at{0.0, 0.0, 0.0, 0.0};
   if (sq.eps1 > kFlatEdgeExponent || sq.kx != 0.0 || sq.ky != 0.0 || o.end_rings <= 0) {
     return open_at;
@@ -347,6 +348,7 @@ std::array<double, 4> open_ends(const Superquadric& sq, const CoverageOptions& o
         });
     const std::size_t end = side > 0.0 ? 1 : 0;
     open_at[end] = shares[0].value_or(0.0);
+    hidden[end] = !shares[0].has_value();
     open_at[2 + end] = shares[1].value_or(0.0);
   }
   return open_at;
@@ -431,7 +433,8 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
     covered += v == Sample::kCovered;
     seen_through += v == Sample::kSeenThrough;
   }
-  const std::array<double, 4> open_at = open_ends(sq, o, judge);
+  std::array<bool, 2> end_hidden{};
+  const std::array<double, 4> open_at = open_ends(sq, o, judge, end_hidden);
   const std::array<double, 2> rim = open_rim(sq, o, judge);
   SurfaceCoverage c;
   double below = 0.0, lowest = INFINITY;
@@ -451,6 +454,7 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
   c.max_size_mm = sq.max_size();
   c.facing = facing;
   c.open_end_at[0] = open_at[0], c.open_end_at[1] = open_at[1];
+  c.end_hidden[0] = end_hidden[0], c.end_hidden[1] = end_hidden[1];
   c.open_end_far_at[0] = open_at[2], c.open_end_far_at[1] = open_at[3];
   c.open_end = *std::max_element(open_at.begin(), open_at.end());
   c.open_rim = rim[0];

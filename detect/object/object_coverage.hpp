@@ -75,6 +75,10 @@ struct SurfaceCoverage {
   // surface's end by more than end_strip).
   double open_end_at[2] = {0.0, 0.0};
   double open_end_far_at[2] = {0.0, 0.0};
+  // Per flat end: not judged (its side wall farther in not measurable or not shown): hidden or
+  // out of the sensor's sight, so where the scan stops short of it says nothing of the part's
+  // length. False for a part without flat ends.
+  bool end_hidden[2] = {false, false};
   double open_rim = 0.0;        // of the measurable samples by a flat cap's edge, where the scan
                                 // shows the cap farther in, the largest share (per cap and
                                 // sector) with no scan points near them

@@ -290,6 +290,7 @@ namespace {
 struct SizeVerdict {
   bool determined = false, across_open = true;
   double scale = 1.0;
+  std::optional<double> across, along;  // the scales it places
 };
 
 SizeVerdict size_verdict(const SizeFit& free, double noise) {
@@ -298,15 +299,13 @@ SizeVerdict size_verdict(const SizeFit& free, double noise) {
     if (!v.determined || std::abs(s - 1.0) > std::abs(v.scale - 1.0)) v.scale = s;
     v.determined = true;
   };
-  if (free.model_rms_mm > kMisfitNoises * noise &&
-      free.rms_mm < kClearlyBetter * free.model_rms_mm) {
-    farthest(free.across);
-    farthest(free.along);
-    v.across_open = false;
-    return v;
+  const bool clear_misfit =
+      free.model_rms_mm > kMisfitNoises * noise && free.rms_mm < kClearlyBetter * free.model_rms_mm;
+  if (clear_misfit || free.across_sigma <= kMaxScaleSigma) {
+    farthest(free.across), v.across_open = false, v.across = free.across;
   }
-  if (free.across_sigma <= kMaxScaleSigma) farthest(free.across), v.across_open = false;
-  if (free.along_sigma <= kMaxScaleSigma) farthest(free.along);
+  if (clear_misfit || free.along_sigma <= kMaxScaleSigma)
+    farthest(free.along), v.along = free.along;
   return v;
 }
 
@@ -455,6 +454,7 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
   }
   if (!v) return e;
   e.determined = v->determined, e.scale = v->scale, e.across_open = v->across_open;
+  e.across = v->across, e.along = v->along;
   return e;
 }
 
