@@ -47,10 +47,12 @@ bool measurable(Sample v) {
 // scan points near them; nothing when too few samples were measurable.
 struct RingTally {
   int outer = 0, open = 0, inner = 0, inner_covered = 0;
+  int outer_hidden = 0;  // outer samples that measured surface hides
   void add(Sample v, bool outer_ring) {
     const bool seen = measurable(v);
     if (outer_ring) {
       outer += seen;
+      outer_hidden += v == Sample::kHidden;
       open += seen && v != Sample::kCovered;
     } else {
       inner += seen;
@@ -118,9 +120,12 @@ class RingStrip {
 // scale is not (its inner rings bare too: a part reaching past the surface's end by more than
 // the strip) and its rings show a bare sample. sample(depth, column) judges the sample at that
 // depth (share of the size from the edge) and column.
+// `hidden`, when given: the first scale not judged, and at least min_samples of its outer
+// rings' samples hidden by measured surface in front of them.
 template <class JudgeAt>
 std::array<std::optional<double>, 2> open_shares(int rings, int cols, bool cyclic, double strip,
-                                                 int min_samples, JudgeAt&& sample) {
+                                                 int min_samples, JudgeAt&& sample,
+                                                 bool* hidden = nullptr) {
   const double step = strip / rings;
   RingStrip s(3 * rings, cols, cyclic);
   const auto fill = [&](int first, int last) {
@@ -132,7 +137,9 @@ std::array<std::optional<double>, 2> open_shares(int rings, int cols, bool cycli
   };
   fill(0, 2 * rings);
   std::array<std::optional<double>, 2> out;
-  out[0] = s.tally(rings, 2 * rings).open_share(min_samples);
+  const RingTally first = s.tally(rings, 2 * rings);
+  out[0] = first.open_share(min_samples);
+  if (hidden) *hidden = !out[0] && first.outer_hidden >= min_samples;
   if (out[0]) return out;
   bool bare = false;
   for (int k = 0; k < 2 * rings && !bare; ++k) {
@@ -330,7 +337,8 @@ class SampleJudge {
 // no scan points near them is how much of the end is missing. A true part whose end the scan
 // does not show for another reason (grazed, behind a wall) shows little of the inner rings
 // either. The shares per end (-z, +z) at the first scale, then at the second; 0 where not
-// judged. `hidden`: per end, not judged at the first scale (false for a part without flat ends).
+// judged. `hidden`: per end, not judged at the first scale because measured surface hides it
+// (open_shares; false for a part without flat ends).
 std::array<double, 4> open_ends(const Superquadric& sq, const CoverageOptions& o,
                                 SampleJudge& judge, std::array<bool, 2>& hidden) {
   hidden = {false, false};
@@ -339,16 +347,16 @@ std::array<double, 4> open_ends(const Superquadric& sq, const CoverageOptions& o
     return open_at;
   }
   for (double side : {-1.0, 1.0}) {
+    const std::size_t end = side > 0.0 ? 1 : 0;
     const auto shares = open_shares(
         o.end_rings, o.end_ring_samples, true, o.end_strip, o.min_end_samples,
         [&](double depth, int j) {
           const double eta = side * std::asin(std::pow(std::max(1.0 - depth, 0.0), 1.0 / sq.eps1));
           const double omega = 2.0 * std::numbers::pi * (j + 0.5) / o.end_ring_samples;
           return judge(surface_point(sq, eta, omega));
-        });
-    const std::size_t end = side > 0.0 ? 1 : 0;
+        },
+        &hidden[end]);
     open_at[end] = shares[0].value_or(0.0);
-    hidden[end] = !shares[0].has_value();
     open_at[2 + end] = shares[1].value_or(0.0);
   }
   return open_at;

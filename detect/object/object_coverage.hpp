@@ -75,8 +75,8 @@ struct SurfaceCoverage {
   // surface's end by more than end_strip).
   double open_end_at[2] = {0.0, 0.0};
   double open_end_far_at[2] = {0.0, 0.0};
-  // Per flat end: not judged (its side wall farther in not measurable or not shown): hidden or
-  // out of the sensor's sight, so where the scan stops short of it says nothing of the part's
+  // Per flat end: not judged, and its side wall by the end hidden by measured surface in front
+  // of it (a wall, an overhang), so where the scan stops short of it says nothing of the part's
   // length. False for a part without flat ends.
   bool end_hidden[2] = {false, false};
   double open_rim = 0.0;        // of the measurable samples by a flat cap's edge, where the scan

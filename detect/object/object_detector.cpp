@@ -1012,22 +1012,30 @@ bool slide_to_confirm(const HypothesisContext& ctx, const ObjectModel& model,
   }
   const Superquadric& part = model.parts[0].shape;
   const Eigen::Isometry3d& T = inst.parts[0].T_world_part;
-  Eigen::Vector3d prefer = Eigen::Vector3d::Zero();
+  // Where along the wall: as little as possible; from an open end, back towards the other; from
+  // space seen through, which end reaches into it is not known, so either way as well.
+  std::vector<Eigen::Vector3d> prefer{Eigen::Vector3d::Zero()};
   if (failed == Check::kOpenEnd) {
     const SurfaceCoverage c = surface_coverage(part, T, ctx.points, *ctx.tree, cover);
     const double minus = std::max(c.open_end_at[0], c.open_end_far_at[0]);
     const double plus = std::max(c.open_end_at[1], c.open_end_far_at[1]);
-    prefer.z() = plus > minus ? -part.a3 : part.a3;
+    prefer[0].z() = plus > minus ? -part.a3 : part.a3;
+  } else if (failed == Check::kSeenThrough) {
+    prefer.push_back(Eigen::Vector3d(0.0, 0.0, part.a3));
+    prefer.push_back(Eigen::Vector3d(0.0, 0.0, -part.a3));
   }
-  const std::optional<PartHypothesis> h = slid_along_wall(ctx, part, T, prefer);
-  if (!h) return false;
-  DetectedInstance slid = inst;
-  slid.parts[0].T_world_part = h->T_world_part;
-  slid.parts[0].scores = h->scores;
-  slid.parts[0].scores.rank_sum = inst.parts[0].scores.rank_sum;
-  if (confirm(ctx, model, cover, noise_mm, nullptr, slid)) return false;
-  inst = std::move(slid);
-  return true;
+  for (const Eigen::Vector3d& way : prefer) {
+    const std::optional<PartHypothesis> h = slid_along_wall(ctx, part, T, way);
+    if (!h) continue;
+    DetectedInstance slid = inst;
+    slid.parts[0].T_world_part = h->T_world_part;
+    slid.parts[0].scores = h->scores;
+    slid.parts[0].scores.rank_sum = inst.parts[0].scores.rank_sum;
+    if (confirm(ctx, model, cover, noise_mm, nullptr, slid)) continue;
+    inst = std::move(slid);
+    return true;
+  }
+  return false;
 }
 
 // A confirmed single part with flat ends whose wall's points run past one end and stop short of
