@@ -742,7 +742,7 @@ void refine_jointly(const HypothesisContext& ctx, const ObjectModel& model,
     // Still open at one end: the wall's run is shorter than the part (its other end hidden), and
     // the least slide stopped where the run first fits; slid on towards the open end's wall as
     // far as the run allows, it ends where the scan shows the part's end.
-    if (open(open_ends) > limit && shape.eps1 <= 0.5) {
+    if (open(open_ends) > limit && shape.eps1 <= kFlatExponent) {
       Eigen::Vector3d close = Eigen::Vector3d::Zero();
       close.z() = open_ends[0] > open_ends[1] ? shape.a3 : -shape.a3;
       const Eigen::Isometry3d closed = slide_pose(ctx, shape, T, close, others);
