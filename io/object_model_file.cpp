@@ -1,7 +1,6 @@
 #include "io/object_model_file.hpp"
 
 #include <toml++/toml.h>
-#include <algorithm>
 #include <array>
 #include <cmath>
 #include <fstream>
@@ -163,9 +162,7 @@ void check_writable(const std::filesystem::path& path, const ObjectModel& model)
   for (const PartLink& l : model.links) {
     if (l.first >= model.parts.size() || l.second >= model.parts.size() || l.first == l.second ||
         !(l.angle_rad >= 0.0 && l.angle_rad <= std::numbers::pi) || !(l.distance_mm >= 0.0) ||
-        (l.bearing_rad && !std::all_of(l.bearing_rad->begin(), l.bearing_rad->end(), [](double b) {
-           return b >= 0.0 && b <= std::numbers::pi / 2.0;
-         }))) {
+        !l.bearings_valid()) {
       throw IoError(path, "invalid link");
     }
   }

@@ -294,21 +294,7 @@ LearnReason learn_two_parts(std::span<const Eigen::Vector3d> points,
   }
   const Eigen::Isometry3d& a = r.parts[0].T_world_part;
   const Eigen::Isometry3d& b = r.parts[1].T_world_part;
-  PartLink link;
-  link.first = 0;
-  link.second = 1;
-  link.angle_rad =
-      std::acos(std::clamp(std::abs(a.linear().col(2).dot(b.linear().col(2))), 0.0, 1.0));
-  const Eigen::Vector3d line = b.translation() - a.translation();
-  link.distance_mm = line.norm();
-  if (link.distance_mm > 0.0) {
-    const auto bearing = [&](const Eigen::Isometry3d& t) {
-      return std::acos(
-          std::clamp(std::abs(t.linear().col(2).dot(line) / link.distance_mm), 0.0, 1.0));
-    };
-    link.bearing_rad = std::array<double, 2>{bearing(a), bearing(b)};
-  }
-  r.model.links.push_back(link);
+  r.model.links.push_back(measure_link(0, 1, a, b));
   return LearnReason::kLearnt;
 }
 

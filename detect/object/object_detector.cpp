@@ -41,10 +41,7 @@ bool model_ok(const ObjectModel& model) {
   }
   for (const PartLink& l : model.links) {
     if (l.first >= model.parts.size() || l.second >= model.parts.size() || l.first == l.second ||
-        !std::isfinite(l.angle_rad) || !std::isfinite(l.distance_mm) ||
-        (l.bearing_rad && !((*l.bearing_rad)[0] >= 0.0 && (*l.bearing_rad)[1] >= 0.0 &&
-                            (*l.bearing_rad)[0] <= std::numbers::pi / 2.0 &&
-                            (*l.bearing_rad)[1] <= std::numbers::pi / 2.0))) {
+        !std::isfinite(l.angle_rad) || !std::isfinite(l.distance_mm) || !l.bearings_valid()) {
       return false;
     }
   }
@@ -199,6 +196,12 @@ std::optional<Rejection> floating(double lowest_mm, double max_size_mm, bool pla
   return std::nullopt;
 }
 
+// How far a part may sink into the table when its lowest point's height has standard deviation
+// sigma_mm under its fit (ObjectDetectOptions::sink_floor_mm).
+double sink_limit_mm(const ObjectDetectOptions& o, double noise_mm, double sigma_mm) {
+  return o.sink_floor_mm + o.sink_noise_factor * noise_mm + o.sink_sigma_factor * sigma_mm;
+}
+
 // The fit-quality checks in mm (see ObjectDetectOptions::max_size_deviation and
 // residual_noise_factor), and, with `judge_sink` (a single part), its flat caps' rims where its
 // size is left open (max_open_rim) and the part's sink into the table judged by how
@@ -245,8 +248,7 @@ std::optional<Rejection> misfit(const HypothesisContext& ctx, const Superquadric
   if (judge_sink && rim > o.max_open_rim) {
     return Rejection{0, Check::kOpenRim, rim, o.max_open_rim, T.translation()};
   }
-  const double sink_limit =
-      o.sink_floor_mm + o.sink_noise_factor * noise_mm + o.sink_sigma_factor * sigma;
+  const double sink_limit = sink_limit_mm(o, noise_mm, sigma);
   if (judge_sink && ctx.table && seen.below_plane_mm > sink_limit) {
     return Rejection{0, Check::kBelowPlane, seen.below_plane_mm, sink_limit, T.translation()};
   }
@@ -540,11 +542,6 @@ std::vector<PartHypothesis> seen_as_claimed(const HypothesisContext& ctx, const 
   return out;
 }
 
-// Angle between two z-axes, folded to [0, pi/2]: symmetric parts have no preferred axis sign.
-double axis_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::acos(std::clamp(std::abs(a.normalized().dot(b.normalized())), 0.0, 1.0));
-}
-
 double folded(double angle) {
   const double a = std::fmod(std::abs(angle), std::numbers::pi);
   return std::min(a, std::numbers::pi - a);
@@ -557,13 +554,13 @@ struct LinkErrors {
 
 LinkErrors link_errors(const PartLink& l, const Eigen::Isometry3d& ti,
                        const Eigen::Isometry3d& tj) {
-  const Eigen::Vector3d line = tj.translation() - ti.translation();
+  const PartLink m = measure_link(l.first, l.second, ti, tj);
   LinkErrors e;
-  e.angle_rad = std::abs(folded(l.angle_rad) - axis_angle(ti.linear().col(2), tj.linear().col(2)));
-  e.distance_mm = std::abs(l.distance_mm - line.norm());
-  if (l.bearing_rad && line.norm() > 0.0) {
-    e.bearing_rad = std::max(std::abs((*l.bearing_rad)[0] - axis_angle(ti.linear().col(2), line)),
-                             std::abs((*l.bearing_rad)[1] - axis_angle(tj.linear().col(2), line)));
+  e.angle_rad = std::abs(folded(l.angle_rad) - m.angle_rad);
+  e.distance_mm = std::abs(l.distance_mm - m.distance_mm);
+  if (l.bearing_rad && m.bearing_rad) {
+    e.bearing_rad = std::max(std::abs((*l.bearing_rad)[0] - (*m.bearing_rad)[0]),
+                             std::abs((*l.bearing_rad)[1] - (*m.bearing_rad)[1]));
   }
   return e;
 }
@@ -734,17 +731,18 @@ void refine_jointly(const HypothesisContext& ctx, const ObjectModel& model,
     const auto open = [](const std::array<double, 2>& a) { return std::max(a[0], a[1]); };
     const double limit = ctx.options->max_open_end_compound;
     T = least;
-    std::array<double, 2> open_ends = open_at(least);
+    std::optional<std::array<double, 2>> open_ends;
     if (!linked.isApprox(least)) {
       const std::array<double, 2> linked_open = open_at(linked);
       if (open(linked_open) <= limit) T = linked, open_ends = linked_open;
     }
+    if (!open_ends) open_ends = open_at(least);
     // Still open at one end: the wall's run is shorter than the part (its other end hidden), and
     // the least slide stopped where the run first fits; slid on towards the open end's wall as
     // far as the run allows, it ends where the scan shows the part's end.
-    if (open(open_ends) > limit && shape.eps1 <= kFlatExponent) {
+    if (open(*open_ends) > limit && shape.eps1 <= kFlatExponent) {
       Eigen::Vector3d close = Eigen::Vector3d::Zero();
-      close.z() = open_ends[0] > open_ends[1] ? shape.a3 : -shape.a3;
+      close.z() = (*open_ends)[0] > (*open_ends)[1] ? shape.a3 : -shape.a3;
       const Eigen::Isometry3d closed = slide_pose(ctx, shape, T, close, others);
       if (!closed.isApprox(T) && open(open_at(closed)) <= limit) T = closed;
     }
@@ -917,8 +915,7 @@ std::optional<Rejection> sunk_compound(const HypothesisContext& ctx, const Detec
   double least_excess = INFINITY;
   for (std::size_t p = 0; p < inst.parts.size(); ++p) {
     const PartScores& s = inst.parts[p].scores;
-    const double limit =
-        o.sink_floor_mm + o.sink_noise_factor * noise_mm + o.sink_sigma_factor * s.height_sigma_mm;
+    const double limit = sink_limit_mm(o, noise_mm, s.height_sigma_mm);
     if (!(s.below_plane_mm > limit)) return std::nullopt;
     if (s.below_plane_mm - limit < least_excess) {
       least_excess = s.below_plane_mm - limit;

@@ -4,8 +4,11 @@
 // the distance between the two centres, and beyond the thesis where each part's axis points
 // relative to the other's centre). A plain value type; io/object_model_file reads it.
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,7 +34,33 @@ struct PartLink {
   // them. The bearings fix where it sits (head 90 deg: the shaft's centre in the head's middle
   // plane; shaft 0 deg: its axis points at the head). Unset: not checked (older model files).
   std::optional<std::array<double, 2>> bearing_rad;
+
+  // Unset, or both within [0, pi/2].
+  bool bearings_valid() const {
+    return !bearing_rad || std::all_of(bearing_rad->begin(), bearing_rad->end(), [](double b) {
+      return b >= 0.0 && b <= std::numbers::pi / 2.0;
+    });
+  }
 };
+
+// The link two posed parts make (first at a, second at b): the angle between their z-axes and
+// the bearings folded to [0, pi/2] (a part's axis has no sign), the distance between their
+// centres; no bearings when the centres coincide. What model learning writes, and what the
+// detector compares with the model's link.
+inline PartLink measure_link(std::size_t first, std::size_t second, const Eigen::Isometry3d& a,
+                             const Eigen::Isometry3d& b) {
+  const auto axis_angle = [](const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+    return std::acos(std::clamp(std::abs(u.normalized().dot(v.normalized())), 0.0, 1.0));
+  };
+  const Eigen::Vector3d line = b.translation() - a.translation();
+  PartLink l{first, second, axis_angle(a.linear().col(2), b.linear().col(2)), line.norm(),
+             std::nullopt};
+  if (l.distance_mm > 0.0) {
+    l.bearing_rad = std::array<double, 2>{axis_angle(a.linear().col(2), line),
+                                          axis_angle(b.linear().col(2), line)};
+  }
+  return l;
+}
 
 struct ObjectModel {
   std::string name;
