@@ -1,7 +1,10 @@
 #include "detect/object/object_axial_slide.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <numbers>
 #include <vector>
 
 namespace rangefit {
@@ -35,6 +38,31 @@ double shift_for(const std::vector<double>& u, double a, double prefer,
   return std::clamp(prefer, s_min, s_max);
 }
 
+// The wall points' coordinates along the part's z-axis, kept in stretches of max_gap_share x a
+// whose points reach around the axis over at least min_wall_sectors sectors. `around`: each
+// point's angle about the axis in the cross-section's normalised coordinates (x / a1, y / a2),
+// so that a box's four faces span equal sectors.
+std::vector<double> around_the_axis(const std::vector<double>& u, const std::vector<double>& around,
+                                    double a, const AxialSlideOptions& o) {
+  if (u.empty()) return u;
+  const double width = o.max_gap_share * a;
+  const double lo = *std::min_element(u.begin(), u.end());
+  const auto bin = [&](double z) { return static_cast<std::size_t>((z - lo) / width); };
+  const int sectors = std::clamp(o.wall_sectors, 1, 64);
+  const auto sector = [&](double angle) {
+    const double turn = (angle + std::numbers::pi) / (2.0 * std::numbers::pi);
+    return std::clamp(static_cast<int>(turn * sectors), 0, sectors - 1);
+  };
+  // Per stretch, the sectors its points lie in (bit mask).
+  std::vector<std::uint64_t> seen(bin(*std::max_element(u.begin(), u.end())) + 1, 0);
+  for (std::size_t i = 0; i < u.size(); ++i) seen[bin(u[i])] |= 1ull << sector(around[i]);
+  std::vector<double> out;
+  for (const double z : u) {
+    if (std::popcount(seen[bin(z)]) >= o.min_wall_sectors) out.push_back(z);
+  }
+  return out;
+}
+
 }  // namespace
 
 Eigen::Isometry3d slide_to_wall(const Superquadric& sq, const Eigen::Isometry3d& T,
@@ -65,13 +93,16 @@ Eigen::Isometry3d slide_to_wall(const Superquadric& sq, const Eigen::Isometry3d&
     (k == 0 ? endless.a1 : k == 1 ? endless.a2 : endless.a3) *= kEndless;
     const SuperquadricMetric wall(endless);
     const double a = size[k];
-    std::vector<double> u;
+    std::vector<double> u, around;
     for (const Eigen::Vector3d& x : q) {
       if (std::abs(x[k]) > r * a) continue;
       // On the wall along axis k: near the endless part's surface, and not on one of the other
       // axes' faces far out (for a box, the faces across k are walls too, within their size).
-      if (std::abs(surface_distance(wall, x)) <= o.band_mm) u.push_back(x[k]);
+      if (std::abs(surface_distance(wall, x)) > o.band_mm) continue;
+      u.push_back(x[k]);
+      if (k == 2) around.push_back(std::atan2(x.y() / sq.a2, x.x() / sq.a1));
     }
+    if (k == 2) u = around_the_axis(u, around, a, o);
     std::sort(u.begin(), u.end());
     shift[k] = shift_for(u, a, o.prefer[k], o);
   }

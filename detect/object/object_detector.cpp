@@ -1010,14 +1010,15 @@ bool slide_to_confirm(const HypothesisContext& ctx, const ObjectModel& model,
   const Superquadric& part = model.parts[0].shape;
   const Eigen::Isometry3d& T = inst.parts[0].T_world_part;
   // Where along the wall: as little as possible; from an open end, back towards the other; from
-  // space seen through, which end reaches into it is not known, so either way as well.
+  // space seen through or a cap's rim reaching past the face the scan shows, which end is off is
+  // not known, so either way as well.
   std::vector<Eigen::Vector3d> prefer{Eigen::Vector3d::Zero()};
   if (failed == Check::kOpenEnd) {
     const SurfaceCoverage c = surface_coverage(part, T, ctx.points, *ctx.tree, cover);
     const double minus = std::max(c.open_end_at[0], c.open_end_far_at[0]);
     const double plus = std::max(c.open_end_at[1], c.open_end_far_at[1]);
     prefer[0].z() = plus > minus ? -part.a3 : part.a3;
-  } else if (failed == Check::kSeenThrough) {
+  } else if (failed == Check::kSeenThrough || failed == Check::kOpenRim) {
     prefer.push_back(Eigen::Vector3d(0.0, 0.0, part.a3));
     prefer.push_back(Eigen::Vector3d(0.0, 0.0, -part.a3));
   }
