@@ -1,10 +1,10 @@
 #include "detect/object/object_axial_slide.hpp"
 
 #include <algorithm>
-#include <bit>
+#include <array>
 #include <cmath>
-#include <cstdint>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 namespace rangefit {
@@ -38,27 +38,31 @@ double shift_for(const std::vector<double>& u, double a, double prefer,
   return std::clamp(prefer, s_min, s_max);
 }
 
-// The wall points' coordinates along the part's z-axis, kept in stretches of max_gap_share x a
-// whose points reach around the axis over at least min_wall_sectors sectors. `around`: each
-// point's angle about the axis in the cross-section's normalised coordinates (x / a1, y / a2),
-// so that a box's four faces span equal sectors.
+// The wall points' coordinates along the part's z-axis, kept where the points within
+// sector_window_mm of them along the axis lie in at least min_wall_sectors sectors around it.
+// `around`: each point's angle about the axis in the cross-section's normalised coordinates
+// (x / a1, y / a2), so that a box's four faces span equal sectors.
 std::vector<double> around_the_axis(const std::vector<double>& u, const std::vector<double>& around,
-                                    double a, const AxialSlideOptions& o) {
-  if (u.empty()) return u;
-  const double width = o.max_gap_share * a;
-  const double lo = *std::min_element(u.begin(), u.end());
-  const auto bin = [&](double z) { return static_cast<std::size_t>((z - lo) / width); };
+                                    const AxialSlideOptions& o) {
   const int sectors = std::clamp(o.wall_sectors, 1, 64);
-  const auto sector = [&](double angle) {
-    const double turn = (angle + std::numbers::pi) / (2.0 * std::numbers::pi);
-    return std::clamp(static_cast<int>(turn * sectors), 0, sectors - 1);
-  };
-  // Per stretch, the sectors its points lie in (bit mask).
-  std::vector<std::uint64_t> seen(bin(*std::max_element(u.begin(), u.end())) + 1, 0);
-  for (std::size_t i = 0; i < u.size(); ++i) seen[bin(u[i])] |= 1ull << sector(around[i]);
+  std::vector<std::pair<double, int>> zs;  // (z, sector), by z
+  zs.reserve(u.size());
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    const double turn = (around[i] + std::numbers::pi) / (2.0 * std::numbers::pi);
+    zs.emplace_back(u[i], std::clamp(static_cast<int>(turn * sectors), 0, sectors - 1));
+  }
+  std::sort(zs.begin(), zs.end());
+  std::array<int, 64> in_window{};  // points per sector within the window
+  int distinct = 0;
   std::vector<double> out;
-  for (const double z : u) {
-    if (std::popcount(seen[bin(z)]) >= o.min_wall_sectors) out.push_back(z);
+  for (std::size_t i = 0, lo = 0, hi = 0; i < zs.size(); ++i) {
+    for (; hi < zs.size() && zs[hi].first <= zs[i].first + o.sector_window_mm; ++hi) {
+      distinct += in_window[static_cast<std::size_t>(zs[hi].second)]++ == 0;
+    }
+    for (; zs[lo].first < zs[i].first - o.sector_window_mm; ++lo) {
+      distinct -= --in_window[static_cast<std::size_t>(zs[lo].second)] == 0;
+    }
+    if (distinct >= o.min_wall_sectors) out.push_back(zs[i].first);
   }
   return out;
 }
@@ -102,7 +106,7 @@ Eigen::Isometry3d slide_to_wall(const Superquadric& sq, const Eigen::Isometry3d&
       u.push_back(x[k]);
       if (k == 2) around.push_back(std::atan2(x.y() / sq.a2, x.x() / sq.a1));
     }
-    if (k == 2) u = around_the_axis(u, around, a, o);
+    if (k == 2) u = around_the_axis(u, around, o);
     std::sort(u.begin(), u.end());
     shift[k] = shift_for(u, a, o.prefer[k], o);
   }

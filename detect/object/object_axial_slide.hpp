@@ -33,12 +33,14 @@ struct AxialSlideOptions {
   // neighbouring object's coplanar face farther on is not the wall).
   double max_gap_share = 0.1;
   int min_wall_points = 10;  // fewer wall points within the part: no verdict
-  // Along the part's own axis its wall is a band around the axis: a stretch of the axis (of
-  // max_gap_share x size) whose wall points lie in fewer than min_wall_sectors of wall_sectors
-  // equal sectors around it is not the wall. Another object's surface crossing the wall's
-  // extension past the part's end leaves a line there (one sector), and carried the run on.
+  // Along the part's own axis its wall is a band around the axis: a wall point whose
+  // neighbours within sector_window_mm along the axis lie in fewer than min_wall_sectors of
+  // wall_sectors equal sectors around it is not on the wall. Another object's surface crossing
+  // the wall's extension past the part's end leaves a line there (one sector), and carried the
+  // run on.
   int wall_sectors = 16;  // at most 64
   int min_wall_sectors = 3;
+  double sector_window_mm = 1.5;
   // Points this close to the removed table (normal towards the objects) are not asked: the table
   // touches a lying part's wall along its whole extended length.
   std::optional<pca::Plane> table;

@@ -76,6 +76,19 @@ TEST(AxialSlide, SlidesOntoTheWallsRunNotOntoStrayPoints) {
   EXPECT_NEAR(slide_to_wall(kCan, at_z(0.0), pts, tree, o).translation().z(), 19.0, 0.5);
 }
 
+// Another surface crossing the plane of the wall past the part's end (a lower neighbour's top
+// meeting a lying box's flank) leaves a line of points on the wall's extension. It is not the
+// wall: along its axis a wall reaches around it. The can posed 12 mm past its wall's end is slid
+// back, not taken for a longer look-alike's wall.
+TEST(AxialSlide, ALineCrossingTheWallsPlanePastItsEndDoesNotCarryItOn) {
+  std::vector<Eigen::Vector3d> pts = wall(-50.0, 50.0);
+  for (double z = 53.0; z <= 72.0; z += 1.0) {  // from 3 mm past the end
+    pts.emplace_back(30.0 * std::cos(0.5), 30.0 * std::sin(0.5), z);
+  }
+  const KdTree tree(pts);
+  EXPECT_NEAR(slide_to_wall(kCan, at_z(12.0), pts, tree).translation().z(), 0.0, 0.5);
+}
+
 // Varied stripe scenes (tuning seeds; sim/varied_scene.hpp) where the detector placed the mallet
 // wrongly: seed 7, a head lying with its caps along the sweep, fitted 4 mm short of its wall's
 // end and rejected as continuing past it; seed 28, its shaft 3-4 mm off along its axis; seed 15,
