@@ -36,8 +36,8 @@ struct AxialSlideOptions {
   // Along the part's own axis its wall is a band around the axis: a wall point whose
   // neighbours within sector_window_mm along the axis lie in fewer than min_wall_sectors of
   // wall_sectors equal sectors around it is not on the wall. Another object's surface crossing
-  // the wall's extension past the part's end leaves a line there (one sector), and carried the
-  // run on.
+  // the wall's extension past the part's end leaves a line there (one sector) that would carry
+  // the run on.
   int wall_sectors = 16;  // at most 64
   int min_wall_sectors = 3;
   double sector_window_mm = 1.5;
