@@ -38,7 +38,7 @@ double shift_for(const std::vector<double>& u, double a, double prefer,
   return std::clamp(prefer, s_min, s_max);
 }
 
-// The wall points' coordinates along the part's z-axis, kept where the points within
+// The wall points' coordinates along the part's z-axis, sorted, kept where the points within
 // sector_window_mm of them along the axis lie in at least min_wall_sectors sectors around it.
 // `around`: each point's angle about the axis in the cross-section's normalised coordinates
 // (x / a1, y / a2), so that a box's four faces span equal sectors.
@@ -106,8 +106,11 @@ Eigen::Isometry3d slide_to_wall(const Superquadric& sq, const Eigen::Isometry3d&
       u.push_back(x[k]);
       if (k == 2) around.push_back(std::atan2(x.y() / sq.a2, x.x() / sq.a1));
     }
-    if (k == 2) u = around_the_axis(u, around, o);
-    std::sort(u.begin(), u.end());
+    if (k == 2) {
+      u = around_the_axis(u, around, o);
+    } else {
+      std::sort(u.begin(), u.end());
+    }
     shift[k] = shift_for(u, a, o.prefer[k], o);
   }
   if (shift.isZero()) return T;
