@@ -55,5 +55,19 @@ TEST(LearnDaily, TableFiveSixObjectsFromTwoStripeViews) {
   }
 }
 
+// A sphere from one oblique view (tuning seeds 8 and 10): with its tapers free the fit turned it
+// into an egg 4.5 % long into the unseen side; a taper the seen surface barely shows is given up.
+TEST(LearnDaily, TheSphereFromOneViewIsNotAnEgg) {
+  const sim::DailyObject sphere = sim::daily_life_objects()[1];
+  ASSERT_EQ(sphere.name, "sphere");
+  for (std::uint64_t seed : {8u, 10u}) {
+    const test::DailyLearnt l = test::learn_daily(sphere, seed, 1);
+    print(sphere, 1, l);
+    ASSERT_TRUE(l.result.learnt()) << seed << ": " << to_string(l.result.reason);
+    EXPECT_LE(l.size, 0.02) << seed;
+    EXPECT_LE(l.shape, 0.1) << seed;
+  }
+}
+
 }  // namespace learn_daily_test
 }  // namespace rangefit
