@@ -101,6 +101,17 @@ void refit_diamond_as_square(std::span<const Eigen::Vector3d> fine, const LearnO
   if (f.ok && f.cost < fit.cost) fit = f;
 }
 
+// The fit of `start` to the points with its tapers held where `start` has them.
+ShapeFitResult fit_taper_held(std::span<const Eigen::Vector3d> fine, const PosedSuperquadric& start,
+                              const LearnOptions& options, double v0,
+                              const std::optional<Eigen::Vector4d>& support) {
+  ShapeFitOptions f = fit_options(options, v0, options.iterations, support);
+  f.fit_taper = false;
+  return fit_superquadric(fine, start, f);
+}
+
+double largest_taper(const Superquadric& s) { return std::max(std::abs(s.kx), std::abs(s.ky)); }
+
 void refit_apex_taper(std::span<const Eigen::Vector3d> fine, const LearnOptions& options,
                       double v0, const std::optional<Eigen::Vector4d>& support,
                       ShapeFitResult& fit) {
@@ -115,13 +126,11 @@ void refit_apex_taper(std::span<const Eigen::Vector3d> fine, const LearnOptions&
   constexpr double kApexTaper = 0.9, kChi2TwoDof95 = 5.99;
   const Superquadric& b = fit.part.shape;
   const double bound = kApexTaper * options.max_taper;
-  if (!fit.ok || !options.fit_taper || std::max(std::abs(b.kx), std::abs(b.ky)) <= bound) return;
+  if (!fit.ok || !options.fit_taper || largest_taper(b) <= bound) return;
   PosedSuperquadric apex = fit.part;
   if (std::abs(b.kx) > bound) apex.shape.kx = std::copysign(options.max_taper, b.kx);
   if (std::abs(b.ky) > bound) apex.shape.ky = std::copysign(options.max_taper, b.ky);
-  ShapeFitOptions f = fit_options(options, v0, options.iterations, support);
-  f.fit_taper = false;
-  const ShapeFitResult a = fit_superquadric(fine, apex, f);
+  const ShapeFitResult a = fit_taper_held(fine, apex, options, v0, support);
   const double variance = 2.0 * fit.cost / static_cast<double>(fine.size());
   if (a.ok && 2.0 * (a.cost - fit.cost) < kChi2TwoDof95 * variance) fit = a;
 }
@@ -136,15 +145,10 @@ void refit_untapered(std::span<const Eigen::Vector3d> fine, const LearnOptions& 
   // rises by less than kTaperShare of itself. Tapers under kMinTaper (1 % of the width over the
   // part's length) are left as they are: giving them up changes no surface.
   constexpr double kTaperShare = 0.05, kMinTaper = 0.01;
-  const Superquadric& b = fit.part.shape;
-  if (!fit.ok || !options.fit_taper || std::max(std::abs(b.kx), std::abs(b.ky)) < kMinTaper) {
-    return;
-  }
+  if (!fit.ok || !options.fit_taper || largest_taper(fit.part.shape) < kMinTaper) return;
   PosedSuperquadric plain = fit.part;
   plain.shape.kx = plain.shape.ky = 0.0;
-  ShapeFitOptions f = fit_options(options, v0, options.iterations, support);
-  f.fit_taper = false;
-  const ShapeFitResult a = fit_superquadric(fine, plain, f);
+  const ShapeFitResult a = fit_taper_held(fine, plain, options, v0, support);
   if (a.ok && a.cost - fit.cost < kTaperShare * fit.cost) fit = a;
 }
 
