@@ -13,6 +13,10 @@ constexpr double kSiblingGate = 1.6;
 // The least width of the window in which a point counts as carrying on past a face, in bands.
 constexpr double kMinWindowBands = 2.0;
 
+// The point spacing is taken from every kSpacingStride-th surface point, at most kSpacingSamples.
+constexpr int kSpacingStride = 16;
+constexpr std::size_t kSpacingSamples = 64;
+
 // One way of extending the part: its sizes stretched by `stretch`, and how far out along the
 // stretch a part-frame point is, in units of the part's size there (1: on the face being
 // extended past).
@@ -49,6 +53,36 @@ double size_along(const Superquadric& sq, Extension::Along along) {
       return std::min(sq.a1, sq.a2);
   }
   return 0.0;
+}
+
+// Which side of the part a point past one of its faces lies on, along the extension.
+double side_of(const Eigen::Vector3d& q, Extension::Along along) {
+  switch (along) {
+    case Extension::kZ:
+      return q.z();
+    case Extension::kX:
+      return q.x();
+    case Extension::kY:
+      return q.y();
+    case Extension::kRadial:
+      return 0.0;
+  }
+  return 0.0;
+}
+
+// The scan's point spacing on the part: the median distance from a few of its surface points to
+// their nearest neighbours (0 with none).
+double point_spacing(std::span<const Eigen::Vector3d> points, const KdTree& tree,
+                     std::span<const std::uint32_t> own) {
+  std::vector<double> d;
+  std::vector<std::uint32_t> nn;
+  for (std::uint32_t i : own) {
+    tree.knn_search(points[i], 2, nn);
+    if (nn.size() == 2) d.push_back((points[nn[1]] - points[i]).norm());
+  }
+  if (d.empty()) return 0.0;
+  std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
+  return d[d.size() / 2];
 }
 
 }  // namespace
@@ -100,6 +134,11 @@ Continuation surface_continuation(const Superquadric& sq, const Eigen::Isometry3
     sib.emplace_back(p.shape);
     sib_inv.push_back(p.T_world_part.inverse());
   }
+  // The continuing points by extension and side (group 2 k for the face at -, 2 k + 1 at +),
+  // with how far past the face they lie (mm); a few of the part's own surface points for the
+  // scan's spacing.
+  std::vector<std::pair<std::size_t, double>> carried;
+  std::vector<std::uint32_t> own;
   std::vector<std::uint32_t> nbr;
   const double radius = farthest * Eigen::Vector3d(sq.a1, sq.a2, sq.a3).norm() + o.band_mm;
   tree.radius_search(T.translation(), radius, nbr);
@@ -117,7 +156,9 @@ Continuation surface_continuation(const Superquadric& sq, const Eigen::Isometry3
     const Eigen::Vector3d q = inv * p;
     const double d = surface_distance(model, q);
     if (std::abs(d) <= o.band_mm) {
-      ++c.surface;
+      if (c.surface++ % kSpacingStride == 0 && own.size() < kSpacingSamples) {
+        own.push_back(nbr[static_cast<std::size_t>(f)]);
+      }
       continue;
     }
     if (d < 0.0) continue;  // inside
@@ -127,10 +168,23 @@ Continuation surface_continuation(const Superquadric& sq, const Eigen::Isometry3
       // Past the face, short of the stretched part's own end, on its extended surface.
       if (u * size <= size + past[k] || u * size > reach[k] * size - 2.0 * o.band_mm) continue;
       if (std::abs(surface_distance(stretched[k], q)) <= o.band_mm) {
-        ++c.continuing;
+        carried.emplace_back(2 * k + (side_of(q, ext[k].along) > 0.0), u * size - size - past[k]);
         break;
       }
     }
+  }
+  // Only what carries on from the face: a face's continuing points count when the nearest of them
+  // lies where they are first counted, within two point spacings (or the band). A neighbouring
+  // object whose top stands level with the part's a few millimetres beyond it extends the face
+  // just as well, but across a bare strip. Farther out a continuing surface may be broken (a
+  // shadow across it) and still count.
+  const double gap = std::max(o.band_mm, 2.0 * point_spacing(points, tree, own));
+  std::sort(carried.begin(), carried.end());
+  for (std::size_t i = 0; i < carried.size();) {
+    std::size_t j = i;
+    while (j < carried.size() && carried[j].first == carried[i].first) ++j;
+    if (carried[i].second <= gap) c.continuing += static_cast<int>(j - i);
+    i = j;
   }
   if (c.surface > 0) c.share = static_cast<double>(c.continuing) / c.surface;
   return c;

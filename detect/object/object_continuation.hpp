@@ -6,6 +6,8 @@
 // look-alike covers all of it and is empty inside. What tells them apart is that the scan goes
 // on where the part ends: the look-alike's side wall continues straight past the part's cap, or
 // its top face past the part's edge, within the few tens of per cent a look-alike differs by.
+// It carries on from the face: a neighbour standing level with the part a few millimetres beyond
+// it, across a bare strip, is no continuation.
 //
 // Only faces that are straight along the direction they are extended in are asked (side walls
 // along the axis for eps1 <= 0.5, flat caps outwards, flat sides of a box-like part): a rounded
@@ -36,7 +38,9 @@ struct ContinuationOptions {
 
 struct Continuation {
   int surface = 0;     // points on the part's surface (within band_mm)
-  int continuing = 0;  // points outside it, on one of its flat faces extended past its edge
+  // Points outside it, on one of its flat faces extended past its edge, of the faces whose
+  // nearest such point lies within two point spacings (or band_mm) of where they are counted.
+  int continuing = 0;
   // continuing / surface: the share of the part's own evidence that carries on past it (0 with
   // no surface points or a part that is not asked).
   double share = 0.0;

@@ -154,6 +154,30 @@ TEST(ObjectLookAlike, ContinuationSeesAWiderTopAtHighNoise) {
   EXPECT_GT(surface_continuation(model, corner, wider, wider_tree, o).share, 0.05);
 }
 
+// A neighbour whose top stands level with the model's, 9 mm past its edge: at 0.8 mm noise the
+// window the continuation looks in begins 5.3 mm past the edge and holds the neighbour's first
+// millimetre, but the strip between is bare, so the model's top does not carry on (a mallet's
+// head by a box as tall was rejected so). The wider box's top, which runs on from the edge,
+// still does.
+TEST(ObjectLookAlike, ContinuationDoesNotCrossABareStrip) {
+  const Superquadric model = test::box_model();  // 25, 25, 50
+  std::vector<Eigen::Vector3d> beside, wider;
+  for (double y = -25.0; y <= 25.0; y += 0.5) {
+    for (double x = -25.0; x <= 60.0; x += 0.5) {
+      wider.emplace_back(x, y, 50.0);
+      if (x <= 25.0 || x >= 34.0) beside.emplace_back(x, y, 50.0);
+    }
+  }
+  const KdTree beside_tree(beside), wider_tree(wider);
+  ContinuationOptions o;
+  o.band_mm = 3.0 * 0.8;
+  const Eigen::Isometry3d centre = Eigen::Isometry3d::Identity();
+  const Continuation across = surface_continuation(model, centre, beside, beside_tree, o);
+  EXPECT_GT(across.surface, 3000);
+  EXPECT_EQ(across.continuing, 0);
+  EXPECT_GT(surface_continuation(model, centre, wider, wider_tree, o).share, 0.02);
+}
+
 // Varied tuning scenes (sim/varied_scene.hpp) at 0.6-0.8 mm noise with a standing look-alike
 // 18-20 % wider than the box: fitted on one corner of its top, it reads the model's size from the
 // faces it shows, and only its top carrying on past the model's edges tells it apart (the
@@ -174,6 +198,13 @@ TEST(ObjectLookAlike, FindsTheCylinderNotAShorterLyingCan) {
   for (std::uint64_t seed : {85u, 215u}) {
     test::expect_varied_target_found(sim::VariedTarget::kCylinder, seed);
   }
+}
+
+// A varied tuning scene whose mallet head lies with one cap 8 mm from a clutter box as tall as
+// the head (seed 258): the box's top extended the head's side wall past its cap and the true
+// head was rejected, until only a continuation that runs on from the face counted.
+TEST(ObjectLookAlike, FindsTheMalletHeadByABoxAsTall) {
+  test::expect_varied_target_found(sim::VariedTarget::kMallet, 258);
 }
 
 }  // namespace object_lookalike_test
