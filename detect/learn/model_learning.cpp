@@ -8,6 +8,7 @@
 #include <numbers>
 #include <numeric>
 
+#include "detect/common/parallel_for.hpp"
 #include "detect/common/spread_subset.hpp"
 #include "detect/learn/learn_split.hpp"
 #include "detect/learn/learn_start.hpp"
@@ -228,22 +229,30 @@ PartFit learn_part(std::span<const Eigen::Vector3d> object_points,
   // One reference volume for every start, so their costs compare.
   const Superquadric& s0 = starts.front().shape;
   const double v0 = s0.a1 * s0.a2 * s0.a3;
-  std::vector<ShapeFitResult> short_fits;
-  for (const PosedSuperquadric& s : starts) {
-    short_fits.push_back(
-        fit_superquadric(coarse, s, fit_options(options, v0, options.start_iterations)));
-  }
+  // The starts' fits are independent: on all threads, each into its own slot.
+  std::vector<ShapeFitResult> short_fits(starts.size());
+  parallel_for(starts.size(), options.threads, [&](std::size_t k) {
+    short_fits[k] =
+        fit_superquadric(coarse, starts[k], fit_options(options, v0, options.start_iterations));
+  });
   out.starts = static_cast<int>(starts.size());
   std::sort(short_fits.begin(), short_fits.end(),
             [](const ShapeFitResult& a, const ShapeFitResult& b) {
               return a.ok != b.ok ? a.ok : a.cost < b.cost;
             });
   const int n = static_cast<int>(short_fits.size());
+  // Fitted to convergence on all threads, then taken in rank order: the same fit wins however
+  // many threads ran them.
   auto finish = [&](int from, int to) {
-    for (int k = from; k < to; ++k) {
-      if (!short_fits[k].ok) continue;
-      ShapeFitResult f = fit_superquadric(fine, short_fits[k].part,
-                                          fit_options(options, v0, options.iterations, support));
+    std::vector<ShapeFitResult> fits(static_cast<std::size_t>(std::max(0, to - from)));
+    parallel_for(fits.size(), options.threads, [&](std::size_t i) {
+      const ShapeFitResult& s = short_fits[static_cast<std::size_t>(from) + i];
+      if (s.ok) {
+        fits[i] =
+            fit_superquadric(fine, s.part, fit_options(options, v0, options.iterations, support));
+      }
+    });
+    for (const ShapeFitResult& f : fits) {
       if (f.ok && (!out.fit.ok || f.cost < out.fit.cost)) out.fit = f;
     }
   };

@@ -49,6 +49,7 @@ struct LearnOptions {
   bool fit_taper = true;
   double max_taper = 1.0;
   double visible_tolerance_mm = 0;  // 0: 2 x the fit's radial rms + the segmentation gap / 2
+  int threads = 0;  // the starts' fits run on this many threads (0: all cores); same result
 };
 
 enum class LearnReason {

@@ -5,13 +5,13 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
-#include <thread>
 
+#include "detect/common/occupancy_grid.hpp"
+#include "detect/common/parallel_for.hpp"
 #include "detect/object/object_continuation.hpp"
 #include "detect/object/object_coverage.hpp"
 #include "detect/object/object_hypotheses.hpp"
 #include "detect/object/object_vote.hpp"
-#include "detect/common/occupancy_grid.hpp"
 
 namespace rangefit {
 namespace {
@@ -167,21 +167,10 @@ std::vector<int> part_rank_sums(const std::vector<PartHypothesis>& hyps, Selecti
 // Runs hypotheses [begin, end) of one part on the worker threads; results by index.
 void run_batch(const HypothesisContext& ctx, const Superquadric& part, std::size_t part_index,
                std::size_t begin, std::size_t end, int threads, std::vector<PartHypothesis>& out) {
-  const auto work = [&](std::size_t first, std::size_t step) {
-    for (std::size_t h = first; h < end; h += step) {
-      out[h] = generate_hypothesis(ctx, part, mix_seed(ctx.options->seed, part_index, h));
-    }
-  };
-  const std::size_t n = end - begin;
-  const std::size_t workers = std::min<std::size_t>(n, static_cast<std::size_t>(threads));
-  if (workers <= 1) {
-    work(begin, 1);
-    return;
-  }
-  std::vector<std::thread> pool;
-  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(work, begin + w, workers);
-  work(begin, workers);
-  for (std::thread& t : pool) t.join();
+  parallel_for(end - begin, threads, [&](std::size_t i) {
+    const std::size_t h = begin + i;
+    out[h] = generate_hypothesis(ctx, part, mix_seed(ctx.options->seed, part_index, h));
+  });
 }
 
 // The rest_on_plane check for a part, or the lowest part of an object (see
@@ -444,9 +433,6 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Sup
                                         const CoverageOptions& cover, double noise_mm,
                                         std::vector<Judged>& judged) {
   const ObjectDetectOptions& o = *base.options;
-  const int threads = o.threads > 0
-                          ? o.threads
-                          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   const std::size_t m = static_cast<std::size_t>(compound ? o.compound_hypotheses : o.hypotheses);
   std::vector<PartHypothesis> all(m);
   std::vector<PlacedPart> set_aside, seeds_aside;
@@ -456,7 +442,7 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Sup
   while (done < m) {
     const std::size_t end = std::min(m, done + static_cast<std::size_t>(o.batch));
     ctx.seed_excluded = seeds_aside;
-    run_batch(ctx, part, part_index, done, end, threads, all);
+    run_batch(ctx, part, part_index, done, end, o.threads, all);
     done = end;
     if (!o.early_stop || done >= m) continue;
     std::vector<PartHypothesis> valid;

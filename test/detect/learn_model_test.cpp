@@ -236,6 +236,24 @@ TEST(LearnModel, LearnsTheMalletAsHeadAndShaftWithTheirLink) {
 namespace rangefit {
 namespace learn_model_test {
 
+// The starts are fitted on several threads: the model is the same, to the last bit, on one
+// thread or three (the cone, whose refits after the starts also run).
+TEST(LearnModel, TheSameModelOnAnyNumberOfThreads) {
+  const std::vector<sim::ScenePart> parts = test::resting(sim::cone_model(), 3);
+  const std::vector<Eigen::Vector3d> scan = test::teach_scan(parts, 1, kNoise, 3);
+  LearnOptions one, three;
+  one.threads = 1;
+  three.threads = 3;
+  const LearnResult a = learn_model(scan, one), b = learn_model(scan, three);
+  ASSERT_TRUE(a.learnt()) << to_string(a.reason);
+  ASSERT_TRUE(b.learnt()) << to_string(b.reason);
+  const Superquadric &sa = a.parts[0].shape, &sb = b.parts[0].shape;
+  EXPECT_EQ(std::vector<double>({sa.a1, sa.a2, sa.a3, sa.eps1, sa.eps2, sa.kx, sa.ky}),
+            std::vector<double>({sb.a1, sb.a2, sb.a3, sb.eps1, sb.eps2, sb.kx, sb.ky}));
+  EXPECT_TRUE(a.parts[0].T_world_part.matrix() == b.parts[0].T_world_part.matrix());
+  EXPECT_EQ(a.starts, b.starts);
+}
+
 TEST(LearnModel, EmptyTableAndBadOptionsAreReasonsNotCrashes) {
   EXPECT_EQ(learn_model({}).reason, LearnReason::kEmptyCloud);
   // A bare table: the plane goes, nothing is left.
