@@ -1,11 +1,11 @@
 #include "sim/stripe_scan.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <numbers>
 #include <random>
-#include <thread>
+
+#include "detect/common/parallel_for.hpp"
 
 namespace rangefit::sim {
 namespace {
@@ -190,18 +190,9 @@ StripeScan scan_stripe(const PartCaster& caster, const StripeSweep& sweep, const
   StripeScan out;
   if (sweep.profiles <= 0 || sweep.rays < 2) return out;
   std::vector<Row> rows(static_cast<std::size_t>(sweep.profiles));
-  std::atomic<int> next{0};
-  const auto work = [&] {
-    for (int j = next++; j < sweep.profiles; j = next++) {
-      rows[static_cast<std::size_t>(j)] = scan_profile(caster, sweep, noise, j);
-    }
-  };
-  int n = threads > 0 ? threads : static_cast<int>(std::thread::hardware_concurrency());
-  n = std::clamp(n, 1, sweep.profiles);
-  std::vector<std::thread> pool;
-  for (int t = 1; t < n; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
+  parallel_for(rows.size(), threads, [&](std::size_t j) {
+    rows[j] = scan_profile(caster, sweep, noise, static_cast<int>(j));
+  });
 
   std::size_t total = 0;
   for (const Row& r : rows) total += r.point.size();
