@@ -1,5 +1,6 @@
 #include "detect/common/kdtree.hpp"
 
+#include <algorithm>
 #include <nanoflann.hpp>
 
 namespace rangefit {
@@ -60,6 +61,20 @@ void KdTree::knn_search(const Eigen::Vector3d& query, std::size_t k,
   std::vector<double> dist2(k);
   const std::size_t found = impl_->tree.knnSearch(query.data(), k, out.data(), dist2.data());
   out.resize(found);
+}
+
+std::optional<double> median_neighbour_distance(std::span<const Eigen::Vector3d> points,
+                                                const KdTree& tree,
+                                                std::span<const std::uint32_t> which) {
+  std::vector<double> d;
+  std::vector<std::uint32_t> nn;
+  for (std::uint32_t i : which) {
+    tree.knn_search(points[i], 2, nn);
+    if (nn.size() == 2) d.push_back((points[nn[1]] - points[i]).norm());
+  }
+  if (d.empty()) return std::nullopt;
+  std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
+  return d[d.size() / 2];
 }
 
 }  // namespace rangefit

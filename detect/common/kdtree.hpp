@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -34,5 +35,11 @@ class KdTree {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// The scan's point spacing about the points `which` (indices into the tree's points): the median
+// distance from each to its nearest other point. nullopt when none of them has a neighbour.
+std::optional<double> median_neighbour_distance(std::span<const Eigen::Vector3d> points,
+                                                const KdTree& tree,
+                                                std::span<const std::uint32_t> which);
 
 }  // namespace rangefit

@@ -70,21 +70,6 @@ double side_of(const Eigen::Vector3d& q, Extension::Along along) {
   return 0.0;
 }
 
-// The scan's point spacing on the part: the median distance from a few of its surface points to
-// their nearest neighbours (0 with none).
-double point_spacing(std::span<const Eigen::Vector3d> points, const KdTree& tree,
-                     std::span<const std::uint32_t> own) {
-  std::vector<double> d;
-  std::vector<std::uint32_t> nn;
-  for (std::uint32_t i : own) {
-    tree.knn_search(points[i], 2, nn);
-    if (nn.size() == 2) d.push_back((points[nn[1]] - points[i]).norm());
-  }
-  if (d.empty()) return 0.0;
-  std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
-  return d[d.size() / 2];
-}
-
 }  // namespace
 
 Continuation surface_continuation(const Superquadric& sq, const Eigen::Isometry3d& T,
@@ -178,13 +163,16 @@ Continuation surface_continuation(const Superquadric& sq, const Eigen::Isometry3
   // object whose top stands level with the part's a few millimetres beyond it extends the face
   // just as well, but across a bare strip. Farther out a continuing surface may be broken (a
   // shadow across it) and still count.
-  const double gap = std::max(o.band_mm, 2.0 * point_spacing(points, tree, own));
-  std::sort(carried.begin(), carried.end());
-  for (std::size_t i = 0; i < carried.size();) {
-    std::size_t j = i;
-    while (j < carried.size() && carried[j].first == carried[i].first) ++j;
-    if (carried[i].second <= gap) c.continuing += static_cast<int>(j - i);
-    i = j;
+  if (!carried.empty()) {
+    const double gap =
+        std::max(o.band_mm, 2.0 * median_neighbour_distance(points, tree, own).value_or(0.0));
+    std::sort(carried.begin(), carried.end());
+    for (std::size_t i = 0; i < carried.size();) {
+      std::size_t j = i;
+      while (j < carried.size() && carried[j].first == carried[i].first) ++j;
+      if (carried[i].second <= gap) c.continuing += static_cast<int>(j - i);
+      i = j;
+    }
   }
   if (c.surface > 0) c.share = static_cast<double>(c.continuing) / c.surface;
   return c;

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <optional>
 
+#include "detect/common/kdtree.hpp"
 #include "detect/common/occupancy_grid.hpp"
 #include "detect/common/parallel_for.hpp"
 #include "detect/object/object_continuation.hpp"
@@ -130,17 +131,14 @@ std::optional<Rejection> unconfirmed(const SurfaceCoverage& c, const ObjectDetec
 double occupancy_cell_mm(std::span<const Eigen::Vector3d> points, const KdTree& tree) {
   constexpr std::size_t kSample = 256;
   if (points.size() < 2) return 2.0;
-  std::vector<std::uint32_t> nbr;
-  std::vector<double> d;
+  std::vector<std::uint32_t> sample;
   const std::size_t stride = std::max<std::size_t>(1, points.size() / kSample);
   for (std::size_t i = 0; i < points.size(); i += stride) {
-    const Eigen::Vector3d& p = points[i];
-    tree.knn_search(p, 2, nbr);
-    if (nbr.size() == 2) d.push_back((points[nbr[1]] - p).norm());
+    sample.push_back(static_cast<std::uint32_t>(i));
   }
-  if (d.empty()) return 2.0;
-  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
-  return std::clamp(2.0 * d[d.size() / 2], 1.5, 6.0);
+  const std::optional<double> spacing = median_neighbour_distance(points, tree, sample);
+  if (!spacing) return 2.0;
+  return std::clamp(2.0 * *spacing, 1.5, 6.0);
 }
 
 // Same physical pose: the centres agree to 5% of the smallest size.
