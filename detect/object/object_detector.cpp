@@ -196,12 +196,10 @@ double sink_limit_mm(const ObjectDetectOptions& o, double noise_mm, double sigma
 // plane's rms). A compound object's parts are held to the table margin only: a mallet's shaft
 // touches the table at its far end, 120 mm from its centre, and a true shaft of the tuning
 // scenes was fitted 3.3 mm into the table there against a standard deviation of 0.28 mm.
-std::optional<Rejection> misfit(const HypothesisContext& ctx, const Superquadric& part,
-                                const Eigen::Isometry3d& T, std::span<const PlacedPart> others,
-                                double noise_mm, const SurfaceCoverage& seen, bool judge_sink,
-                                PartScores* scores = nullptr) {
+std::optional<Rejection> misfit(const HypothesisContext& ctx, const Eigen::Isometry3d& T,
+                                const SizeEvidence& e, double noise_mm, const SurfaceCoverage& seen,
+                                bool judge_sink, PartScores* scores = nullptr) {
   const ObjectDetectOptions& o = *ctx.options;
-  const SizeEvidence e = size_evidence(ctx, part, T, others);
   // Unknown when the fit had too few points: then only the table margin of unconfirmed() holds.
   double sigma = INFINITY;
   if (ctx.table && !e.pose_covariance.isZero()) {
@@ -242,19 +240,23 @@ std::optional<Rejection> misfit(const HypothesisContext& ctx, const Superquadric
   return std::nullopt;
 }
 
-// The continuation check (see ObjectDetectOptions::max_continuation): the band is the scan's
-// noise (three sigma, at least 1 mm), and the table is the one margin of the other table checks.
-std::optional<Rejection> continues(const HypothesisContext& ctx, const Superquadric& part,
-                                   const Eigen::Isometry3d& T, std::span<const PlacedPart> others,
-                                   double noise_mm, PartScores* scores = nullptr) {
-  const ObjectDetectOptions& o = *ctx.options;
+// How far the scan carries on past the part's faces (see ObjectDetectOptions::
+// max_continuation): the band is the scan's noise (three sigma, at least 1 mm), and the table is
+// the one margin of the other table checks.
+Continuation continuation_of(const HypothesisContext& ctx, const Superquadric& part,
+                             const Eigen::Isometry3d& T, std::span<const PlacedPart> others,
+                             double noise_mm) {
   ContinuationOptions co;
   co.band_mm = std::max(1.0, 3.0 * noise_mm);
   co.table = ctx.table;
-  co.table_margin_mm = table_margin_mm(o, part.min_size(), noise_mm);
+  co.table_margin_mm = table_margin_mm(*ctx.options, part.min_size(), noise_mm);
   std::vector<PlacedShape> explained;
   for (const PlacedPart& p : others) explained.push_back({p.shape, p.T_world_part});
-  const Continuation c = surface_continuation(part, T, ctx.points, *ctx.tree, co, explained);
+  return surface_continuation(part, T, ctx.points, *ctx.tree, co, explained);
+}
+
+std::optional<Rejection> continues(const Continuation& c, const Eigen::Isometry3d& T,
+                                   const ObjectDetectOptions& o, PartScores* scores) {
   if (scores) scores->continuation = c.share;
   if (c.share > o.max_continuation) {
     return Rejection{0, Check::kContinues, c.share, o.max_continuation, T.translation()};
@@ -297,7 +299,22 @@ std::optional<Rejection> judge_at(const HypothesisContext& ctx, const Superquadr
                                   const CoverageOptions& cover, double noise_mm, bool alone,
                                   PartScores* scores, SurfaceCoverage* seen) {
   const ObjectDetectOptions& o = *ctx.options;
-  const SurfaceCoverage c = surface_coverage(part, T, ctx.points, *ctx.tree, cover);
+  // The coverage, the size fit and the continuation do not depend on one another. With more
+  // than one thread they are measured at once (a judge is otherwise the one thing running between
+  // two batches of hypotheses; what a failed check leaves unused was measured on a core that
+  // would have waited); on one thread each only when the checks before it pass.
+  SurfaceCoverage c;
+  std::optional<SizeEvidence> size;
+  std::optional<Continuation> continuation;
+  if (thread_count(o.threads) > 1) {
+    parallel_for(3, o.threads, [&](std::size_t k) {
+      if (k == 0) c = surface_coverage(part, T, ctx.points, *ctx.tree, cover);
+      if (k == 1) size = size_evidence(ctx, part, T, others);
+      if (k == 2) continuation = continuation_of(ctx, part, T, others, noise_mm);
+    });
+  } else {
+    c = surface_coverage(part, T, ctx.points, *ctx.tree, cover);
+  }
   if (seen) *seen = c;
   if (scores) {
     scores->facing = c.facing;
@@ -314,8 +331,14 @@ std::optional<Rejection> judge_at(const HypothesisContext& ctx, const Superquadr
     why = floating(c.lowest_mm, part.max_size(), cover.removed_plane.has_value(), noise_mm, o);
   }
   if (!why && !alone && !others.empty()) why = open_end_of_compound_part(c, T, others, o);
-  if (!why) why = misfit(ctx, part, T, others, noise_mm, c, alone, scores);
-  if (!why) why = continues(ctx, part, T, others, noise_mm, scores);
+  if (!why) {
+    if (!size) size = size_evidence(ctx, part, T, others);
+    why = misfit(ctx, T, *size, noise_mm, c, alone, scores);
+  }
+  if (!why) {
+    if (!continuation) continuation = continuation_of(ctx, part, T, others, noise_mm);
+    why = continues(*continuation, T, o, scores);
+  }
   if (why) why->centre = T.translation();
   return why;
 }
@@ -498,27 +521,33 @@ std::vector<PartHypothesis> seen_as_claimed(const HypothesisContext& ctx, const 
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return sums[a] < sums[b]; });
-  std::vector<std::pair<Eigen::Isometry3d, bool>> places;
-  std::vector<bool> keep(hyps.size(), false);
+  // The places in rank order (a hypothesis at an earlier one's place shares its verdict), then
+  // their coverage on all threads.
+  std::vector<std::size_t> place_of(hyps.size()), first_of;
   for (std::size_t i : order) {
     const Eigen::Isometry3d& T = hyps[i].T_world_part;
-    const auto it = std::find_if(places.begin(), places.end(),
-                                 [&](const auto& pl) { return same_place(pl.first, T, part); });
-    if (it != places.end()) {
-      keep[i] = it->second;
-      continue;
-    }
-    const SurfaceCoverage c = surface_coverage(part, T, ctx.points, *ctx.tree, cover);
-    std::optional<Rejection> r =
-        unconfirmed(c, o, cover.sensor.kind != SensorView::Kind::kUnknown, false, noise_mm);
-    keep[i] = !r;
-    places.emplace_back(T, keep[i]);
-    if (r) {
-      r->part = part_index;
-      r->centre = T.translation();
-      why.push_back(*r);
-    }
+    const auto it = std::find_if(first_of.begin(), first_of.end(), [&](std::size_t f) {
+      return same_place(hyps[f].T_world_part, T, part);
+    });
+    place_of[i] = static_cast<std::size_t>(it - first_of.begin());
+    if (it == first_of.end()) first_of.push_back(i);
   }
+  std::vector<std::optional<Rejection>> verdict(first_of.size());
+  parallel_for(first_of.size(), o.threads, [&](std::size_t k) {
+    const Eigen::Isometry3d& T = hyps[first_of[k]].T_world_part;
+    const SurfaceCoverage c = surface_coverage(part, T, ctx.points, *ctx.tree, cover);
+    verdict[k] =
+        unconfirmed(c, o, cover.sensor.kind != SensorView::Kind::kUnknown, false, noise_mm);
+    if (verdict[k]) {
+      verdict[k]->part = part_index;
+      verdict[k]->centre = T.translation();
+    }
+  });
+  for (const std::optional<Rejection>& r : verdict) {
+    if (r) why.push_back(*r);
+  }
+  std::vector<bool> keep(hyps.size());
+  for (std::size_t i = 0; i < hyps.size(); ++i) keep[i] = !verdict[place_of[i]];
   std::vector<PartHypothesis> out;
   for (std::size_t i = 0; i < hyps.size(); ++i) {
     if (keep[i]) out.push_back(std::move(hyps[i]));
