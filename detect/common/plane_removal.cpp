@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "detect/common/parallel_for.hpp"
+
 namespace rangefit {
 namespace {
 
@@ -27,40 +29,53 @@ std::vector<Eigen::Vector3d> even_spread(std::span<const Eigen::Vector3d> points
   return sub;
 }
 
+// A seed's PCA plane patch and how many seeds it supports (within tolerance), with the median
+// distance of those.
+struct SeedPlane {
+  pca::Plane plane;
+  std::size_t support = 0;
+  double median = 0.0;
+};
+
 // One PCA plane patch of k points per seed, verified against the other seeds (most within
-// tolerance wins, the smaller median distance of the supporters breaks ties). Invalid when no
-// patch gives a plane.
+// tolerance wins, the smaller median distance of the supporters breaks ties; the first seed of
+// equals). Invalid when no patch gives a plane. The seeds are tried on `threads` threads, each
+// into its own slot.
 pca::Plane best_seed_plane(std::span<const Eigen::Vector3d> sub, std::size_t seeds, std::size_t k,
-                           double tol) {
+                           double tol, int threads) {
   const std::size_t sub_n = sub.size();
   std::vector<std::size_t> seed_idx(seeds);
   for (std::size_t s = 0; s < seeds; ++s) seed_idx[s] = s * sub_n / seeds;
-  std::vector<std::pair<double, std::size_t>> dist(sub_n);
-  std::vector<Eigen::Vector3d> patch(k);
-  pca::Plane best;
-  std::size_t best_support = 0;
-  double best_median = 0.0;
-  for (std::size_t s = 0; s < seeds; ++s) {
+  std::vector<SeedPlane> tried(seeds);
+  parallel_for(seeds, threads, [&](std::size_t s) {
+    std::vector<std::pair<double, std::size_t>> dist(sub_n);
     const Eigen::Vector3d& c = sub[seed_idx[s]];
     for (std::size_t i = 0; i < sub_n; ++i) dist[i] = {(sub[i] - c).squaredNorm(), i};
     std::nth_element(dist.begin(), dist.begin() + static_cast<std::ptrdiff_t>(k - 1), dist.end());
+    std::vector<Eigen::Vector3d> patch(k);
     for (std::size_t i = 0; i < k; ++i) patch[i] = sub[dist[i].second];
     const pca::Plane plane = pca::fit_plane(patch);
-    if (!plane.valid) continue;
+    if (!plane.valid) return;
     std::vector<double> support;
     for (std::size_t t = 0; t < seeds; ++t) {
       const double d = std::abs(plane.normal.dot(sub[seed_idx[t]] - plane.point));
       if (d <= tol) support.push_back(d);
     }
-    if (support.empty()) continue;
+    if (support.empty()) return;
     std::nth_element(support.begin(),
                      support.begin() + static_cast<std::ptrdiff_t>(support.size() / 2),
                      support.end());
-    const double median = support[support.size() / 2];
-    if (support.size() > best_support || (support.size() == best_support && median < best_median)) {
-      best_support = support.size();
-      best_median = median;
-      best = plane;
+    tried[s] = {plane, support.size(), support[support.size() / 2]};
+  });
+  pca::Plane best;
+  std::size_t best_support = 0;
+  double best_median = 0.0;
+  for (const SeedPlane& t : tried) {
+    if (t.support == 0) continue;
+    if (t.support > best_support || (t.support == best_support && t.median < best_median)) {
+      best_support = t.support;
+      best_median = t.median;
+      best = t.plane;
     }
   }
   return best;
@@ -81,7 +96,7 @@ PlaneRemovalResult remove_dominant_plane(std::span<const Eigen::Vector3d> points
   const std::vector<Eigen::Vector3d> sub = even_spread(points, sub_n, options.seed);
   const double tol = options.distance_tolerance_mm;
   result.plane = best_seed_plane(sub, std::min(sub_n, static_cast<std::size_t>(options.seeds)), k,
-                                 tol);
+                                 tol, options.threads);
   if (!result.plane.valid) {
     result.reason = PlaneRemovalReason::kNotDominant;
     result.remaining = all_indices(n);

@@ -19,6 +19,8 @@ struct PlaneRemovalOptions {
   double distance_tolerance_mm = 2.0;  // a point within this of the plane belongs to it
   double noise_factor = 4.0;           // ... or within this many times the plane's rms
   std::uint64_t seed = 1;              // offset of the even spread
+  int threads = 0;                     // the seeds' patches on this many threads (0: all cores);
+                                       // the same plane on any number
 };
 
 enum class PlaneRemovalReason {

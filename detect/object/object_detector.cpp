@@ -796,7 +796,9 @@ Scan prepare_scan(std::span<const Eigen::Vector3d> points, const ObjectDetectOpt
   if (scan.finite.empty()) return scan;
   const Clock::time_point t0 = Clock::now();
   if (options.remove_plane) {
-    result.plane = remove_dominant_plane(scan.finite, options.plane);
+    PlaneRemovalOptions plane = options.plane;
+    plane.threads = options.threads;
+    result.plane = remove_dominant_plane(scan.finite, plane);
     scan.cloud.reserve(result.plane.remaining.size());
     for (std::uint32_t i : result.plane.remaining) scan.cloud.push_back(scan.finite[i]);
   } else {
