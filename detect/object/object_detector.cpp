@@ -53,11 +53,11 @@ bool options_ok(const ObjectDetectOptions& o) {
   return o.hypotheses >= 1 && o.compound_hypotheses >= 1 && o.trials >= 1 && o.sample_points >= 6 &&
          o.iterations >= 1 && o.init_iterations >= 1 && o.refine_rounds >= 0 && o.gamma > 0.0 &&
          o.gamma < 1.0 && o.neighbourhood_factor > 0.0 && o.instances >= 1 && o.batch >= 1 &&
-         o.confirmations >= 1 && o.refine_trim >= 0.0 && o.max_measure > 0.0 &&
-         o.max_interior_ratio >= 0.0 && o.min_coverage >= 0.0 &&
-         o.min_coverage_unknown_sensor >= 0.0 && o.min_coverage_compound_part >= 0.0 && o.max_seen_through >= 0.0 &&
-         o.max_open_end >= 0.0 && o.max_open_end_compound >= 0.0 && o.max_open_rim >= 0.0 &&
-         o.min_measurable_share_covered >= 0.0 && o.full_coverage >= 0.0 &&
+         o.compound_batch >= 1 && o.confirmations >= 1 && o.refine_trim >= 0.0 &&
+         o.max_measure > 0.0 && o.max_interior_ratio >= 0.0 && o.min_coverage >= 0.0 &&
+         o.min_coverage_unknown_sensor >= 0.0 && o.min_coverage_compound_part >= 0.0 &&
+         o.max_seen_through >= 0.0 && o.max_open_end >= 0.0 && o.max_open_end_compound >= 0.0 &&
+         o.max_open_rim >= 0.0 && o.min_measurable_share_covered >= 0.0 && o.full_coverage >= 0.0 &&
          o.max_size_deviation > 0.0 && o.max_candidates >= 1 && o.min_measurable_samples >= 0 &&
          o.min_measurable_share >= 0.0 && o.max_continuation >= 0.0 && o.plane_margin_mm >= 0.0 &&
          o.rest_noise_factor >= 0.0 && o.rest_size_share >= 0.0 && o.sink_floor_mm >= 0.0 &&
@@ -461,7 +461,8 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Sup
   HypothesisContext ctx = base;
   std::size_t done = 0;
   while (done < m) {
-    const std::size_t end = std::min(m, done + static_cast<std::size_t>(o.batch));
+    const std::size_t end =
+        std::min(m, done + static_cast<std::size_t>(compound ? o.compound_batch : o.batch));
     ctx.seed_excluded = seeds_aside;
     run_batch(ctx, part, part_index, done, end, o.threads, all);
     done = end;

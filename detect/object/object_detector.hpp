@@ -156,6 +156,10 @@ struct ObjectDetectOptions {
   bool early_stop = true;
   int confirmations = 3;  // early stop: hypotheses agreeing with the leader (single-part models)
   int batch = 4;          // hypotheses per parallel batch (fixed: results do not depend on threads)
+  // ... for a compound model's parts, which run all their hypotheses: a leader judged after every
+  // 6 rather than 4 leaves a third fewer judgements and batch ends that hold the other threads
+  // up (the mallet ~0.84x the time), and sets a rejected place's seeds aside 2 hypotheses later.
+  int compound_batch = 6;
   int threads = 0;        // 0: all cores
   bool remove_plane = true;
   PlaneRemovalOptions plane;

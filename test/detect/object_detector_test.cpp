@@ -205,6 +205,10 @@ TEST(ObjectDetector, EmptyCloudInvalidModelAndOptionsAreReasonsNotCrashes) {
   o.hypotheses = 0;
   EXPECT_EQ(detect_object(sphere, fig_scene().rendered.cloud.points, o).reason,
             DetectReason::kInvalidOptions);
+  ObjectDetectOptions no_batch;
+  no_batch.compound_batch = 0;  // would never end the search
+  EXPECT_EQ(detect_object(test::mallet_model(), fig_scene().rendered.cloud.points, no_batch).reason,
+            DetectReason::kInvalidOptions);
   // A cloud far too sparse for any patch: searched, nothing found, no crash.
   std::vector<Eigen::Vector3d> sparse = {{0, 0, 0}, {500, 0, 0}, {0, 500, 0}, {0, 0, 500}};
   const ObjectDetectResult r = detect_object(sphere, sparse);
