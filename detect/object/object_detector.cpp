@@ -547,11 +547,9 @@ std::vector<PartHypothesis> seen_as_claimed(const HypothesisContext& ctx, const 
   for (const std::optional<Rejection>& r : verdict) {
     if (r) why.push_back(*r);
   }
-  std::vector<bool> keep(hyps.size());
-  for (std::size_t i = 0; i < hyps.size(); ++i) keep[i] = !verdict[place_of[i]];
   std::vector<PartHypothesis> out;
   for (std::size_t i = 0; i < hyps.size(); ++i) {
-    if (keep[i]) out.push_back(std::move(hyps[i]));
+    if (!verdict[place_of[i]]) out.push_back(std::move(hyps[i]));
   }
   return out;
 }
