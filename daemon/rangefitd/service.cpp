@@ -116,19 +116,37 @@ void Service::step(std::chrono::milliseconds timeout) {
   apply_pending_reload();
   dds_.poll_requests(
       timeout, [&](ScanRequest req, const std::string& error) { admit(std::move(req), error); });
-  if (clock_.now() >= next_diagnostics_) {
-    publish_diagnostics();
-    next_diagnostics_ = clock_.now() + seconds(config_.dds.diagnostics_period_s);
+  // A device or the pipeline changing state is published at once, not only every period: an
+  // outage shorter than the period (an axis whose Modbus server drops and is back within a
+  // second) would otherwise never reach rt/diagnostics.
+  std::vector<NamedHealth> health = backend_->health();
+  const std::vector<int> states = states_of(health);
+  if (clock_.now() >= next_diagnostics_ || states != published_states_) {
+    publish_diagnostics(std::move(health), states);
   }
 }
 
+std::vector<int> Service::states_of(const std::vector<NamedHealth>& health) const {
+  std::vector<int> states{static_cast<int>(pipeline_->state()), stalled() ? 1 : 0};
+  for (const NamedHealth& h : health) states.push_back(static_cast<int>(h.health.state));
+  return states;
+}
+
 void Service::publish_diagnostics() {
+  std::vector<NamedHealth> health = backend_->health();
+  const std::vector<int> states = states_of(health);
+  publish_diagnostics(std::move(health), states);
+}
+
+void Service::publish_diagnostics(std::vector<NamedHealth> health, std::vector<int> states) {
   PipelineSnapshot snap{pipeline_->state(),      pipeline_->queue_depth(),
                         pipeline_->completed(),  pipeline_->rejected_busy(),
                         pipeline_->last_error(), stalled()};
-  auto statuses = diagnostics_.build(backend_->health(), snap, clock_.now());
+  auto statuses = diagnostics_.build(health, snap, clock_.now());
   board_.set_diagnostics(statuses);
   dds_.publish_diagnostics(std::move(statuses));
+  published_states_ = std::move(states);
+  next_diagnostics_ = clock_.now() + seconds(config_.dds.diagnostics_period_s);
 }
 
 bool Service::stalled() const {

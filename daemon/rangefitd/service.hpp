@@ -58,6 +58,10 @@ class Service {
   void publish_diagnostics();
 
  private:
+  void publish_diagnostics(std::vector<NamedHealth> health, std::vector<int> states);
+  // The pipeline's state, whether it is stalled, and each device's state: a change of any is
+  // published at once.
+  std::vector<int> states_of(const std::vector<NamedHealth>& health) const;
   void build_pipeline();
   std::optional<DetectionResult> submit_locked(const ScanRequest& request);  // mutex_ held
   void apply_pending_reload();  // once the held pipeline is between scans
@@ -82,6 +86,7 @@ class Service {
   std::unique_ptr<Pipeline> pipeline_;
   DiagnosticsBuilder diagnostics_;
   hal::Timestamp next_diagnostics_{0};
+  std::vector<int> published_states_;  // states_of() at the last publication
   std::unique_ptr<PendingReload> pending_;
 };
 

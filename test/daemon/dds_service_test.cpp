@@ -122,5 +122,33 @@ TEST_F(DdsServiceTest, ReplayDeviceGoneGivesErrorResultAndErrorDiagnosticThenRec
   EXPECT_EQ(result->reason.find("scan failed"), std::string::npos) << result->reason;
 }
 
+// rt/diagnostics comes once a period (REP 107: ~1 Hz), and at once when a device changes state:
+// an outage shorter than the period still reaches a monitor, and so does the recovery.
+TEST_F(DdsServiceTest, ADeviceStateChangeIsPublishedAtOnceNotAtTheNextPeriod) {
+  config_.dds.diagnostics_period_s = 60.0;
+  auto owned = std::make_unique<test::FakeBackend>();
+  test::FakeBackend& backend = *owned;
+  start(std::move(owned), std::make_unique<test::CentroidDetector>());
+  DdsClient client(config_.dds.domain_id);
+  ASSERT_TRUE(client.wait_for_daemon(std::chrono::seconds(20)));
+  // The css level as the client last saw it, -1 before any message; polled for up to 10 s.
+  int level = -1;
+  const auto wait_level = [&](int want) {
+    for (int i = 0; i < 200 && level != want; ++i) {
+      client.poll(std::chrono::milliseconds(50),
+                  {.diagnostics = [&](const std::vector<DiagStatus>& s) {
+                    for (const auto& d : s) {
+                      if (d.hardware_id == "css") level = d.level;
+                    }
+                  }});
+    }
+    return level == want;
+  };
+  backend.present = false;
+  EXPECT_TRUE(wait_level(kDiagError)) << "last css level " << level;
+  backend.present = true;
+  EXPECT_TRUE(wait_level(kDiagOk)) << "last css level " << level;
+}
+
 }  // namespace dds_service_test
 }  // namespace rangefit::daemon
