@@ -27,6 +27,14 @@ Spool::PictureWriter picture_writer(const std::vector<ObjectModelConfig>& object
   };
 }
 
+// The pipeline's state, whether it is stalled, and each device's state: what rt/diagnostics
+// publishes at once when it changes.
+std::vector<int> states_of(const PipelineSnapshot& snap, const std::vector<NamedHealth>& health) {
+  std::vector<int> states{static_cast<int>(snap.state), snap.stalled ? 1 : 0};
+  for (const NamedHealth& h : health) states.push_back(static_cast<int>(h.health.state));
+  return states;
+}
+
 }  // namespace
 
 Service::Service(DaemonConfig config, hal::Clock& clock, std::unique_ptr<ScanBackend> backend,
@@ -119,29 +127,10 @@ void Service::step(std::chrono::milliseconds timeout) {
   // A device or the pipeline changing state is published at once, not only every period: an
   // outage shorter than the period (an axis whose Modbus server drops and is back within a
   // second) would otherwise never reach rt/diagnostics.
+  const PipelineSnapshot snap = snapshot();
   std::vector<NamedHealth> health = backend_->health();
-  const std::vector<int> states = states_of(health);
-  if (clock_.now() >= next_diagnostics_ || states != published_states_) {
-    publish_diagnostics(std::move(health), states);
-  }
-}
-
-std::vector<int> Service::states_of(const std::vector<NamedHealth>& health) const {
-  std::vector<int> states{static_cast<int>(pipeline_->state()), stalled() ? 1 : 0};
-  for (const NamedHealth& h : health) states.push_back(static_cast<int>(h.health.state));
-  return states;
-}
-
-void Service::publish_diagnostics() {
-  std::vector<NamedHealth> health = backend_->health();
-  const std::vector<int> states = states_of(health);
-  publish_diagnostics(std::move(health), states);
-}
-
-void Service::publish_diagnostics(std::vector<NamedHealth> health, std::vector<int> states) {
-  PipelineSnapshot snap{pipeline_->state(),      pipeline_->queue_depth(),
-                        pipeline_->completed(),  pipeline_->rejected_busy(),
-                        pipeline_->last_error(), stalled()};
+  std::vector<int> states = states_of(snap, health);
+  if (clock_.now() < next_diagnostics_ && states == published_states_) return;
   auto statuses = diagnostics_.build(health, snap, clock_.now());
   board_.set_diagnostics(statuses);
   dds_.publish_diagnostics(std::move(statuses));

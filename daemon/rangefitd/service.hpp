@@ -29,7 +29,8 @@ class Service {
           std::unique_ptr<Detector> detector = nullptr);
   ~Service();
 
-  // Takes requests (waiting up to timeout) and publishes diagnostics when due.
+  // Takes requests (waiting up to timeout) and publishes diagnostics when due, or at once when
+  // a device or the pipeline changed state.
   void step(std::chrono::milliseconds timeout);
   // The one way into the queue, for DDS, HTTP and TCP requests alike (any thread): validates and
   // queues the request; nullopt when queued, else the error result it is answered with (bad
@@ -55,13 +56,8 @@ class Service {
   std::string status_line() const;  // for STATUS=
   hal::Timestamp last_progress() const { return pipeline_->last_progress(); }
   const DaemonConfig& config() const { return config_; }
-  void publish_diagnostics();
 
  private:
-  void publish_diagnostics(std::vector<NamedHealth> health, std::vector<int> states);
-  // The pipeline's state, whether it is stalled, and each device's state: a change of any is
-  // published at once.
-  std::vector<int> states_of(const std::vector<NamedHealth>& health) const;
   void build_pipeline();
   std::optional<DetectionResult> submit_locked(const ScanRequest& request);  // mutex_ held
   void apply_pending_reload();  // once the held pipeline is between scans
@@ -86,7 +82,7 @@ class Service {
   std::unique_ptr<Pipeline> pipeline_;
   DiagnosticsBuilder diagnostics_;
   hal::Timestamp next_diagnostics_{0};
-  std::vector<int> published_states_;  // states_of() at the last publication
+  std::vector<int> published_states_;  // the states of the last rt/diagnostics (step)
   std::unique_ptr<PendingReload> pending_;
 };
 
