@@ -21,6 +21,10 @@ namespace {
 constexpr double kMinRetryResidualMm = 0.1;  // below this a fit is never retried
 // A second cluster is a part of its own when it has at least 1/20 of the first one's points.
 constexpr std::size_t kMinSecondCluster = 20;
+// Cuts of one cluster tried as a compound object's two parts (detect/learn_split).
+constexpr int kSplitCandidates = 4;
+// A point this far off the main part's rough fit (or 4x the scan's noise) belongs to the other.
+constexpr double kMinOffMainMm = 1.0;
 
 // At most `target` points spread evenly over the surface the points cover.
 std::vector<Eigen::Vector3d> spread(std::span<const Eigen::Vector3d> points, std::size_t target) {
@@ -58,12 +62,56 @@ ShapeFitOptions fit_options(const LearnOptions& o, double reference_volume, int 
   return f;
 }
 
+// True when b's centre lies inside a's surface.
+bool centre_inside(const ShapeFitResult& a, const ShapeFitResult& b) {
+  const SuperquadricMetric m(a.part.shape);
+  return m.value(a.part.T_world_part.inverse() * b.part.T_world_part.translation()) < 1.0;
+}
+
 // Radial distance of a world point from a posed part (as in learn_surface.hpp).
 double radial_distance(const SuperquadricMetric& m, const Eigen::Isometry3d& inv,
                        const Eigen::Vector3d& p) {
   const Eigen::Vector3d q = inv * p;
   const double g = m.value(q);
   return g > 0.0 ? q.norm() * std::abs(1.0 - 1.0 / std::sqrt(g)) : q.norm();
+}
+
+// Ellipsoid, cylinder-like, box-like and pinched (eps > 1) starts; tapered ones standing.
+constexpr StartShape kShapes[] = {{1.0, 1.0},       {0.3, 1.0},       {0.3, 0.3},
+                                  {1.6, 1.6},       {0.3, 1.0, -0.6}, {1.0, 1.0, -0.6},
+                                  {0.3, 1.0, -0.9}, {0.3, 0.3, -0.9}};
+
+// A rough fit of one side of a cut, to compare cuts by: the best of the starts, each fitted
+// briefly on a few spread points.
+ShapeFitResult rough_fit(std::span<const Eigen::Vector3d> points,
+                         const std::optional<pca::Plane>& plane, const LearnOptions& options) {
+  ShapeFitResult best;
+  if (check_learn_points(points) != LearnReason::kLearnt) return best;
+  const std::vector<Eigen::Vector3d> coarse = spread(points, options.start_points / 2);
+  static constexpr StartShape kRoughShapes[] = {{1.0, 1.0}, {0.3, 0.3}};
+  const std::vector<PosedSuperquadric> starts = learn_starts(coarse, plane, kRoughShapes);
+  if (starts.empty()) return best;
+  const Superquadric& s0 = starts.front().shape;
+  const ShapeFitOptions f = fit_options(options, s0.a1 * s0.a2 * s0.a3, options.start_iterations);
+  for (const PosedSuperquadric& start : starts) {
+    const ShapeFitResult r = fit_superquadric(coarse, start, f);
+    if (r.ok && (!best.ok || r.cost < best.cost)) best = r;
+  }
+  return best;
+}
+
+// Sum of the squared radial distances of the points from the nearer of two parts.
+double two_part_cost(const std::array<ShapeFitResult, 2>& fits,
+                     std::span<const Eigen::Vector3d> points) {
+  const SuperquadricMetric m0(fits[0].part.shape), m1(fits[1].part.shape);
+  const Eigen::Isometry3d inv0 = fits[0].part.T_world_part.inverse();
+  const Eigen::Isometry3d inv1 = fits[1].part.T_world_part.inverse();
+  double sum = 0.0;
+  for (const Eigen::Vector3d& p : points) {
+    const double d = std::min(radial_distance(m0, inv0, p), radial_distance(m1, inv1, p));
+    sum += d * d;
+  }
+  return sum;
 }
 
 LearntPart describe(const std::string& name, const ShapeFitResult& fit,
@@ -173,6 +221,8 @@ const char* to_string(LearnReason reason) {
       return "all points are at the same place: nothing to fit";
     case LearnReason::kCollinear:
       return "the points lie on a line: no surface to fit";
+    case LearnReason::kSecondPartNotSeen:
+      return "the object shows one part only: the second is not seen in this view";
   }
   return "unknown";
 }
@@ -207,10 +257,6 @@ PartFit learn_part(std::span<const Eigen::Vector3d> object_points,
   if (check_learn_points(object_points) != LearnReason::kLearnt) return out;
   const std::vector<Eigen::Vector3d> coarse = spread(object_points, options.start_points);
   const std::vector<Eigen::Vector3d> fine = spread(object_points, options.fit_points);
-  // Ellipsoid, cylinder-like, box-like and pinched (eps > 1) starts; tapered ones standing.
-  static constexpr StartShape kShapes[] = {{1.0, 1.0},       {0.3, 1.0},       {0.3, 0.3},
-                                           {1.6, 1.6},       {0.3, 1.0, -0.6}, {1.0, 1.0, -0.6},
-                                           {0.3, 1.0, -0.9}, {0.3, 0.3, -0.9}};
   std::vector<PosedSuperquadric> starts = learn_starts(coarse, plane, kShapes);
   // A single part stands on the table (its normal turned towards it); a part of a compound
   // object need not reach it.
@@ -274,6 +320,55 @@ PartFit learn_part(std::span<const Eigen::Vector3d> object_points,
 
 namespace {
 
+// Two parts of `whole` tried from one cut, scored by how well rough fits of them explain the
+// whole's spread points (`probe`); cost infinite when neither try gave two parts.
+struct CutTry {
+  double cost = std::numeric_limits<double>::infinity();
+  std::array<std::vector<Eigen::Vector3d>, 2> parts;
+  int fits = 0;  // rough fits run
+};
+
+// A cut gives two tries: its two sides as they are; and the side with more points fitted
+// roughly as the main part, with the points of the whole that lie more than `off_mm` off its
+// surface as the other part (a cut through the main part near where the other joins leaves
+// slices of it on the wrong side). Two parts of which one holds the other's centre are one body
+// cut in two, never a try.
+CutTry try_cut(std::span<const Eigen::Vector3d> whole, const TwoPartSplit& split,
+               std::span<const Eigen::Vector3d> probe, const std::optional<pca::Plane>& plane,
+               const LearnOptions& options, double off_mm) {
+  CutTry out;
+  auto consider = [&](std::array<std::vector<Eigen::Vector3d>, 2>& two,
+                      std::array<ShapeFitResult, 2>& q) {
+    for (int j = 0; j < 2; ++j) {
+      if (!q[j].ok) q[j] = rough_fit(two[j], plane, options), ++out.fits;
+      if (!q[j].ok) return;
+    }
+    if (centre_inside(q[0], q[1]) || centre_inside(q[1], q[0])) return;
+    const double cost = two_part_cost(q, probe);
+    if (cost < out.cost) {
+      out.cost = cost;
+      out.parts = std::move(two);
+    }
+  };
+  const int big = split.parts[0].size() >= split.parts[1].size() ? 0 : 1;
+  std::array<std::vector<Eigen::Vector3d>, 2> cut = {gather(whole, split.parts[big]),
+                                                     gather(whole, split.parts[1 - big])};
+  std::array<ShapeFitResult, 2> main;
+  main[0] = rough_fit(cut[0], plane, options);
+  ++out.fits;
+  if (!main[0].ok) return out;
+  std::array<ShapeFitResult, 2> q = main;
+  consider(cut, q);
+  std::array<std::vector<Eigen::Vector3d>, 2> rest;
+  const SuperquadricMetric m(main[0].part.shape);
+  const Eigen::Isometry3d inv = main[0].part.T_world_part.inverse();
+  for (const Eigen::Vector3d& p : whole) {
+    rest[radial_distance(m, inv, p) <= off_mm ? 0 : 1].push_back(p);
+  }
+  if (rest[1].size() >= kMinLearnPoints) consider(rest, main);
+  return out;
+}
+
 // Thesis ch. 7: a compound object as two parts. The clusters the segmentation kept, or the
 // largest cut in two, are fitted apart; points near the cut are then given to whichever part
 // explains them and each part refitted; the link (angle, centre distance) is measured.
@@ -283,23 +378,58 @@ LearnReason learn_two_parts(std::span<const Eigen::Vector3d> points,
                             LearnResult& r) {
   const double gap = r.segment.gap_mm;
   std::array<std::vector<Eigen::Vector3d>, 2> side;
-  if (r.segment.kept.size() == 2 &&
-      r.segment.kept[1].size() * kMinSecondCluster >= r.segment.kept[0].size()) {
-    // Two separate clusters: the parts do not touch in the scan.
-    side = {gather(points, r.segment.kept[0]), gather(points, r.segment.kept[1])};
-  } else {
-    // One cluster (the largest, when the second is only a fragment): cut it in two.
-    const std::vector<Eigen::Vector3d> largest = gather(points, r.segment.kept[0]);
-    const TwoPartSplit split = split_two_parts(largest, 20);
-    if (!split.ok) return LearnReason::kTooFewPoints;
-    side = {gather(largest, split.parts[0]), gather(largest, split.parts[1])};
-  }
   std::array<ShapeFitResult, 2> fits;
-  for (int k = 0; k < 2; ++k) {
-    const PartFit f = learn_part(side[k], plane, options);
-    r.starts += f.starts;
-    if (!f.fit.ok) return LearnReason::kTooFewPoints;
-    fits[k] = f.fit;
+  auto fit_sides = [&]() {
+    for (int k = 0; k < 2; ++k) {
+      const PartFit f = learn_part(side[k], plane, options);
+      r.starts += f.starts;
+      if (!f.fit.ok) return false;
+      fits[k] = f.fit;
+    }
+    return true;
+  };
+  std::vector<Eigen::Vector3d> whole;  // what is cut in two when the clusters are not the parts
+  if (r.segment.kept.size() >= 2 &&
+      r.segment.kept[1].size() * kMinSecondCluster >= r.segment.kept[0].size()) {
+    // Two separate clusters: the parts do not touch in the scan. Unless the two fits are one
+    // body (a centre inside the other part): then the clusters were pieces of one part
+    // that the views did not join, and the whole is cut instead.
+    side = {gather(points, r.segment.kept[0]), gather(points, r.segment.kept[1])};
+    if (!fit_sides()) return LearnReason::kTooFewPoints;
+    if (centre_inside(fits[0], fits[1]) || centre_inside(fits[1], fits[0])) {
+      whole.assign(object.begin(), object.end());
+    }
+  } else {
+    // One cluster, or a second too small to be a part of its own (a handle seen only in part):
+    // all that was kept is cut in two.
+    whole.assign(object.begin(), object.end());
+  }
+  if (!whole.empty()) {
+    std::optional<Eigen::Vector3d> normal;
+    if (plane && plane->valid) normal = plane->normal;
+    const std::vector<TwoPartSplit> splits =
+        split_two_parts(whole, kMinLearnPoints, normal, kSplitCandidates);
+    if (splits.empty()) return LearnReason::kTooFewPoints;
+    const std::vector<Eigen::Vector3d> probe = spread(whole, options.start_points);
+    const double off_mm = std::max(kMinOffMainMm, 4.0 * (plane ? plane->rms : 0.0));
+    // The cuts are tried on all threads, each into its own slot, and taken in order: the same
+    // cut wins however many threads ran them.
+    std::vector<CutTry> tries(splits.size());
+    parallel_for(splits.size(), options.threads, [&](std::size_t k) {
+      tries[k] = try_cut(whole, splits[k], probe, plane, options, off_mm);
+    });
+    std::array<std::vector<Eigen::Vector3d>, 2> chosen;
+    double best = std::numeric_limits<double>::infinity();
+    for (CutTry& t : tries) {
+      r.starts += t.fits;
+      if (t.cost < best) {
+        best = t.cost;
+        chosen = std::move(t.parts);
+      }
+    }
+    if (chosen[0].empty()) return LearnReason::kSecondPartNotSeen;
+    side = std::move(chosen);
+    if (!fit_sides()) return LearnReason::kTooFewPoints;
   }
   // Points near the cut belong to whichever part explains them: reassign by radial distance
   // and refit each part from where it is.
@@ -354,7 +484,8 @@ LearnResult learn_model(std::span<const Eigen::Vector3d> points, const LearnOpti
   }
   SegmentOptions seg = options.segment;
   seg.plane.seed = options.seed;
-  seg.keep = options.parts;
+  // Two parts: a third cluster is kept too, for when the views leave one part in two pieces.
+  seg.keep = options.parts == 1 ? 1 : 3;
   r.segment = segment_object(points, seg);
   if (r.segment.object.empty()) {
     r.reason = LearnReason::kNoObject;

@@ -4,10 +4,13 @@
 // one tapered superquadric fitted to it (size, shape, taper and pose, detect/learn_fit: LM on
 // the radial distance with a volume term against the single view's ambiguity, thesis 2.2) from
 // several starts built from the moments (detect/learn_start); the best fit is kept. With two
-// parts the two largest clusters are the parts when they do not touch; otherwise the object is
-// cut across its main axis where its width steps (detect/learn_split). Each side is fitted as
-// one part, points reassigned to the nearer part and refitted, and the link between them (eq.
-// 5.5-5.6: angle between the z-axes, centre distance) measured.
+// parts the two largest clusters are the parts when they do not touch and neither fit holds the
+// other's centre. Otherwise the object is cut where its width steps (detect/learn_split); each
+// of the best few cuts, and the points off a rough fit of its larger side, are tried as the two
+// parts, and the try whose rough fits explain the object best is kept (a handle on the side of
+// a mug: a one-sided view makes width steps of its own). Each side is fitted as one part, points
+// reassigned to the nearer part and refitted, and the link between them (eq. 5.5-5.6: angle
+// between the z-axes, centre distance) measured.
 //
 // Several views of the object (already in one world frame) are fused by passing all their
 // points: the fit's point budget is spread over the surface area (detect/spread_subset), so a
@@ -61,6 +64,9 @@ enum class LearnReason {
   kNonFinitePoints,  // a NaN or infinite coordinate in the input
   kAllAtOnePoint,    // the points (or the object's) span no extent: all the same point
   kCollinear,        // the points (or the object's) lie on a line: no surface to fit
+  // Two parts asked for, but no cut of the object leaves two parts of which neither holds the
+  // other's centre: the second part is hidden in this view (a mug's handle behind its body).
+  kSecondPartNotSeen,
 };
 const char* to_string(LearnReason reason);
 

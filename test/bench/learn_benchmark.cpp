@@ -107,25 +107,32 @@ void print_daily(int seeds, bool held_out, const std::string& only) {
   std::printf("daily-life objects, %s seeds %llu..%llu, stripe-cell teach-in scans\n",
               held_out ? "held-out" : "tuning", static_cast<unsigned long long>(base),
               static_cast<unsigned long long>(base + seeds - 1));
-  std::printf("%-9s %5s | %9s %8s %8s %8s %8s | %9s %8s %8s %8s %8s | %7s\n", "object", "table",
-              "1v within", "size med", "size max", "shp med", "shp max", "2v within", "size med",
-              "size max", "shp med", "shp max", "ms/part");
+  std::printf(
+      "(size and shape errors over the seeds learnt; 'none': seeds where no model was learnt, "
+      "e.g. the second part not seen)\n");
+  std::printf("%-9s %5s | %9s %4s %8s %8s %8s %8s | %9s %4s %8s %8s %8s %8s | %7s\n", "object",
+              "table", "1v within", "none", "size med", "size max", "shp med", "shp max",
+              "2v within", "none", "size med", "size max", "shp med", "shp max", "ms/part");
   for (const sim::DailyObject& object : sim::daily_life_objects()) {
     if (!only.empty() && object.name != only) continue;
-    int within[2] = {0, 0};
+    int within[2] = {0, 0}, none[2] = {0, 0};
     std::vector<double> size[2], shape[2], ms;
     for (int views = 1; views <= 2; ++views) {
       const double size_goal = views == 1 ? 0.02 : 0.01, shape_goal = views == 1 ? 0.1 : 0.05;
       for (int i = 0; i < seeds; ++i) {
         const test::DailyLearnt l = test::learn_daily(object, base + i, views);
-        size[views - 1].push_back(l.size);
-        shape[views - 1].push_back(l.shape);
+        if (l.result.learnt()) {
+          size[views - 1].push_back(l.size);
+          shape[views - 1].push_back(l.shape);
+        } else {
+          ++none[views - 1];
+        }
         if (l.size <= size_goal && l.shape <= shape_goal) ++within[views - 1];
         if (views == 1 && l.result.learnt()) {
           ms.push_back(l.result.total_ms / static_cast<double>(l.result.parts.size()));
         }
         if (std::getenv("LEARN_DAILY_VERBOSE")) {
-          std::printf("  %s seed %llu %dv: size %.4f shape %.4f %.0f ms%s\n", object.name.c_str(),
+          std::printf("  %s seed %llu %dv: size %.4f shape %.4f %.0f ms %s\n", object.name.c_str(),
                       static_cast<unsigned long long>(base + i), views, l.size, l.shape,
                       l.result.total_ms, l.result.learnt() ? "" : to_string(l.result.reason));
           for (const auto& part : l.result.parts) {
@@ -137,14 +144,16 @@ void print_daily(int seeds, bool held_out, const std::string& only) {
         }
       }
     }
+    auto worst = [](const std::vector<double>& v) {
+      return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
+    };
     std::printf(
-        "%-9s %5s | %5d/%-3d %7.2f%% %7.2f%% %8.3f %8.3f | %5d/%-3d %7.2f%% %7.2f%% %8.3f "
+        "%-9s %5s | %5d/%-3d %4d %7.2f%% %7.2f%% %8.3f %8.3f | %5d/%-3d %4d %7.2f%% %7.2f%% %8.3f "
         "%8.3f | %7.0f\n",
-        object.name.c_str(), object.table.c_str(), within[0], seeds, 100.0 * median(size[0]),
-        100.0 * *std::max_element(size[0].begin(), size[0].end()), median(shape[0]),
-        *std::max_element(shape[0].begin(), shape[0].end()), within[1], seeds,
-        100.0 * median(size[1]), 100.0 * *std::max_element(size[1].begin(), size[1].end()),
-        median(shape[1]), *std::max_element(shape[1].begin(), shape[1].end()), median(ms));
+        object.name.c_str(), object.table.c_str(), within[0], seeds, none[0],
+        100.0 * median(size[0]), 100.0 * worst(size[0]), median(shape[0]), worst(shape[0]),
+        within[1], seeds, none[1], 100.0 * median(size[1]), 100.0 * worst(size[1]),
+        median(shape[1]), worst(shape[1]), median(ms));
   }
 }
 
