@@ -5,11 +5,35 @@
 #include "daemon/cell/sim_cell.hpp"
 #endif
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "io/ply.hpp"
 
 namespace rangefit::daemon {
+namespace {
+
+// Appends `view` to `fused`: points, and normals and stamps while every view has them.
+void append_view(PointCloud& fused, const PointCloud& view) {
+  const bool first = fused.points.empty();
+  const bool normals = view.has_normals() && (first || fused.has_normals());
+  const bool stamps = view.has_stamps() && (first || fused.has_stamps());
+  fused.points.insert(fused.points.end(), view.points.begin(), view.points.end());
+  if (normals) {
+    fused.normals.insert(fused.normals.end(), view.normals.begin(), view.normals.end());
+  } else {
+    fused.normals.clear();
+  }
+  if (stamps) {
+    fused.stamps.insert(fused.stamps.end(), view.stamps.begin(), view.stamps.end());
+  } else {
+    fused.stamps.clear();
+  }
+  fused.grid = {};
+  fused.sensor = {};
+}
+
+}  // namespace
 
 DeviceBackend::DeviceBackend(CellConfig config) : config_(std::move(config)) {
   for (const auto& d : config_.devices) {
@@ -46,6 +70,7 @@ std::vector<NamedHealth> DeviceBackend::health() const {
 
 ScanOutcome DeviceBackend::scan(const ScanRequest& request, const std::atomic<bool>& cancel,
                                 const std::function<void()>& progress) {
+  if (request.sensors.size() > 1) return scan_views(request, cancel, progress);
   const DeviceConfig* device = config_.device(request.sensor);
   if (device == nullptr) return {hal::Status::Error("unknown sensor " + request.sensor), {}};
   if (cancel) return {hal::Status::Error("cancelled"), {}};
@@ -54,6 +79,41 @@ ScanOutcome DeviceBackend::scan(const ScanRequest& request, const std::atomic<bo
   if (device->driver == DriverKind::kSim) return sim_->scan(*device, request, cancel, progress);
 #endif
   return real_->scan(*device, request, cancel, progress);
+}
+
+// One scan per sensor, in order, each over its configured sweep but the first (whose sweep the
+// request carries), fused into one cloud: the views are already in one world frame. The fused
+// cloud has no grid and no single sensor view; the first sensor's description goes with it.
+ScanOutcome DeviceBackend::scan_views(const ScanRequest& request, const std::atomic<bool>& cancel,
+                                      const std::function<void()>& progress) {
+  ScanOutcome fused;
+  for (std::size_t k = 0; k < request.sensors.size(); ++k) {
+    const std::string& name = request.sensors[k];
+    ScanRequest one = request;
+    one.sensors.clear();
+    one.sensor = name;
+    if (k > 0) {
+      const DeviceConfig* device = config_.device(name);
+      if (device == nullptr) return {hal::Status::Error("unknown sensor " + name), {}};
+      one.sweep_start = device->sweep_start;
+      one.sweep_end = device->sweep_end;
+      one.sweep_speed = device->sweep_speed;
+    }
+    ScanOutcome view = scan(one, cancel, progress);
+    if (!view.status) return {hal::Status::Error(name + ": " + view.status.message), {}};
+    if (k == 0) {
+      fused.cloud.frame_id = view.cloud.frame_id;
+      fused.sensor = view.sensor;
+    } else if (view.cloud.frame_id != fused.cloud.frame_id) {
+      return {hal::Status::Error(name + ": scans into frame \"" + view.cloud.frame_id +
+                                 "\", the first sensor into \"" + fused.cloud.frame_id + "\""),
+              {}};
+    }
+    append_view(fused.cloud, view.cloud);
+    fused.acquired_wall_ns = std::max(fused.acquired_wall_ns, view.acquired_wall_ns);
+  }
+  fused.status = hal::Status::Ok();
+  return fused;
 }
 
 ScanOutcome DeviceBackend::replay(const DeviceConfig& device,

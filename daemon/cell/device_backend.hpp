@@ -24,6 +24,8 @@ class DeviceBackend final : public ScanBackend {
   std::vector<NamedHealth> health() const override;
 
  private:
+  ScanOutcome scan_views(const ScanRequest& request, const std::atomic<bool>& cancel,
+                         const std::function<void()>& progress);
   ScanOutcome replay(const DeviceConfig& device, const std::function<void()>& progress);
 
   CellConfig config_;

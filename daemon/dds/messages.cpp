@@ -225,6 +225,9 @@ RequestOut::RequestOut(const ScanRequest& req, bool linear_sweep)
   msg_.bore_radius2 = req_.bore.radius2_mm * kMetresPerMm;
   const Eigen::Vector3d ma = req_.bore.major_axis.value_or(Eigen::Vector3d::Zero());
   msg_.bore_major_axis = {ma.x(), ma.y(), ma.z()};
+  for (std::string& name : req_.sensors) sensors_.push_back(dds_chars(name));
+  const auto ns = static_cast<std::uint32_t>(sensors_.size());
+  msg_.sensors = {ns, ns, sensors_.data(), false};
 }
 
 ScanRequest from_msg(const rangefit_msgs_msg_dds__DetectRequest_& msg, std::string* error) {
@@ -264,6 +267,11 @@ ScanRequest from_msg(const rangefit_msgs_msg_dds__DetectRequest_& msg, std::stri
       kMetresPerMm;
   if (msg.sensor_position_given) req.sensor_position = sp;
   req.parts = static_cast<int>(std::min(msg.parts, kMaxCount));
+  // A few more than a request may fuse, so validation names the limit; the rest is dropped.
+  constexpr std::uint32_t kMaxSensors = 16;
+  for (std::uint32_t k = 0; k < std::min(msg.sensors._length, kMaxSensors); ++k) {
+    req.sensors.push_back(msg.sensors._buffer != nullptr ? str(msg.sensors._buffer[k]) : "");
+  }
   req.target.kind = str(msg.target);
   if (msg.target_edge != 0.0) req.target.edge_mm = msg.target_edge / kMetresPerMm;
   if (msg.target_bar != 0.0) req.target.bar_mm = msg.target_bar / kMetresPerMm;

@@ -73,6 +73,7 @@ class RequestOut {
  private:
   ScanRequest req_;
   std::string kind_, walls_, target_;
+  std::vector<char*> sensors_;  // into req_.sensors
   rangefit_msgs_msg_dds__DetectRequest_ msg_{};
 };
 

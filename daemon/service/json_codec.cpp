@@ -56,6 +56,7 @@ nlohmann::json to_json(const ScanRequest& r) {
   if (r.view_dir) j["view_dir"] = json_vec(*r.view_dir);
   if (r.sensor_position) j["sensor_position_mm"] = json_vec(*r.sensor_position);
   if (r.parts != 0) j["parts"] = r.parts;
+  if (!r.sensors.empty()) j["sensors"] = r.sensors;
   if (!r.target.kind.empty()) {
     j["target"] = {{"kind", r.target.kind},
                    {"size_mm", {r.target.edge_mm, r.target.bar_mm}},
@@ -124,6 +125,8 @@ bool from_json(const nlohmann::json& j, ScanRequest& out, std::string* error) {
     if (j.contains("view_dir")) out.view_dir = vec_of(j.at("view_dir"));
     if (j.contains("sensor_position_mm")) out.sensor_position = vec_of(j.at("sensor_position_mm"));
     out.parts = j.value("parts", 0);
+    out.sensors.clear();
+    if (j.contains("sensors")) out.sensors = j.at("sensors").get<std::vector<std::string>>();
     out.target = {};
     if (j.contains("target")) {
       const auto& t = j.at("target");

@@ -1,5 +1,6 @@
 #include "daemon/service/learn_request.hpp"
 
+#include <algorithm>
 #include <exception>
 #include <numbers>
 #include <sstream>
@@ -68,6 +69,18 @@ std::string learn_provenance(const std::string& source, std::uint64_t seed, cons
   return c.str();
 }
 
+namespace {
+
+// The sensor, or the sensors whose scans were fused: "stripe + pantilt".
+std::string sensors_of(const ScanRequest& request) {
+  if (request.sensors.empty()) return request.sensor;
+  std::string out;
+  for (const std::string& s : request.sensors) out += (out.empty() ? "" : " + ") + s;
+  return out;
+}
+
+}  // namespace
+
 DetectionResult learn_request(const PointCloud& cloud, const ScanRequest& request,
                               std::uint64_t default_seed) {
   LearnOptions o;
@@ -76,7 +89,7 @@ DetectionResult learn_request(const PointCloud& cloud, const ScanRequest& reques
   o.name = request.model.empty() ? "learnt" : request.model;
   const LearnResult r = learn_model(cloud.points, o);
   DetectionResult out;
-  out.details = learn_json(r, cloud.size(), 1);
+  out.details = learn_json(r, cloud.size(), std::max<std::size_t>(1, request.sensors.size()));
   out.found = r.learnt();
   if (!out.found) {
     out.reason = to_string(r.reason);
@@ -86,8 +99,8 @@ DetectionResult learn_request(const PointCloud& cloud, const ScanRequest& reques
   for (const LearntPart& p : r.parts)
     out.parts.push_back({p.name, p.T_world_part, p.visible_share, 0});
   std::string text;
-  std::istringstream comment(
-      learn_provenance("rangefitd, request " + request.id + " on " + request.sensor, o.seed, r));
+  std::istringstream comment(learn_provenance(
+      "rangefitd, request " + request.id + " on " + sensors_of(request), o.seed, r));
   for (std::string line; std::getline(comment, line);) text += "# " + line + "\n";
   text += io::format_object_model(r.model);
   try {  // what the service's [[objects]] would read (a name with quotes would not)

@@ -94,6 +94,34 @@ std::string check_target(const CalibrationTarget& t) {
   return "";
 }
 
+// Several sensors' scans fused (kind = learn): each a configured device, named once, scanning
+// its configured sweep (a request's sweep is in one device's units). The first is the sensor.
+std::string check_views(ScanRequest& request, const DaemonConfig& config) {
+  if (request.sensors.empty()) return "";
+  if (request.kind != DetectKind::kLearn) {
+    return "sensors (several scans fused) is for learn requests; give one sensor";
+  }
+  if (request.sensors.size() > kMaxViews) {
+    return "sensors: at most " + std::to_string(kMaxViews) + " scans are fused";
+  }
+  if (!request.sensor.empty() && request.sensor != request.sensors.front()) {
+    return "give sensor or sensors, not both";
+  }
+  for (std::size_t k = 0; k < request.sensors.size(); ++k) {
+    const std::string& name = request.sensors[k];
+    if (auto why = check_name(name, "sensors", kMaxNameLength); !why.empty()) return why;
+    if (config.device(name) == nullptr) return "unknown sensor \"" + name + "\" in sensors";
+    for (std::size_t j = 0; j < k; ++j) {
+      if (request.sensors[j] == name) return "sensor \"" + name + "\" named twice in sensors";
+    }
+  }
+  if (request.sweep_start != 0.0 || request.sweep_end != 0.0 || request.sweep_speed != 0.0) {
+    return "with sensors each scans its configured sweep: leave sweep out";
+  }
+  request.sensor = request.sensors.front();
+  return "";
+}
+
 std::string first_device_of_kind(const DaemonConfig& config, const DeviceKind& kind) {
   for (const auto& d : config.devices) {
     if (d.kind == kind) return d.name;
@@ -112,6 +140,7 @@ std::string validate_request(ScanRequest& request, const DaemonConfig& config) {
   if (!request.sensor.empty()) {  // empty: the configured default
     if (auto why = check_name(request.sensor, "sensor", kMaxNameLength); !why.empty()) return why;
   }
+  if (auto why = check_views(request, config); !why.empty()) return why;
   if (auto why = check_sensor_knowledge(request); !why.empty()) return why;
   if (request.kind == DetectKind::kBore) {
     if (auto why = check_bore(request.bore); !why.empty()) return why;

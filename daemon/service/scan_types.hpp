@@ -71,6 +71,10 @@ struct ScanRequest {
   std::optional<Eigen::Vector3d> view_dir;         // unit, from the scene toward the sensor
   std::optional<Eigen::Vector3d> sensor_position;  // mm
   int parts = 0;                                   // kind = learn: 1 or 2 parts; 0: 1
+  // kind = learn: the sensors whose scans are fused before learning (each over its configured
+  // sweep; their clouds all in the world frame), e.g. the stripe cell's sweep and the pan-tilt
+  // head's, so the hidden side of one view is seen by another. Empty: `sensor` alone.
+  std::vector<std::string> sensors;
   CalibrationTarget target;                        // kind = calibrate
 };
 

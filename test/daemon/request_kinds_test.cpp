@@ -85,6 +85,15 @@ TEST(RequestKinds, LearnAndCalibrateRoundTripTheWireAndJson) {
   EXPECT_EQ(learn_back.kind, DetectKind::kLearn);
   EXPECT_EQ(learn_back.parts, 2);
   EXPECT_EQ(learn_back.model, "mallet");
+  EXPECT_TRUE(learn_back.sensors.empty());
+  // Several sensors' scans fused: the list crosses the wire and JSON in order.
+  learn.sensors = {"stripe", "head"};
+  const RequestOut views_out(learn, true);
+  EXPECT_EQ(from_msg(views_out.msg(), &error).sensors, learn.sensors);
+  EXPECT_EQ(error, "");
+  ScanRequest views_json;
+  ASSERT_TRUE(from_json(to_json(learn), views_json, &error)) << error;
+  EXPECT_EQ(views_json.sensors, learn.sensors);
 
   const ScanRequest cal = calibrate_request();
   const RequestOut cal_out(cal, true);
@@ -151,6 +160,33 @@ TEST(RequestKinds, ValidationNamesWhatIsWrong) {
   EXPECT_EQ(validate_request(learn, config), "");
   EXPECT_EQ(learn.model, "learnt");
   EXPECT_EQ(learn.sensor, "stripe");
+  // Several sensors for a learn: known, once each, each over its configured sweep.
+  const auto views = [&](std::vector<std::string> sensors, auto change) {
+    ScanRequest r;
+    r.id = "v";
+    r.kind = DetectKind::kLearn;
+    r.sensors = std::move(sensors);
+    change(r);
+    return validate_request(r, config);
+  };
+  const auto same = [](ScanRequest&) {};
+  EXPECT_EQ(views({"stripe", "css"}, same), "");
+  EXPECT_EQ(views({"stripe", "head"}, same), "unknown sensor \"head\" in sensors");
+  EXPECT_EQ(views({"stripe", "stripe"}, same), "sensor \"stripe\" named twice in sensors");
+  EXPECT_EQ(views({"stripe", "css", "stripe2", "css2", "x"}, same),
+            "sensors: at most 4 scans are fused");
+  EXPECT_EQ(views({"stripe", "css"}, [](ScanRequest& r) { r.sensor = "css"; }),
+            "give sensor or sensors, not both");
+  EXPECT_EQ(views({"stripe", "css"}, [](ScanRequest& r) { r.sweep_end = 100.0; }),
+            "with sensors each scans its configured sweep: leave sweep out");
+  EXPECT_EQ(views({"stripe", "css"}, [](ScanRequest& r) { r.kind = DetectKind::kBore; }),
+            "sensors (several scans fused) is for learn requests; give one sensor");
+  ScanRequest fused;
+  fused.id = "f";
+  fused.kind = DetectKind::kLearn;
+  fused.sensors = {"css", "stripe"};
+  EXPECT_EQ(validate_request(fused, config), "");
+  EXPECT_EQ(fused.sensor, "css");  // the first, with its configured sweep
   ScanRequest cal = calibrate_request();
   EXPECT_EQ(validate_request(cal, config), "");
   EXPECT_EQ(cal.sensor, "stripe");  // the stripe target's sensor

@@ -46,6 +46,7 @@ struct RequestArgs {
   int trials = 0;
   std::uint64_t seed = 0;
   int parts = 0;                                     // learn
+  std::vector<std::string> sensors;                  // learn: scans fused
   std::vector<double> cube{120.0, 12.0}, cube_pose;  // calibrate stripe
 };
 
@@ -62,6 +63,7 @@ int run(RequestArgs& a, daemon::DetectKind kind) {
   req.kind = kind;
   req.model = a.model;
   req.sensor = a.sensor;
+  req.sensors = a.sensors;
   req.bore.position_mm = {a.position_mm[0], a.position_mm[1], a.position_mm[2]};
   req.bore.axis = {a.axis[0], a.axis[1], a.axis[2]};
   req.bore.radius_mm = a.radius_mm;
@@ -210,6 +212,13 @@ void add_learn_request(CLI::App* cmd, int* exit_code) {
   learn->add_option("--name", learn_args.model, "the model's name (default: learnt)");
   learn->add_option("--parts", learn_args.parts, "parts of the model: 1, or 2 (head and shaft)")
       ->check(CLI::Range(1, 2));
+  learn
+      ->add_option("--sensors", learn_args.sensors,
+                   "scan with each of these devices (A,B; each its configured sweep) and learn "
+                   "from their clouds fused, as `rangefit learn --cloud A --cloud B`")
+      ->delimiter(',')
+      ->excludes("--sensor")
+      ->excludes("--sweep");
   learn->callback([exit_code] { *exit_code = run(learn_args, daemon::DetectKind::kLearn); });
 }
 
