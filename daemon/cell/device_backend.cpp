@@ -84,6 +84,7 @@ ScanOutcome DeviceBackend::scan(const ScanRequest& request, const std::atomic<bo
 // One scan per sensor, in order, each over its configured sweep but the first (whose sweep the
 // request carries), fused into one cloud: the views are already in one world frame. The fused
 // cloud has no grid and no single sensor view; the first sensor's description goes with it.
+// The request's scan timeout covers all the scans.
 ScanOutcome DeviceBackend::scan_views(const ScanRequest& request, const std::atomic<bool>& cancel,
                                       const std::function<void()>& progress) {
   ScanOutcome fused;
@@ -100,14 +101,20 @@ ScanOutcome DeviceBackend::scan_views(const ScanRequest& request, const std::ato
       one.sweep_speed = device->sweep_speed;
     }
     ScanOutcome view = scan(one, cancel, progress);
-    if (!view.status) return {hal::Status::Error(name + ": " + view.status.message), {}};
+    // A view that fails fails the request; the views scanned so far go with the error, so the
+    // spool keeps them.
+    if (!view.status) {
+      fused.status = hal::Status::Error(name + ": " + view.status.message);
+      return fused;
+    }
     if (k == 0) {
       fused.cloud.frame_id = view.cloud.frame_id;
       fused.sensor = view.sensor;
     } else if (view.cloud.frame_id != fused.cloud.frame_id) {
-      return {hal::Status::Error(name + ": scans into frame \"" + view.cloud.frame_id +
-                                 "\", the first sensor into \"" + fused.cloud.frame_id + "\""),
-              {}};
+      fused.status =
+          hal::Status::Error(name + ": scans into frame \"" + view.cloud.frame_id +
+                             "\", the first sensor into \"" + fused.cloud.frame_id + "\"");
+      return fused;
     }
     append_view(fused.cloud, view.cloud);
     fused.acquired_wall_ns = std::max(fused.acquired_wall_ns, view.acquired_wall_ns);

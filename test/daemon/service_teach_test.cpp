@@ -196,6 +196,41 @@ TEST(ServiceTeach, LearnRequestFusesTheStripeCellAndThePanTiltHeadScans) {
   fs::remove_all(dir);
 }
 
+// A sensor lost during its scan fails the fused learn with its name and reason; the scans taken
+// before it are kept in the spool entry.
+TEST(ServiceTeach, ASensorLostDuringAFusedLearnFailsItAndTheEarlierScanIsKept) {
+  const fs::path dir = test::fresh_test_dir("rangefit_service_learn_views_lost");
+  std::ofstream(dir / "scene.toml")
+      << "[[object]]\nname = \"table\"\ntype = \"plane\"\nsize = [1000, 1000]\n"
+      << "[[object]]\nname = \"box\"\ntype = \"box\"\nsize = [60, 40, 30]\n"
+      << "position = [0, 0, 15]\n[sensors.pantilt]\nposition = [0, 0, 700]\n"
+      << "rpy_deg = [180, 0, 0]\n";
+  DaemonConfig config = stripe_cell(dir, dir / "scene.toml");
+  DeviceConfig head;
+  head.name = "head";
+  head.kind = "pan_tilt";
+  head.scene = dir / "scene.toml";
+  head.sim_fault.disconnect_after_s = 0.1;  // unplugged at once, and for good
+  head.sim_fault.disconnect_for_s = 1e6;
+  config.devices.push_back(head);
+  hal::MonotonicClock clock;
+  Service service(config, clock);
+  auto loop = std::make_unique<test::ServiceLoop>(service);
+  ScanRequest req;
+  req.id = "teach-lost";
+  req.kind = DetectKind::kLearn;
+  req.sensors = {"stripe", "head"};
+  const auto result = run(service, req);
+  loop.reset();
+  ASSERT_TRUE(result);
+  EXPECT_FALSE(result->found);
+  EXPECT_NE(result->reason.find("scan failed: head: "), std::string::npos) << result->reason;
+  EXPECT_GT(result->num_points, 10000u);  // the stripe cell's scan
+  ASSERT_FALSE(result->spool_entry.empty());
+  EXPECT_GT(fs::file_size(fs::path(result->spool_entry) / "cloud.ply"), 100000u);
+  fs::remove_all(dir);
+}
+
 TEST(ServiceTeach, LearnOnAnEmptyTableIsNotFound) {
   const fs::path dir = test::fresh_test_dir("rangefit_service_learn_empty");
   std::ofstream(dir / "scene.toml") << "[[object]]\nname = \"table\"\ntype = \"plane\"\n";
