@@ -82,12 +82,12 @@ constexpr StartShape kShapes[] = {{1.0, 1.0},       {0.3, 1.0},       {0.3, 0.3}
                                   {0.3, 1.0, -0.9}, {0.3, 0.3, -0.9}};
 
 // A rough fit of one side of a cut, to compare cuts by: the best of the starts, each fitted
-// briefly on a few spread points.
+// briefly on a quarter of the spread points the full fits start from.
 ShapeFitResult rough_fit(std::span<const Eigen::Vector3d> points,
                          const std::optional<pca::Plane>& plane, const LearnOptions& options) {
   ShapeFitResult best;
   if (check_learn_points(points) != LearnReason::kLearnt) return best;
-  const std::vector<Eigen::Vector3d> coarse = spread(points, options.start_points / 2);
+  const std::vector<Eigen::Vector3d> coarse = spread(points, options.start_points / 4);
   static constexpr StartShape kRoughShapes[] = {{1.0, 1.0}, {0.3, 0.3}};
   const std::vector<PosedSuperquadric> starts = learn_starts(coarse, plane, kRoughShapes);
   if (starts.empty()) return best;
