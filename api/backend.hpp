@@ -3,13 +3,37 @@
 // request goes through one Backend, which the service implements with the same queue its DDS
 // requests use, so a busy cell, a timeout or an error reads the same on every interface.
 
+#include <array>
 #include <cstddef>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace rangefit::api {
+
+// The files of a finished result that the HTTP interface hands out, and their content types: the
+// scan and its picture, and what a learn or calibrate request wrote into its spool entry.
+struct ResultFile {
+  std::string_view name;
+  std::string_view content_type;
+};
+inline constexpr std::array<ResultFile, 5> kResultFiles = {{
+    {"cloud.ply", "application/octet-stream"},
+    {"picture.png", "image/png"},
+    {"model.toml", "text/plain; charset=utf-8"},
+    {"calibration_stripe.toml", "text/plain; charset=utf-8"},
+    {"calibration_stripe.toml.report.txt", "text/plain; charset=utf-8"},
+}};
+
+// The entry of kResultFiles named `name`, or nullptr.
+inline const ResultFile* result_file_type(std::string_view name) {
+  for (const ResultFile& f : kResultFiles) {
+    if (f.name == name) return &f;
+  }
+  return nullptr;
+}
 
 enum class Status {
   kOk,          // body: the result, state, ...
@@ -52,8 +76,8 @@ class Backend {
   virtual Answer recent(std::size_t n) = 0;
   // Lifecycle state, queue depth, diagnostics.
   virtual Answer state() = 0;
-  // A file of a finished result, name "cloud.ply" or "picture.png" (the servers ask for no
-  // other); nullopt when there is none. The service only returns paths inside its spool.
+  // A file of a finished result, one of kResultFiles (the servers ask for no other); nullopt
+  // when there is none. The service only returns paths inside its spool.
   virtual std::optional<std::filesystem::path> result_file(const std::string& id,
                                                            const std::string& name) = 0;
 };

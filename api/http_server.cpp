@@ -109,11 +109,12 @@ void HttpServer::Impl::routes() {
                guarded(res, [&] { return backend.result(req.matches[1]); });
              });
   server.Get(
-      R"(/v1/results/([A-Za-z0-9_.\-]{1,128})/(cloud\.ply|picture\.png))",
+      R"(/v1/results/([A-Za-z0-9_.\-]{1,128})/([A-Za-z0-9_.]{1,64}))",
       [this](const httplib::Request& req, httplib::Response& res) {
         try {
           const std::string name = req.matches[2];
-          const auto path = backend.result_file(req.matches[1], name);
+          const ResultFile* type = result_file_type(name);
+          const auto path = type ? backend.result_file(req.matches[1], name) : std::nullopt;
           std::ifstream in;
           if (path) in.open(*path, std::ios::binary);
           if (!in.is_open()) {
@@ -121,8 +122,7 @@ void HttpServer::Impl::routes() {
             return;
           }
           std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-          res.set_content(std::move(bytes),
-                          name == "picture.png" ? "image/png" : "application/octet-stream");
+          res.set_content(std::move(bytes), std::string(type->content_type));
         } catch (const std::exception& e) {
           send(res, error_answer(Status::kError, std::string("internal error: ") + e.what()));
         }

@@ -73,8 +73,21 @@ nlohmann::json ServiceBackend::result_json(const DetectionResult& r) {
       a.body["shapes"] = shapes;
     }
   }
+  // A learnt model is drawn as it was learnt (the result's details, as learn_json writes them).
+  if (r.kind == DetectKind::kLearn && r.details.is_object() && r.details.contains("parts")) {
+    nlohmann::json shapes = nlohmann::json::object();
+    for (const auto& p : r.details.at("parts")) {
+      const auto& size = p.at("size");
+      shapes[p.at("name").get<std::string>()] =
+          shape_json({size.at(0).get<double>(), size.at(1).get<double>(), size.at(2).get<double>(),
+                      p.at("shape").at(0).get<double>(), p.at("shape").at(1).get<double>(),
+                      p.at("taper").at(0).get<double>(), p.at("taper").at(1).get<double>()});
+    }
+    a.body["shapes"] = shapes;
+  }
   nlohmann::json files = nlohmann::json::object();
-  for (const char* name : {"cloud.ply", "picture.png"}) {
+  for (const api::ResultFile& f : api::kResultFiles) {
+    const std::string name(f.name);
     if (result_file(r.request_id, name)) {
       files[name] = "/v1/results/" + r.request_id + "/" + name;
     }
@@ -189,7 +202,7 @@ Answer ServiceBackend::state() {
 
 std::optional<fs::path> ServiceBackend::result_file(const std::string& id,
                                                     const std::string& name) {
-  if (name != "cloud.ply" && name != "picture.png") return std::nullopt;
+  if (api::result_file_type(name) == nullptr) return std::nullopt;
   DetectionResult r;
   if (service_.board().find(id, &r) != ResultBoard::Lookup::kDone || r.spool_entry.empty()) {
     return std::nullopt;

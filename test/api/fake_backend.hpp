@@ -23,6 +23,8 @@ class FakeBackend : public Backend {
   int capacity = 1000;  // requests in flight before busy
   std::atomic<int> detections{0};
   std::filesystem::path cloud_file;  // served for every finished id
+  std::filesystem::path model_file;  // model.toml of every finished id, when set
+  std::vector<std::string> asked_files;  // names result_file() was asked for
   std::atomic<bool> hold{false};     // detections do not finish while set (a long scan)
 
   Answer detect(const nlohmann::json& request, bool wait) override {
@@ -69,8 +71,11 @@ class FakeBackend : public Backend {
                                                    const std::string& name) override {
     std::lock_guard lock(mutex_);
     const auto it = results_.find(id);
-    if (it == results_.end() || !it->second || name != "cloud.ply") return std::nullopt;
-    return cloud_file;
+    if (it == results_.end() || !it->second) return std::nullopt;
+    asked_files.push_back(name);
+    if (name == "cloud.ply") return cloud_file;
+    if (name == "model.toml" && !model_file.empty()) return model_file;
+    return std::nullopt;
   }
 
   ~FakeBackend() override {

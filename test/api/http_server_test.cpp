@@ -92,6 +92,31 @@ TEST_F(Http, DetectWithoutWaitingGivesAnIdToPoll) {
   std::filesystem::remove(dir);
 }
 
+// What a learn or calibrate request wrote is served as text; names the service does not hand
+// out never reach the backend.
+TEST_F(Http, ALearntModelIsServedAsTextAndOtherNamesAreNotAsked) {
+  const auto file = std::filesystem::temp_directory_path() / "rangefit_http_test_model.toml";
+  std::ofstream(file) << "name = \"taught\"\n";
+  backend_.model_file = file;
+  start();
+  auto c = client();
+  const auto r = c.Post("/v1/detect", kRequest, "application/json");
+  ASSERT_TRUE(r);
+  const std::string id = body(r)["request_id"];
+  const auto model = c.Get("/v1/results/" + id + "/model.toml");
+  ASSERT_TRUE(model);
+  EXPECT_EQ(model->status, 200);
+  EXPECT_EQ(model->body, "name = \"taught\"\n");
+  EXPECT_EQ(model->get_header_value("Content-Type"), "text/plain; charset=utf-8");
+  for (const char* name : {"request.json", "result.json", "..", "model.toml.bak"}) {
+    const auto other = c.Get("/v1/results/" + id + "/" + name);
+    ASSERT_TRUE(other);
+    EXPECT_EQ(other->status, 404) << name;
+  }
+  EXPECT_EQ(backend_.asked_files, std::vector<std::string>{"model.toml"});
+  std::filesystem::remove(file);
+}
+
 TEST_F(Http, StateUnknownIdsAndRoutes) {
   start();
   auto c = client();

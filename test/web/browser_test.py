@@ -245,6 +245,31 @@ def run(args, tmp, procs):
         after = drawn_share(png)
         print(f"view: {shown} points; drawn around the centre {before:.1%} before, {after:.1%} after")
         assert after > 0.2, f"the cloud covers only {after:.1%} of the view's centre"
+
+        # Teach a model from the page: kind "learn" on the stripe cell; the page offers the
+        # learnt model.toml, which reads as a model of one part.
+        browser.js("const k = document.getElementById('kind'); k.value = 'learn';"
+                   "k.dispatchEvent(new Event('change'));"
+                   "const n = document.getElementById('learn-name'); n.value = 'taught';"
+                   "for (const o of document.getElementById('learn-sensors').options)"
+                   "  o.selected = o.value === 'stripe';")
+        assert browser.js("return document.getElementById('send').textContent") == "Scan and learn"
+        browser.call("POST", f"/element/{browser.element('#send')}/click", {})
+        bore_status = status
+        status = wait("the learnt model in the page", lambda: browser.js(
+            "const s = document.getElementById('request-status').textContent;"
+            "return s !== arguments[0] && /: (found|not found|\\w+:)/.test(s) && s", bore_status),
+            180)
+        print("page says:", status)
+        assert status.endswith(": found"), status
+        href = browser.js("const a = document.getElementById('model-link');"
+                          "return !a.hidden && a.href")
+        assert href, "no link to the learnt model"
+        with urllib.request.urlopen(href, timeout=10) as r:
+            model = r.read().decode()
+        assert 'name = "taught"' in model and model.count("[[part]]") == 1, model
+        print("learnt model:", " ".join(line for line in model.splitlines()
+                                        if line.startswith("size")))
     finally:
         browser.quit()
     daemon.send_signal(signal.SIGTERM)

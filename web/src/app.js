@@ -85,7 +85,10 @@ function renderState(s) {
   if (!configured && s.models) {
     configured = true;
     for (const m of s.models) $('object-model').append(new Option(m, m));
-    for (const d of s.sensors) $('sensor').append(new Option(d, d));
+    for (const d of s.sensors) {
+      $('sensor').append(new Option(d, d));
+      $('learn-sensors').append(new Option(d, d));
+    }
   }
 }
 
@@ -113,6 +116,16 @@ function request() {
   if (kind === 'bore') {
     r.bore = { position_mm: vector($('bore-position').value), axis: vector($('bore-axis').value),
                radius_mm: Number($('bore-radius').value) };
+  } else if (kind === 'learn') {
+    r.model = $('learn-name').value;
+    r.parts = Number($('learn-parts').value);
+    const fused = [...$('learn-sensors').selectedOptions].map((o) => o.value);
+    if (fused.length > 1) {
+      r.sensors = fused;
+      r.sensor = '';
+    } else if (fused.length === 1) {
+      r.sensor = fused[0];
+    }
   } else {
     r.model = $('object-model').value;
     r.instances = Number($('object-instances').value) || 1;
@@ -127,6 +140,7 @@ async function send(event) {
   try { body = request(); } catch (e) { status.textContent = e.message; return; }
   localStorage.setItem('rangefit-token', $('token').value);
   $('send').disabled = true;
+  $('model-link').hidden = true;
   status.textContent = 'sending';
   try {
     const sent = await json('/v1/detect?wait=0', {
@@ -145,6 +159,11 @@ async function send(event) {
       status.textContent = `${id}: ${outcome(r.body)[1]}`;
       status.className = outcome(r.body)[0];
       $('last-result').textContent = JSON.stringify(r.body, null, 1);
+      const model = r.body.files && r.body.files['model.toml'];
+      if (model) {
+        $('model-link').href = model;
+        $('model-link').hidden = false;
+      }
       selectedByUser = false;
       await showCloud(r.body);
       break;
@@ -157,8 +176,11 @@ async function send(event) {
 }
 
 $('kind').addEventListener('change', () => {
-  $('bore-fields').hidden = $('kind').value !== 'bore';
-  $('object-fields').hidden = $('kind').value !== 'object';
+  const kind = $('kind').value;
+  $('bore-fields').hidden = kind !== 'bore';
+  $('object-fields').hidden = kind !== 'object';
+  $('learn-fields').hidden = kind !== 'learn';
+  $('send').textContent = kind === 'learn' ? 'Scan and learn' : 'Scan and detect';
 });
 $('token').value = localStorage.getItem('rangefit-token') || '';
 $('request-form').addEventListener('submit', send);
