@@ -47,6 +47,15 @@ std::optional<DetectionResult> run(Service& service, const ScanRequest& req) {
   return service.board().wait_for(req.id, std::chrono::seconds(120));
 }
 
+ScanRequest learn(const std::string& id, const std::string& model = "", std::uint64_t seed = 0) {
+  ScanRequest req;
+  req.id = id;
+  req.kind = DetectKind::kLearn;
+  req.model = model;
+  req.seed = seed;
+  return req;
+}
+
 std::string text_of(const fs::path& p) {
   std::ifstream in(p);
   std::stringstream s;
@@ -61,6 +70,30 @@ std::string without_comments(const std::string& text) {
     if (!line.starts_with("#")) out += line + "\n";
   }
   return out;
+}
+
+// The first learnt part's shape, from the result's details.
+Superquadric learnt_shape(const DetectionResult& r) {
+  const auto& part = r.details.at("parts").at(0);
+  const auto& a = part.at("size");
+  return {a.at(0).get<double>(),
+          a.at(1).get<double>(),
+          a.at(2).get<double>(),
+          part.at("shape").at(0).get<double>(),
+          part.at("shape").at(1).get<double>(),
+          part.at("taper").at(0).get<double>(),
+          part.at("taper").at(1).get<double>()};
+}
+
+// The stripe cell and a pan-tilt head named "head" on the same scene (which mounts the head).
+DaemonConfig stripe_and_head(const fs::path& dir, const fs::path& scene) {
+  DaemonConfig config = stripe_cell(dir, scene);
+  DeviceConfig head;
+  head.name = "head";
+  head.kind = "pan_tilt";
+  head.scene = scene;
+  config.devices.push_back(head);
+  return config;
 }
 
 TEST(ServiceTeach, LearnRequestLearnsTheCylinderOnTheStripeCell) {
@@ -83,25 +116,13 @@ TEST(ServiceTeach, LearnRequestLearnsTheCylinderOnTheStripeCell) {
   hal::MonotonicClock clock;
   Service service(config, clock);
   auto loop = std::make_unique<test::ServiceLoop>(service);
-  ScanRequest req;
-  req.id = "teach-can";
-  req.kind = DetectKind::kLearn;
-  req.model = "can";
-  req.seed = 2;
-  const auto result = run(service, req);
+  const auto result = run(service, learn("teach-can", "can", 2));
   loop.reset();
   ASSERT_TRUE(result);
   ASSERT_TRUE(result->found) << result->reason;
   ASSERT_EQ(result->parts.size(), 1u);
   const auto& part = result->details.at("parts").at(0);
-  const auto& a = part.at("size");
-  const Superquadric learnt{a.at(0).get<double>(),
-                            a.at(1).get<double>(),
-                            a.at(2).get<double>(),
-                            part.at("shape").at(0).get<double>(),
-                            part.at("shape").at(1).get<double>(),
-                            part.at("taper").at(0).get<double>(),
-                            part.at("taper").at(1).get<double>()};
+  const Superquadric learnt = learnt_shape(*result);
   const test::ShapeError e =
       test::shape_error(learnt, result->parts[0].T_world_part, truth, T_truth);
   EXPECT_LT(e.size, 0.02) << result->details.dump();
@@ -128,18 +149,6 @@ TEST(ServiceTeach, LearnRequestLearnsTheCylinderOnTheStripeCell) {
   fs::remove_all(dir);
 }
 
-Superquadric learnt_shape(const DetectionResult& r) {
-  const auto& part = r.details.at("parts").at(0);
-  const auto& a = part.at("size");
-  return {a.at(0).get<double>(),
-          a.at(1).get<double>(),
-          a.at(2).get<double>(),
-          part.at("shape").at(0).get<double>(),
-          part.at("shape").at(1).get<double>(),
-          part.at("taper").at(0).get<double>(),
-          part.at("taper").at(1).get<double>()};
-}
-
 // Teaching from two sensors at once (`rangefit learn --cloud A --cloud B` on the cell): the
 // thesis cylinder standing on the table, scanned by the stripe cell's sweep from above and the
 // pan-tilt head's sweep, their clouds fused in the world frame before learning (measured: size
@@ -155,22 +164,12 @@ TEST(ServiceTeach, LearnRequestFusesTheStripeCellAndThePanTiltHeadScans) {
       << "]\na = [" << truth.a1 << ", " << truth.a2 << ", " << truth.a3 << "]\neps = ["
       << truth.eps1 << ", " << truth.eps2 << "]\n"
       << "[sensors.pantilt]\nposition = [0, 0, 700]\nrpy_deg = [180, 0, 0]\n";
-  DaemonConfig config = stripe_cell(dir, dir / "scene.toml");
-  DeviceConfig head;
-  head.name = "head";
-  head.kind = "pan_tilt";
-  head.scene = dir / "scene.toml";
-  config.devices.push_back(head);
+  const DaemonConfig config = stripe_and_head(dir, dir / "scene.toml");
   hal::MonotonicClock clock;
   Service service(config, clock);
   auto loop = std::make_unique<test::ServiceLoop>(service);
-  ScanRequest one;
-  one.id = "teach-stripe";
-  one.kind = DetectKind::kLearn;
-  one.model = "can";
-  one.seed = 2;
-  ScanRequest both = one;
-  both.id = "teach-both";
+  const ScanRequest one = learn("teach-stripe", "can", 2);
+  ScanRequest both = learn("teach-both", "can", 2);
   both.sensors = {"stripe", "head"};
   const auto alone = run(service, one);
   const auto fused = run(service, both);
@@ -205,20 +204,14 @@ TEST(ServiceTeach, ASensorLostDuringAFusedLearnFailsItAndTheEarlierScanIsKept) {
       << "[[object]]\nname = \"box\"\ntype = \"box\"\nsize = [60, 40, 30]\n"
       << "position = [0, 0, 15]\n[sensors.pantilt]\nposition = [0, 0, 700]\n"
       << "rpy_deg = [180, 0, 0]\n";
-  DaemonConfig config = stripe_cell(dir, dir / "scene.toml");
-  DeviceConfig head;
-  head.name = "head";
-  head.kind = "pan_tilt";
-  head.scene = dir / "scene.toml";
-  head.sim_fault.disconnect_after_s = 0.1;  // unplugged at once, and for good
-  head.sim_fault.disconnect_for_s = 1e6;
-  config.devices.push_back(head);
+  DaemonConfig config = stripe_and_head(dir, dir / "scene.toml");
+  SimFaultConfig& fault = config.devices.back().sim_fault;
+  fault.disconnect_after_s = 0.1;  // unplugged at once, and for good
+  fault.disconnect_for_s = 1e6;
   hal::MonotonicClock clock;
   Service service(config, clock);
   auto loop = std::make_unique<test::ServiceLoop>(service);
-  ScanRequest req;
-  req.id = "teach-lost";
-  req.kind = DetectKind::kLearn;
+  ScanRequest req = learn("teach-lost");
   req.sensors = {"stripe", "head"};
   const auto result = run(service, req);
   loop.reset();
@@ -238,10 +231,7 @@ TEST(ServiceTeach, LearnOnAnEmptyTableIsNotFound) {
   hal::MonotonicClock clock;
   Service service(config, clock);
   auto loop = std::make_unique<test::ServiceLoop>(service);
-  ScanRequest req;
-  req.id = "teach-nothing";
-  req.kind = DetectKind::kLearn;
-  const auto result = run(service, req);
+  const auto result = run(service, learn("teach-nothing"));
   loop.reset();
   ASSERT_TRUE(result);
   EXPECT_FALSE(result->found);
