@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 # How the service request seeds of corpus/dds_messages were made (run by hand, not by CI):
 #   python3 test/fuzz/request_seeds.py test/fuzz/corpus/dds_messages [NAN_MAJOR_OUT]
+#   python3 test/fuzz/request_seeds.py test/fuzz/corpus/dds_messages --migrate  # a field added
 # A plain-CDR (XCDR1) codec of rangefit_msgs/DetectRequest and of the service request
 # (rangefit_msgs/srv/Detect request as rmw_cyclonedds frames it: U64 client writer id, I64
 # sequence number, then the same fields). It first re-encodes every topic request seed
@@ -16,13 +17,15 @@ FIELDS = [('request_id','s'),('kind','s'),('model','s'),('bore_position',V3),('b
  ('bore_outer_radius','d'),('bore_walls','s'),('bore_normal_keep','d'),('view_dir',V3),
  ('sensor_position_given','?'),('sensor_position',V3),('parts','I'),('target','s'),
  ('target_edge','d'),('target_bar','d'),('target_pose',['d']*7),('bore_half_angle','d'),
- ('bore_cylinder_radius','d'),('bore_radius2','d'),('bore_major_axis',V3)]
+ ('bore_cylinder_radius','d'),('bore_radius2','d'),('bore_major_axis',V3),('sensors','S')]
 HEADER = [('rmw_client_guid','Q'),('rmw_sequence_number','q')]
 SIZE = {'d':8,'I':4,'Q':8,'q':8,'?':1}
 class R:
   def __init__(s,b,e): s.b,s.p,s.e=b,0,e
   def al(s,n): s.p=(s.p+n-1)//n*n
   def prim(s,t):
+    if t=='S':
+      s.al(4); n,=struct.unpack_from(s.e+'I',s.b,s.p); s.p+=4; return [s.prim('s') for _ in range(n)]
     if t=='s':
       s.al(4); n,=struct.unpack_from(s.e+'I',s.b,s.p); s.p+=4; v=s.b[s.p:s.p+n-1]; s.p+=n; return v
     s.al(SIZE[t]); v,=struct.unpack_from(s.e+t,s.b,s.p); s.p+=SIZE[t]; return v
@@ -31,6 +34,10 @@ class W:
   def al(s,n):
     while len(s.b)%n: s.b.append(0)
   def prim(s,t,v):
+    if t=='S':
+      s.al(4); s.b+=struct.pack(s.e+'I',len(v))
+      for x in v: s.prim('s',x)
+      return
     if t=='s':
       s.al(4); s.b+=struct.pack(s.e+'I',len(v)+1)+v+b'\0'; return
     s.al(SIZE[t]); s.b+=struct.pack(s.e+t,v)
@@ -50,6 +57,21 @@ def encode(fields,vals,little):
   return bytes([0,1 if little else 0,0,pad])+bytes(w.b)
 def decode(fields,data):
   little=data[1]==1; r=R(data[4:],'<' if little else '>'); return read(fields,r),little
+def migrate(corpus):
+  # Seeds written before the last field (sensors) existed: the same fields, then an empty list
+  # (request_learn: two sensors, as a fused learn sends them). Run once when a field is added.
+  old=FIELDS[:-1]
+  for f in sorted(os.listdir(corpus)):
+    b=open(os.path.join(corpus,f),'rb').read()
+    if b[0]==1 and ('request' in f): head=[]
+    elif b[0]==4 and ('service' in f): head=HEADER
+    else: continue
+    vals,little=decode(head+old,b[1:])
+    vals['sensors']=[b'stripe',b'head'] if f=='request_learn' else []
+    open(os.path.join(corpus,f),'wb').write(b[:1]+encode(head+FIELDS,vals,little))
+    print('migrated',f)
+if __name__=='__main__' and len(sys.argv)>2 and sys.argv[2]=='--migrate':
+  migrate(sys.argv[1]); sys.exit(0)
 if __name__=='__main__':
   corpus=sys.argv[1]
   # Check: the topic seeds re-encode byte for byte (the codec is Cyclone's layout).
