@@ -19,8 +19,8 @@ bool is_not_found_reason(std::string_view reason) {
                                DetectReason::kNotConfirmed, DetectReason::kNotLinked}) {
     if (reason == to_string(r)) return true;
   }
-  for (const LearnReason r :
-       {LearnReason::kEmptyCloud, LearnReason::kNoObject, LearnReason::kTooFewPoints}) {
+  for (const LearnReason r : {LearnReason::kEmptyCloud, LearnReason::kNoObject,
+                              LearnReason::kTooFewPoints, LearnReason::kSecondPartNotSeen}) {
     if (reason == to_string(r)) return true;
   }
   // The scan did not show the calibration body well enough (calib/ says why after the prefix).

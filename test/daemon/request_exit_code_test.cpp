@@ -13,6 +13,7 @@
 #include "daemon/rangefitd/service.hpp"
 #include "daemon/service/result_outcome.hpp"
 #include "detect/bore/bore_result.hpp"
+#include "detect/learn/model_learning.hpp"
 #include "detect/object/object_detector.hpp"
 #include "io/ply.hpp"
 #include "test/daemon/replay_service.hpp"
@@ -34,6 +35,11 @@ TEST(ResultOutcome, DetectorReasonsAreNotFoundAndEverythingElseIsAnError) {
   }
   r.reason = std::string(to_string(BoreReason::kFitFailed));
   EXPECT_EQ(exit_code_of(r), 2);
+  // Learning: the scan showed no object, or not the second part of a two-part one.
+  for (const LearnReason why : {LearnReason::kNoObject, LearnReason::kSecondPartNotSeen}) {
+    r.reason = to_string(why);
+    EXPECT_EQ(exit_code_of(r), 2) << r.reason;
+  }
   for (const std::string& reason :
        {std::string("bad request: unknown sensor \"x\""), std::string("scan failed: css: gone"),
         std::string("busy: 4 requests queued"), std::string(to_string(BoreReason::kBadPrior)),
