@@ -81,28 +81,29 @@ ScanOutcome DeviceBackend::scan(const ScanRequest& request, const std::atomic<bo
   return real_->scan(*device, request, cancel, progress);
 }
 
-// One scan per sensor, in order, each over its configured sweep but the first (whose sweep the
-// request carries), fused into one cloud: the views are already in one world frame. The fused
-// cloud has no grid and no single sensor view; the first sensor's description goes with it.
-// The request's scan timeout covers all the scans.
+// One scan per sensor, in order, each over its configured sweep (validation refuses a sweep
+// override with several sensors), fused into one cloud: the views are already in one world
+// frame. The fused cloud has no grid and no single sensor view; the first sensor's description
+// goes with it. The request's scan timeout covers all the scans.
 ScanOutcome DeviceBackend::scan_views(const ScanRequest& request, const std::atomic<bool>& cancel,
                                       const std::function<void()>& progress) {
+  // A view that fails fails the request; the views scanned so far go with the error, so the
+  // spool keeps them.
   ScanOutcome fused;
   for (std::size_t k = 0; k < request.sensors.size(); ++k) {
     const std::string& name = request.sensors[k];
     ScanRequest one = request;
     one.sensors.clear();
     one.sensor = name;
-    if (k > 0) {
-      const DeviceConfig* device = config_.device(name);
-      if (device == nullptr) return {hal::Status::Error("unknown sensor " + name), {}};
-      one.sweep_start = device->sweep_start;
-      one.sweep_end = device->sweep_end;
-      one.sweep_speed = device->sweep_speed;
+    const DeviceConfig* device = config_.device(name);
+    if (device == nullptr) {
+      fused.status = hal::Status::Error("unknown sensor " + name);
+      return fused;
     }
+    one.sweep_start = device->sweep_start;
+    one.sweep_end = device->sweep_end;
+    one.sweep_speed = device->sweep_speed;
     ScanOutcome view = scan(one, cancel, progress);
-    // A view that fails fails the request; the views scanned so far go with the error, so the
-    // spool keeps them.
     if (!view.status) {
       fused.status = hal::Status::Error(name + ": " + view.status.message);
       return fused;

@@ -90,12 +90,15 @@ StepCut best_step(std::span<const Eigen::Vector3d> points, const Eigen::Vector3d
   return out;
 }
 
-// The side with fewer points, as a membership mask.
-std::vector<char> smaller_side(const TwoPartSplit& s, std::size_t n) {
-  std::vector<char> mask(n, 0);
-  const int k = s.parts[0].size() <= s.parts[1].size() ? 0 : 1;
-  for (std::uint32_t i : s.parts[k]) mask[i] = 1;
-  return mask;
+// The side with fewer points, as a membership mask, and its size.
+struct SmallerSide {
+  std::vector<char> mask;
+  std::size_t size = 0;
+};
+SmallerSide smaller_side(const TwoPartSplit& s, std::size_t n) {
+  SmallerSide out{std::vector<char>(n, 0), std::min(s.parts[0].size(), s.parts[1].size())};
+  for (std::uint32_t i : s.parts[s.parts[0].size() <= s.parts[1].size() ? 0 : 1]) out.mask[i] = 1;
+  return out;
 }
 
 }  // namespace
@@ -129,29 +132,23 @@ std::vector<TwoPartSplit> split_two_parts(std::span<const Eigen::Vector3d> point
       split.parts[axis.dot(points[i] - c) < s.t_cut ? 0 : 1].push_back(i);
     }
     if (split.parts[0].size() < min_points || split.parts[1].size() < min_points) continue;
-    split.direction = axis;
     split.unexplained = s.unexplained;
     cuts.push_back(std::move(split));
   }
   std::stable_sort(cuts.begin(), cuts.end(), [](const TwoPartSplit& a, const TwoPartSplit& b) {
     return a.unexplained < b.unexplained;
   });
-  std::vector<std::vector<char>> taken;
+  std::vector<SmallerSide> taken;
   for (TwoPartSplit& cut : cuts) {
     if (static_cast<int>(out.size()) == count) break;
-    const std::vector<char> mask = smaller_side(cut, points.size());
-    const std::size_t size = std::count(mask.begin(), mask.end(), 1);
-    bool distinct = true;
-    for (const std::vector<char>& t : taken) {
+    SmallerSide side = smaller_side(cut, points.size());
+    const auto shares_half = [&](const SmallerSide& t) {
       std::size_t shared = 0;
-      for (std::size_t i = 0; i < mask.size(); ++i) shared += mask[i] & t[i];
-      if (2 * shared >= std::min<std::size_t>(size, std::count(t.begin(), t.end(), 1))) {
-        distinct = false;
-        break;
-      }
-    }
-    if (!distinct) continue;
-    taken.push_back(mask);
+      for (std::size_t i = 0; i < side.mask.size(); ++i) shared += side.mask[i] & t.mask[i];
+      return 2 * shared >= std::min(side.size, t.size);
+    };
+    if (std::any_of(taken.begin(), taken.end(), shares_half)) continue;
+    taken.push_back(std::move(side));
     out.push_back(std::move(cut));
   }
   return out;

@@ -25,8 +25,7 @@
 namespace rangefit {
 
 struct TwoPartSplit {
-  std::array<std::vector<std::uint32_t>, 2> parts;      // indices into the points
-  Eigen::Vector3d direction = Eigen::Vector3d::Zero();  // the cut's normal
+  std::array<std::vector<std::uint32_t>, 2> parts;  // indices into the points
   double unexplained = 1.0;  // share of the width profile's variance the step leaves
 };
 

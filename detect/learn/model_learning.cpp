@@ -62,18 +62,27 @@ ShapeFitOptions fit_options(const LearnOptions& o, double reference_volume, int 
   return f;
 }
 
+// Radial distance of world points from a posed part (as in learn_surface.hpp), with its metric
+// and inverse pose made once for all the points.
+class PartDistance {
+ public:
+  explicit PartDistance(const PosedSuperquadric& part)
+      : metric_(part.shape), inv_(part.T_world_part.inverse()) {}
+  double operator()(const Eigen::Vector3d& p) const {
+    const Eigen::Vector3d q = inv_ * p;
+    const double g = metric_.value(q);
+    return g > 0.0 ? q.norm() * std::abs(1.0 - 1.0 / std::sqrt(g)) : q.norm();
+  }
+  bool inside(const Eigen::Vector3d& p) const { return metric_.value(inv_ * p) < 1.0; }
+
+ private:
+  SuperquadricMetric metric_;
+  Eigen::Isometry3d inv_;
+};
+
 // True when b's centre lies inside a's surface.
 bool centre_inside(const ShapeFitResult& a, const ShapeFitResult& b) {
-  const SuperquadricMetric m(a.part.shape);
-  return m.value(a.part.T_world_part.inverse() * b.part.T_world_part.translation()) < 1.0;
-}
-
-// Radial distance of a world point from a posed part (as in learn_surface.hpp).
-double radial_distance(const SuperquadricMetric& m, const Eigen::Isometry3d& inv,
-                       const Eigen::Vector3d& p) {
-  const Eigen::Vector3d q = inv * p;
-  const double g = m.value(q);
-  return g > 0.0 ? q.norm() * std::abs(1.0 - 1.0 / std::sqrt(g)) : q.norm();
+  return PartDistance(a.part).inside(b.part.T_world_part.translation());
 }
 
 // Ellipsoid, cylinder-like, box-like and pinched (eps > 1) starts; tapered ones standing.
@@ -103,12 +112,10 @@ ShapeFitResult rough_fit(std::span<const Eigen::Vector3d> points,
 // Sum of the squared radial distances of the points from the nearer of two parts.
 double two_part_cost(const std::array<ShapeFitResult, 2>& fits,
                      std::span<const Eigen::Vector3d> points) {
-  const SuperquadricMetric m0(fits[0].part.shape), m1(fits[1].part.shape);
-  const Eigen::Isometry3d inv0 = fits[0].part.T_world_part.inverse();
-  const Eigen::Isometry3d inv1 = fits[1].part.T_world_part.inverse();
+  const PartDistance d0(fits[0].part), d1(fits[1].part);
   double sum = 0.0;
   for (const Eigen::Vector3d& p : points) {
-    const double d = std::min(radial_distance(m0, inv0, p), radial_distance(m1, inv1, p));
+    const double d = std::min(d0(p), d1(p));
     sum += d * d;
   }
   return sum;
@@ -360,11 +367,8 @@ CutTry try_cut(std::span<const Eigen::Vector3d> whole, const TwoPartSplit& split
   std::array<ShapeFitResult, 2> q = main;
   consider(cut, q);
   std::array<std::vector<Eigen::Vector3d>, 2> rest;
-  const SuperquadricMetric m(main[0].part.shape);
-  const Eigen::Isometry3d inv = main[0].part.T_world_part.inverse();
-  for (const Eigen::Vector3d& p : whole) {
-    rest[radial_distance(m, inv, p) <= off_mm ? 0 : 1].push_back(p);
-  }
+  const PartDistance off_main(main[0].part);
+  for (const Eigen::Vector3d& p : whole) rest[off_main(p) <= off_mm ? 0 : 1].push_back(p);
   if (rest[1].size() >= kMinLearnPoints) consider(rest, main);
   return out;
 }
@@ -433,14 +437,10 @@ LearnReason learn_two_parts(std::span<const Eigen::Vector3d> points,
   }
   // Points near the cut belong to whichever part explains them: reassign by radial distance
   // and refit each part from where it is.
-  const SuperquadricMetric m0(fits[0].part.shape), m1(fits[1].part.shape);
-  const Eigen::Isometry3d inv0 = fits[0].part.T_world_part.inverse();
-  const Eigen::Isometry3d inv1 = fits[1].part.T_world_part.inverse();
+  const PartDistance d0(fits[0].part), d1(fits[1].part);
   side[0].clear();
   side[1].clear();
-  for (const Eigen::Vector3d& p : object) {
-    side[radial_distance(m0, inv0, p) <= radial_distance(m1, inv1, p) ? 0 : 1].push_back(p);
-  }
+  for (const Eigen::Vector3d& p : object) side[d0(p) <= d1(p) ? 0 : 1].push_back(p);
   for (int k = 0; k < 2; ++k) {
     if (side[k].size() < 20) return LearnReason::kTooFewPoints;
     const Superquadric& s = fits[k].part.shape;
