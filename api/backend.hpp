@@ -19,12 +19,15 @@ struct ResultFile {
   std::string_view name;
   std::string_view content_type;
 };
-inline constexpr std::array<ResultFile, 5> kResultFiles = {{
+inline constexpr std::array<ResultFile, 8> kResultFiles = {{
     {"cloud.ply", "application/octet-stream"},
     {"picture.png", "image/png"},
     {"model.toml", "text/plain; charset=utf-8"},
     {"calibration_stripe.toml", "text/plain; charset=utf-8"},
     {"calibration_stripe.toml.report.txt", "text/plain; charset=utf-8"},
+    {"css_sphere_scan.txt", "text/plain; charset=utf-8"},
+    {"calibration_css.toml", "text/plain; charset=utf-8"},
+    {"calibration_css.toml.report.txt", "text/plain; charset=utf-8"},
 }};
 
 // The entry of kResultFiles named `name`, or nullptr.

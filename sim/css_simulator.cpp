@@ -97,7 +97,7 @@ CssRig::CssRig(const Scene& scene, const RayCaster& caster, CssScanOptions optio
                hal::Clock& clock)
     : caster_(caster),
       options_(options),
-      T_scene_world_(scene.mounts.T_scene_css),
+      T_scene_world_(options.T_scene_world.value_or(scene.mounts.T_scene_css)),
       start_(clock.now()),
       css_(std::make_unique<CssDevice>(*this, clock)),
       joint_(std::make_unique<JointDevice>(*this, clock)) {}

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 #include "hal/css_geometry.hpp"
 #include "hal/source.hpp"
@@ -27,6 +28,9 @@ struct CssScanOptions {
   FaultOptions css_faults;       // range noise, outliers, ghosts, dropped revolutions, ...
   FaultOptions joint_faults;     // stamp jitter, stale readings, dropped samples, ...
   std::uint64_t seed = 1;
+  // Where the robot holds the joint: the CSS world frame (the joint at omega = 0) in the scene.
+  // Unset: the scene's CSS mount.
+  std::optional<Eigen::Isometry3d> T_scene_world;
 };
 
 // Noise-free result of one revolution, in double: for the tests and the ground truth. Every

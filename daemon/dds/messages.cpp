@@ -18,6 +18,37 @@ std_msgs_msg_dds__Header_ header(const std::string& frame) {
 
 constexpr std::uint8_t kFloat32 = 7, kFloat64 = 8;  // sensor_msgs/PointField datatypes
 
+// A pose in mm as geometry_msgs/Pose: metres and a quaternion.
+geometry_msgs_msg_dds__Pose_ pose_msg(const Eigen::Isometry3d& T) {
+  const Eigen::Vector3d t = T.translation() * kMetresPerMm;
+  const Eigen::Quaterniond q(T.rotation());
+  return {{t.x(), t.y(), t.z()}, {q.x(), q.y(), q.z(), q.w()}};
+}
+
+// A geometry_msgs/Pose back in mm. A zero or non-finite quaternion leaves the rotation the
+// identity; a request refuses the non-finite one (finite_quaternion).
+Eigen::Isometry3d pose_mm(const geometry_msgs_msg_dds__Pose_& p) {
+  const Eigen::Quaterniond q(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z);
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  if (q.coeffs().allFinite() && q.norm() > 0) T.linear() = q.normalized().toRotationMatrix();
+  T.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z) / kMetresPerMm;
+  return T;
+}
+
+bool finite_quaternion(const geometry_msgs_msg_dds__Pose_& p) {
+  return std::isfinite(p.orientation.x) && std::isfinite(p.orientation.y) &&
+         std::isfinite(p.orientation.z) && std::isfinite(p.orientation.w);
+}
+
+// A string sequence of the wire, at most max of its strings (a null buffer reads as empty ones).
+std::vector<std::string> strings(const dds_sequence_string& seq, std::uint32_t max) {
+  std::vector<std::string> out;
+  for (std::uint32_t k = 0; k < std::min(seq._length, max); ++k) {
+    out.push_back(seq._buffer != nullptr ? str(seq._buffer[k]) : "");
+  }
+  return out;
+}
+
 }  // namespace
 
 builtin_interfaces_msg_dds__Time_ wall_time(std::int64_t ns) {
@@ -217,9 +248,7 @@ RequestOut::RequestOut(const ScanRequest& req, bool linear_sweep)
   msg_.target = dds_chars(target_);
   msg_.target_edge = req_.target.edge_mm * kMetresPerMm;
   msg_.target_bar = req_.target.bar_mm * kMetresPerMm;
-  const Eigen::Vector3d tp = req_.target.T_table_target.translation() * kMetresPerMm;
-  const Eigen::Quaterniond tq(req_.target.T_table_target.rotation());
-  msg_.target_pose = {{tp.x(), tp.y(), tp.z()}, {tq.x(), tq.y(), tq.z(), tq.w()}};
+  msg_.target_pose = pose_msg(req_.target.T_table_target);
   msg_.bore_half_angle = req_.bore.half_angle_rad;
   msg_.bore_cylinder_radius = req_.bore.cylinder_radius_mm * kMetresPerMm;
   msg_.bore_radius2 = req_.bore.radius2_mm * kMetresPerMm;
@@ -228,6 +257,13 @@ RequestOut::RequestOut(const ScanRequest& req, bool linear_sweep)
   for (std::string& name : req_.sensors) sensors_.push_back(dds_chars(name));
   const auto ns = static_cast<std::uint32_t>(sensors_.size());
   msg_.sensors = {ns, ns, sensors_.data(), false};
+  msg_.target_radius = req_.target.radius_mm * kMetresPerMm;
+  // Not given: robot_pose_given false and the identity pose, which the reader ignores.
+  msg_.robot_pose_given = req_.target.T_base_joint.has_value();
+  msg_.robot_pose = pose_msg(req_.target.T_base_joint.value_or(Eigen::Isometry3d::Identity()));
+  for (std::string& id : req_.target.scans) scans_.push_back(dds_chars(id));
+  const auto nc = static_cast<std::uint32_t>(scans_.size());
+  msg_.calibration_scans = {nc, nc, scans_.data(), false};
 }
 
 ScanRequest from_msg(const rangefit_msgs_msg_dds__DetectRequest_& msg, std::string* error) {
@@ -269,36 +305,34 @@ ScanRequest from_msg(const rangefit_msgs_msg_dds__DetectRequest_& msg, std::stri
   req.parts = static_cast<int>(std::min(msg.parts, kMaxCount));
   // A few more than a request may fuse, so validation names the limit; the rest is dropped.
   constexpr std::uint32_t kMaxSensors = 16;
-  for (std::uint32_t k = 0; k < std::min(msg.sensors._length, kMaxSensors); ++k) {
-    req.sensors.push_back(msg.sensors._buffer != nullptr ? str(msg.sensors._buffer[k]) : "");
-  }
+  req.sensors = strings(msg.sensors, kMaxSensors);
   req.target.kind = str(msg.target);
   if (msg.target_edge != 0.0) req.target.edge_mm = msg.target_edge / kMetresPerMm;
   if (msg.target_bar != 0.0) req.target.bar_mm = msg.target_bar / kMetresPerMm;
-  const auto& tp = msg.target_pose;
-  const Eigen::Quaterniond tq(tp.orientation.w, tp.orientation.x, tp.orientation.y,
-                              tp.orientation.z);
-  req.target.T_table_target = Eigen::Isometry3d::Identity();
-  if (tq.coeffs().allFinite() && tq.norm() > 0) {
-    req.target.T_table_target.linear() = tq.normalized().toRotationMatrix();
-  }
-  req.target.T_table_target.translation() =
-      Eigen::Vector3d(tp.position.x, tp.position.y, tp.position.z) / kMetresPerMm;
+  req.target.T_table_target = pose_mm(msg.target_pose);
+  req.target.radius_mm = msg.target_radius / kMetresPerMm;
+  // Checked below whether given or not, as sensor_position: no non-finite number is accepted.
+  const Eigen::Isometry3d robot = pose_mm(msg.robot_pose);
+  if (msg.robot_pose_given) req.target.T_base_joint = robot;
+  // A few more than a calibration may join, so validation names the limit; the rest is dropped.
+  constexpr std::uint32_t kMaxScans = 64;
+  req.target.scans = strings(msg.calibration_scans, kMaxScans);
   error->clear();
   if (!kind_from_string(kind, &req.kind)) {
     *error = "unknown kind \"" + kind + "\" (expected " + kKindNames + ")";
   }
   if (error->empty() && req.id.empty()) *error = "request_id is empty";
-  const bool finite = req.bore.position_mm.allFinite() && req.bore.axis.allFinite() &&
-                      std::isfinite(req.bore.radius_mm) && std::isfinite(req.sweep_start) &&
-                      std::isfinite(req.sweep_end) && std::isfinite(req.sweep_speed) &&
-                      n.allFinite() && std::isfinite(req.bore.outer_radius_mm) &&
-                      std::isfinite(req.bore.normal_keep) && v.allFinite() && sp.allFinite() &&
-                      std::isfinite(req.target.edge_mm) && std::isfinite(req.target.bar_mm) &&
-                      req.target.T_table_target.matrix().allFinite() && tq.coeffs().allFinite() &&
-                      std::isfinite(req.bore.half_angle_rad) &&
-                      std::isfinite(req.bore.cylinder_radius_mm) &&
-                      std::isfinite(req.bore.radius2_mm) && ma.allFinite();
+  const bool finite =
+      req.bore.position_mm.allFinite() && req.bore.axis.allFinite() &&
+      std::isfinite(req.bore.radius_mm) && std::isfinite(req.sweep_start) &&
+      std::isfinite(req.sweep_end) && std::isfinite(req.sweep_speed) && n.allFinite() &&
+      std::isfinite(req.bore.outer_radius_mm) && std::isfinite(req.bore.normal_keep) &&
+      v.allFinite() && sp.allFinite() && std::isfinite(req.target.edge_mm) &&
+      std::isfinite(req.target.bar_mm) && req.target.T_table_target.matrix().allFinite() &&
+      finite_quaternion(msg.target_pose) && std::isfinite(req.target.radius_mm) &&
+      robot.matrix().allFinite() && finite_quaternion(msg.robot_pose) &&
+      std::isfinite(req.bore.half_angle_rad) && std::isfinite(req.bore.cylinder_radius_mm) &&
+      std::isfinite(req.bore.radius2_mm) && ma.allFinite();
   if (error->empty() && !finite) *error = "non-finite number in request";
   return req;
 }

@@ -74,6 +74,7 @@ class RequestOut {
   ScanRequest req_;
   std::string kind_, walls_, target_;
   std::vector<char*> sensors_;  // into req_.sensors
+  std::vector<char*> scans_;    // into req_.target.scans
   rangefit_msgs_msg_dds__DetectRequest_ msg_{};
 };
 

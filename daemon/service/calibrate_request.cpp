@@ -9,16 +9,12 @@
 #include "detect/common/angles.hpp"
 
 namespace rangefit::daemon {
-namespace {
-
-std::string text_vec(const Eigen::Vector3d& v) {
+std::string toml_vec(const Eigen::Vector3d& v) {
   std::ostringstream s;
   s.precision(10);
   s << "[" << v.x() << ", " << v.y() << ", " << v.z() << "]";
   return s.str();
 }
-
-}  // namespace
 
 RawStripeProfiles raw_stripe_profiles(const PointCloud& cloud, const hal::StripeCellGeometry& g) {
   RawStripeProfiles out;
@@ -70,9 +66,9 @@ std::string stripe_calibration_toml(const calib::StripeCalibrationResult& r,
   toml << "# rangefit stripe cell calibration, from " << source
        << "; see the .report.txt beside it. Not applied: include it in the configuration.\n"
        << "[fusion.stripe_cell]\n"
-       << "ranger_position_cell_mm = " << text_vec(g.ranger_position_cell_mm) << "\n"
-       << "ranger_rpy_cell_rad = " << text_vec(g.ranger_rpy_cell_rad) << "\n"
-       << "axis_direction_cell = " << text_vec(g.axis_direction_cell) << "\n";
+       << "ranger_position_cell_mm = " << toml_vec(g.ranger_position_cell_mm) << "\n"
+       << "ranger_rpy_cell_rad = " << toml_vec(g.ranger_rpy_cell_rad) << "\n"
+       << "axis_direction_cell = " << toml_vec(g.axis_direction_cell) << "\n";
   return toml.str();
 }
 
@@ -91,14 +87,14 @@ std::string stripe_calibration_report(const calib::StripeCalibrationResult& r,
   }
   rep << "  refinement: " << r.points << " plane points, rms " << r.initial_rms_mm << " -> "
       << r.rms_mm << " mm in " << r.lm_iterations << " iterations\n"
-      << "  ranger position " << text_vec(g.ranger_position_cell_mm) << " mm (was "
-      << text_vec(start.ranger_position_cell_mm) << "), 1 sigma " << text_vec(r.position_sigma_mm)
+      << "  ranger position " << toml_vec(g.ranger_position_cell_mm) << " mm (was "
+      << toml_vec(start.ranger_position_cell_mm) << "), 1 sigma " << toml_vec(r.position_sigma_mm)
       << " mm\n"
-      << "  ranger rpy " << text_vec(g.ranger_rpy_cell_rad) << " rad (was "
-      << text_vec(start.ranger_rpy_cell_rad) << "), 1 sigma about its axes "
-      << text_vec(r.rotation_sigma_rad / kDeg) << " deg\n"
-      << "  axis direction " << text_vec(g.axis_direction_cell) << " (was "
-      << text_vec(start.axis_direction_cell) << "), 1 sigma " << r.axis_sigma_rad.x() / kDeg << ", "
+      << "  ranger rpy " << toml_vec(g.ranger_rpy_cell_rad) << " rad (was "
+      << toml_vec(start.ranger_rpy_cell_rad) << "), 1 sigma about its axes "
+      << toml_vec(r.rotation_sigma_rad / kDeg) << " deg\n"
+      << "  axis direction " << toml_vec(g.axis_direction_cell) << " (was "
+      << toml_vec(start.axis_direction_cell) << "), 1 sigma " << r.axis_sigma_rad.x() / kDeg << ", "
       << r.axis_sigma_rad.y() / kDeg << " deg\n";
   return rep.str();
 }

@@ -24,6 +24,9 @@
 
 namespace rangefit::daemon {
 
+// "[x, y, z]" as a TOML array, 10 digits.
+std::string toml_vec(const Eigen::Vector3d& v);
+
 // Reasons of a calibration that ran but was not supported by the scan start with this.
 inline constexpr std::string_view kNotCalibrated = "not calibrated: ";
 

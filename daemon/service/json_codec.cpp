@@ -21,8 +21,9 @@ nlohmann::json pose_array(const Eigen::Isometry3d& T) {
   const Eigen::Vector3d t = T.translation();
   return {t.x(), t.y(), t.z(), ypr[2], ypr[1], ypr[0]};
 }
-Eigen::Isometry3d pose_of(const nlohmann::json& j) {
-  if (j.size() != 6) throw std::invalid_argument("target.pose must be [x, y, z, roll, pitch, yaw]");
+// field: the pose's name in the request, for the error message.
+Eigen::Isometry3d pose_of(const nlohmann::json& j, const std::string& field) {
+  if (j.size() != 6) throw std::invalid_argument(field + " must be [x, y, z, roll, pitch, yaw]");
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = hal::rpy_matrix(j.at(3).get<double>(), j.at(4).get<double>(), j.at(5).get<double>());
   T.translation() = vec_of(j);
@@ -61,6 +62,9 @@ nlohmann::json to_json(const ScanRequest& r) {
     j["target"] = {{"kind", r.target.kind},
                    {"size_mm", {r.target.edge_mm, r.target.bar_mm}},
                    {"pose", pose_array(r.target.T_table_target)}};
+    if (r.target.radius_mm > 0.0) j["target"]["radius_mm"] = r.target.radius_mm;
+    if (r.target.T_base_joint) j["target"]["robot_pose"] = pose_array(*r.target.T_base_joint);
+    if (!r.target.scans.empty()) j["target"]["scans"] = r.target.scans;
   }
   return j;
 }
@@ -135,7 +139,12 @@ bool from_json(const nlohmann::json& j, ScanRequest& out, std::string* error) {
         out.target.edge_mm = t.at("size_mm").at(0).get<double>();
         out.target.bar_mm = t.at("size_mm").at(1).get<double>();
       }
-      if (t.contains("pose")) out.target.T_table_target = pose_of(t.at("pose"));
+      if (t.contains("pose")) out.target.T_table_target = pose_of(t.at("pose"), "target.pose");
+      out.target.radius_mm = t.value("radius_mm", 0.0);
+      if (t.contains("robot_pose")) {
+        out.target.T_base_joint = pose_of(t.at("robot_pose"), "target.robot_pose");
+      }
+      if (t.contains("scans")) out.target.scans = t.at("scans").get<std::vector<std::string>>();
     }
     return true;
   } catch (const std::exception& e) {

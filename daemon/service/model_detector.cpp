@@ -5,6 +5,7 @@
 
 #include "daemon/service/bore_fit_json.hpp"
 #include "daemon/service/bore_shape_json.hpp"
+#include "daemon/service/calibrate_css_request.hpp"
 #include "daemon/service/calibrate_request.hpp"
 #include "daemon/service/detection_adapter.hpp"
 #include "daemon/service/learn_request.hpp"
@@ -22,6 +23,9 @@ DetectionResult ModelDetector::detect(const PointCloud& cloud, const ScanRequest
     case DetectKind::kLearn:
       return learn_request(cloud, request, config_.detection.seed);
     case DetectKind::kCalibrate:
+      if (request.target.kind == "css") {
+        return calibrate_css_request(cloud, request, seen, css_poses_);
+      }
       return calibrate_request(cloud, request, seen, config_.detection.seed);
     case DetectKind::kBore:
       break;

@@ -4,6 +4,7 @@
 // configured model and what the scan's sensor knows; their found/reason are reported unchanged
 // (no gate of its own).
 
+#include "daemon/service/calibrate_css_request.hpp"
 #include "daemon/service/config.hpp"
 #include "daemon/service/pipeline.hpp"
 #include "detect/bore/bore_workspace.hpp"
@@ -26,6 +27,8 @@ class ModelDetector final : public Detector {
   // allocates nothing in the detector. One call at a time: the pipeline joins a detection before
   // it starts the next.
   BoreWorkspace bore_workspace_;
+  // The robot poses css calibration requests recorded, for the requests that join them.
+  CssCalibrationPoses css_poses_;
 };
 
 }  // namespace rangefit::daemon

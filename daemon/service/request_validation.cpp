@@ -81,11 +81,37 @@ const SensorKind* target_kind(const CalibrationTarget& t) {
   return k != nullptr && t.kind == k->name && k->calibrated_by_service ? k : nullptr;
 }
 
-std::string check_target(const CalibrationTarget& t) {
-  if (target_kind(t) == nullptr) {
-    return "calibrate target must be \"stripe\" (the hollow cube on the stripe cell; the CSS "
-           "mount needs scans at several robot poses: `rangefit calibrate`)";
+std::string check_css_target(const CalibrationTarget& t, const std::string& own_id) {
+  if (!(t.radius_mm > 0.0 && t.radius_mm <= 1e4))
+    return "calibrate css needs the sphere's radius_mm, in (0, 1e4] mm";
+  if (!t.T_base_joint) {
+    return "calibrate css needs robot_pose: the last joint's frame in the robot base at this "
+           "scan, as the robot controller reports it";
   }
+  if (!t.T_base_joint->matrix().allFinite() ||
+      !finite_within(t.T_base_joint->translation(), kMaxMm))
+    return "robot_pose must be finite, within +-1e6 mm";
+  if (t.scans.size() > kMaxCalibrationScans) {
+    return "scans names at most " + std::to_string(kMaxCalibrationScans) + " earlier requests";
+  }
+  for (std::size_t i = 0; i < t.scans.size(); ++i) {
+    if (auto why = check_name(t.scans[i], "scans[" + std::to_string(i) + "]", kMaxRequestIdLength);
+        !why.empty())
+      return why;
+    if (t.scans[i] == own_id) return "scans names this request itself";
+    for (std::size_t k = 0; k < i; ++k) {
+      if (t.scans[k] == t.scans[i]) return "scans names a request twice";
+    }
+  }
+  return "";
+}
+
+std::string check_target(const CalibrationTarget& t, const std::string& own_id) {
+  if (target_kind(t) == nullptr) {
+    return "calibrate target must be \"stripe\" (the hollow cube on the stripe cell) or \"css\" "
+           "(a precision sphere, one request per robot pose)";
+  }
+  if (t.kind == "css") return check_css_target(t, own_id);
   if (!(t.edge_mm > 0.0 && t.edge_mm <= kMaxMm && t.bar_mm > 0.0 && t.bar_mm < 0.5 * t.edge_mm))
     return "target size must be an edge > 0 and a bar in (0, edge / 2), mm";
   if (!t.T_table_target.matrix().allFinite() ||
@@ -149,7 +175,7 @@ std::string validate_request(ScanRequest& request, const DaemonConfig& config) {
     if (request.model.empty()) request.model = "learnt";
     if (auto why = check_name(request.model, "model", kMaxNameLength); !why.empty()) return why;
   } else if (request.kind == DetectKind::kCalibrate) {
-    if (auto why = check_target(request.target); !why.empty()) return why;
+    if (auto why = check_target(request.target, request.id); !why.empty()) return why;
     if (request.sensor.empty()) {
       request.sensor = first_device_of_kind(config, *target_kind(request.target));
     }

@@ -16,6 +16,7 @@ namespace rangefit::daemon {
 inline constexpr std::size_t kMaxRequestIdLength = 256;
 inline constexpr std::size_t kMaxNameLength = 128;  // model and sensor names
 inline constexpr std::size_t kMaxViews = 4;         // scans a learn request fuses (sensors)
+inline constexpr std::size_t kMaxCalibrationScans = 31;  // earlier poses a css calibration joins
 
 // Empty when text is 1..max_length bytes of printable ASCII (0x20..0x7e), else the reason, naming
 // `what` but never echoing the text (it may be megabytes of escape sequences).

@@ -4,9 +4,10 @@
 
 namespace rangefit::daemon {
 
-ScanSensor css_sensor(const hal::CssGeometry& g) {
+ScanSensor css_sensor(const hal::CssGeometry& g, double omega_zero_rad) {
   ScanSensor s;
   s.view_dir = g.T_world_css(0.0).linear() * Eigen::Vector3d::UnitZ();
+  s.css = ScanSensor::CssFusion{g, omega_zero_rad};
   return s;
 }
 

@@ -23,11 +23,18 @@ struct ScanSensor {
   // back to the ranger's raw profiles (daemon/service/calibrate_request.hpp).
   Eigen::Isometry3d T_scan_fusion = Eigen::Isometry3d::Identity();
   std::optional<hal::StripeCellGeometry> stripe;
+  // The CSS geometry and joint zero fusion used (omega = reported angle - zero): what takes a
+  // fused CSS point back to the joint angle, beam angle and range it was made of.
+  struct CssFusion {
+    hal::CssGeometry geometry;
+    double omega_zero_rad = 0.0;
+  };
+  std::optional<CssFusion> css;
 };
 
 // The CSS in fusion's CSS world frame (eq. 4.17): it looks along the sensor's -z at the scan
 // centre (omega = 0), so the direction toward it is the sensor's +z there.
-ScanSensor css_sensor(const hal::CssGeometry& g);
+ScanSensor css_sensor(const hal::CssGeometry& g, double omega_zero_rad);
 
 // The stripe cell in the table frame (the fused cloud's): the fan apex moves relative to the
 // table by -s * axis_direction while the axis runs from `from` to `to` (mm).

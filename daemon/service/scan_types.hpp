@@ -43,12 +43,21 @@ struct BorePrior {                                        // from CAD
   std::optional<Eigen::Vector3d> major_axis;  // the direction of radius_mm, world
 };
 
-// A calibration body for kind = calibrate (as `rangefit calibrate stripe --cube --cube-pose`).
+// A calibration body for kind = calibrate: "stripe", the hollow six-plane cube on the stripe
+// cell's table, scanned once (as `rangefit calibrate stripe --cube --cube-pose`); or "css", a
+// precision sphere the CSS scans at several robot poses, one request per pose (as `rangefit
+// calibrate css --sphere-radius`): each request records its pose's scan, and one that names
+// earlier ones in `scans` (at least 3 poses in all) also solves for the mount.
 struct CalibrationTarget {
-  std::string kind;        // "stripe": the hollow six-plane cube on the stripe cell's table
-  double edge_mm = 120.0;  // cube edge
-  double bar_mm = 12.0;    // bar thickness
+  std::string kind;                                                  // "stripe" or "css"
+  double edge_mm = 120.0;                                            // stripe: cube edge
+  double bar_mm = 12.0;                                              // stripe: bar thickness
   Eigen::Isometry3d T_table_target = Eigen::Isometry3d::Identity();  // where the fixture holds it
+  double radius_mm = 0.0;  // css: the sphere's certified radius
+  // css: the last joint's frame in the robot base at this scan, as the robot controller reports
+  // it (the robot program moved the robot there; the daemon does not read it).
+  std::optional<Eigen::Isometry3d> T_base_joint;
+  std::vector<std::string> scans;  // css: ids of earlier css requests whose poses join this one
 };
 
 struct ScanRequest {

@@ -1,6 +1,6 @@
-// Numeric command-line options of `rangefit bore` and `rangefit object` are checked before any
-// work: NaN, infinities and absurd magnitudes are bad input (exit 1) with a message naming the
-// option, not a detector run on garbage or a length_error from deep inside it.
+// Numeric command-line options of `rangefit bore`, `rangefit object` and `rangefit request` are
+// checked before any work: NaN, infinities and absurd magnitudes are bad input (exit 1) with a
+// message naming the option, not a detector run on garbage or a length_error from deep inside it.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -47,6 +47,24 @@ TEST(CliOptions, ObjectRejectsANonFiniteOrAbsurdViewpoint) {
     const CliRun r = run_cli(object + v);
     EXPECT_EQ(r.exit_code, 1) << v << "\n" << r.output;
     EXPECT_NE(r.output.find("--viewpoint: value"), std::string::npos) << v << "\n" << r.output;
+  }
+}
+// `rangefit request calibrate css` needs the sphere and the robot pose, both finite; they are
+// checked before the daemon is looked for.
+TEST(CliOptions, RequestCalibrateCssNeedsAFiniteSphereAndRobotPose) {
+  const std::string css = "request calibrate css --timeout 0.001";
+  const std::string pose = " --robot-pose 450,-120,610,0,1.5,0";
+  const std::pair<std::string, std::string> cases[] = {
+      {pose, "--sphere-radius is required"},
+      {" --sphere-radius 12.7", "--robot-pose is required"},
+      {" --sphere-radius nan" + pose, "--sphere-radius: value nan is not a finite number"},
+      {" --sphere-radius 12.7 --robot-pose 450,-120,inf,0,1.5,0", "--robot-pose: value inf"},
+      {" --sphere-radius 12.7 --robot-pose 450,-120,610", "--robot-pose"},
+  };
+  for (const auto& [args, message] : cases) {
+    const CliRun r = run_cli(css + args);
+    EXPECT_EQ(r.exit_code, 1) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
   }
 }
 TEST(CliOptions, WatchRejectsANonFiniteDuration) {

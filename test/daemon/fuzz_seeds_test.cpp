@@ -61,6 +61,29 @@ TEST(FuzzSeeds, TheLearnSeedNamesTwoSensors) {
   EXPECT_EQ(error, "");
   EXPECT_EQ(req.kind, DetectKind::kLearn);
   EXPECT_EQ(req.sensors, (std::vector<std::string>{"stripe", "head"}));
+  // A seed written before the css fields existed has them "not given".
+  EXPECT_EQ(req.target.radius_mm, 0.0);
+  EXPECT_FALSE(req.target.T_base_joint);
+  EXPECT_TRUE(req.target.scans.empty());
+}
+
+// The css calibration seed carries the sphere, the robot pose and two earlier scans, in mm.
+TEST(FuzzSeeds, TheCssCalibrateSeedCarriesTheSphereThePoseAndTheScans) {
+  const std::vector<std::uint8_t> b = bytes_of(kCorpus / "request_calibrate_css");
+  ASSERT_FALSE(b.empty());
+  const test::WireSample<rangefit_msgs_msg_dds__DetectRequest_> msg(
+      rangefit_msgs_msg_dds__DetectRequest__desc, std::span(b.data() + 1, b.size() - 1));
+  ASSERT_NE(msg.get(), nullptr);
+  std::string error;
+  const ScanRequest req = from_msg(*msg.get(), &error);
+  EXPECT_EQ(error, "");
+  EXPECT_EQ(req.kind, DetectKind::kCalibrate);
+  EXPECT_EQ(req.target.kind, "css");
+  EXPECT_NEAR(req.target.radius_mm, 12.5, 1e-9);
+  ASSERT_TRUE(req.target.T_base_joint);
+  EXPECT_LT((req.target.T_base_joint->translation() - Eigen::Vector3d(450, -100, 600)).norm(),
+            1e-9);
+  EXPECT_EQ(req.target.scans, (std::vector<std::string>{"css-pose-1", "css-pose-2"}));
 }
 
 }  // namespace fuzz_seeds_test

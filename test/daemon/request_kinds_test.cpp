@@ -7,6 +7,8 @@
 #include <numbers>
 
 #include "daemon/dds/messages.hpp"
+#include "daemon/dds/service_body.hpp"
+#include "daemon/dds/service_request.hpp"
 #include "daemon/service/json_codec.hpp"
 #include "daemon/service/request_validation.hpp"
 
@@ -36,6 +38,21 @@ ScanRequest calibrate_request() {
   req.target.T_table_target.linear() =
       Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   req.target.T_table_target.translation() = Eigen::Vector3d(5.0, 3.0, 130.0);
+  return req;
+}
+
+// One robot pose of a css calibration that joins two earlier poses' requests.
+ScanRequest css_calibrate_request() {
+  ScanRequest req;
+  req.id = "css-3";
+  req.kind = DetectKind::kCalibrate;
+  req.target.kind = "css";
+  req.target.radius_mm = 12.7;
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(0.8, Eigen::Vector3d(-1, 2, 0.5).normalized()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(450.0, -120.0, 610.0);
+  req.target.T_base_joint = T;
+  req.target.scans = {"css-1", "css-2"};
   return req;
 }
 
@@ -108,6 +125,57 @@ TEST(RequestKinds, LearnAndCalibrateRoundTripTheWireAndJson) {
     EXPECT_NEAR(back.target.bar_mm, 15.0, 1e-9);
     EXPECT_TRUE(back.target.T_table_target.isApprox(cal.target.T_table_target, 1e-9));
   }
+}
+
+TEST(RequestKinds, CssCalibrationRoundTripsTheWireTheServiceAndJson) {
+  const ScanRequest css = css_calibrate_request();
+  const RequestOut out(css, false);
+  EXPECT_DOUBLE_EQ(out.msg().target_radius, 0.0127);  // metres on the wire
+  EXPECT_TRUE(out.msg().robot_pose_given);
+  EXPECT_NEAR(out.msg().robot_pose.position.z, 0.61, 1e-12);
+  std::string topic_error, service_error, json_error;
+  const ScanRequest topic = from_msg(out.msg(), &topic_error);
+  // The same fields as a /rangefit/detect service call.
+  const auto call = service_sample<rangefit_msgs_srv_dds__Detect_Request_>(7, 3, out.msg());
+  const ScanRequest service = from_service_request(call, &service_error);
+  ScanRequest json;
+  EXPECT_TRUE(from_json(to_json(css), json, &json_error)) << json_error;
+  EXPECT_EQ(topic_error, "");
+  EXPECT_EQ(service_error, "");
+  for (const ScanRequest& back : {topic, service, json}) {
+    EXPECT_EQ(back.id, "css-3");
+    EXPECT_EQ(back.kind, DetectKind::kCalibrate);
+    EXPECT_EQ(back.target.kind, "css");
+    EXPECT_NEAR(back.target.radius_mm, 12.7, 1e-9);
+    ASSERT_TRUE(back.target.T_base_joint);
+    EXPECT_TRUE(back.target.T_base_joint->isApprox(*css.target.T_base_joint, 1e-9));
+    EXPECT_EQ(back.target.scans, css.target.scans);
+  }
+  // Not given: nothing on the wire says otherwise, and JSON leaves the fields out.
+  const ScanRequest stripe = calibrate_request();
+  const RequestOut stripe_out(stripe, false);
+  EXPECT_FALSE(stripe_out.msg().robot_pose_given);
+  EXPECT_EQ(stripe_out.msg().calibration_scans._length, 0u);
+  const ScanRequest stripe_back = from_msg(stripe_out.msg(), &topic_error);
+  EXPECT_EQ(topic_error, "");
+  EXPECT_EQ(stripe_back.target.radius_mm, 0.0);
+  EXPECT_FALSE(stripe_back.target.T_base_joint);
+  EXPECT_TRUE(stripe_back.target.scans.empty());
+  const nlohmann::json stripe_json = to_json(stripe);
+  for (const char* field : {"radius_mm", "robot_pose", "scans"}) {
+    EXPECT_FALSE(stripe_json.at("target").contains(field)) << field;
+  }
+  // A request read into one that held a css target keeps none of it.
+  ASSERT_TRUE(from_json(stripe_json, json, &json_error)) << json_error;
+  EXPECT_EQ(json.target.kind, "stripe");
+  EXPECT_EQ(json.target.radius_mm, 0.0);
+  EXPECT_FALSE(json.target.T_base_joint);
+  EXPECT_TRUE(json.target.scans.empty());
+  // A malformed robot pose is named as such.
+  nlohmann::json bad = to_json(css);
+  bad["target"]["robot_pose"] = {1.0, 2.0, 3.0};
+  EXPECT_FALSE(from_json(bad, json, &json_error));
+  EXPECT_EQ(json_error, "request: target.robot_pose must be [x, y, z, roll, pitch, yaw]");
 }
 
 TEST(RequestKinds, AnOlderClientsRequestHasNoPipeAndNoSensorOverride) {

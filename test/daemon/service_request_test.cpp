@@ -25,6 +25,7 @@ rangefit_msgs_srv_dds__Detect_Request_ bore_call(const char* id) {
   m.bore_axis.z = 1.0;
   m.bore_radius = 0.005;
   m.target_pose.orientation.w = 1.0;
+  m.robot_pose.orientation.w = 1.0;
   return m;
 }
 
@@ -64,6 +65,19 @@ TEST(ServiceRequest, NonFiniteNumbersAreRefusedAlsoWhenTheIdIsLeftToTheCall) {
     m.kind = text("object");
     m.model = text("box");
     m.bore_half_angle = nan;  // a bore field in an object request: unused, still refused
+    (void)from_service_request(m, &error);
+    EXPECT_EQ(error, "non-finite number in request") << "id \"" << id << "\"";
+    m = bore_call(id);
+    m.target_radius = std::numeric_limits<double>::infinity();
+    (void)from_service_request(m, &error);
+    EXPECT_EQ(error, "non-finite number in request") << "id \"" << id << "\"";
+    m = bore_call(id);
+    m.robot_pose.position.y = nan;  // robot_pose_given false: unused, still refused
+    (void)from_service_request(m, &error);
+    EXPECT_EQ(error, "non-finite number in request") << "id \"" << id << "\"";
+    m = bore_call(id);
+    m.robot_pose_given = true;
+    m.robot_pose.orientation.w = nan;  // would silently become the identity rotation
     (void)from_service_request(m, &error);
     EXPECT_EQ(error, "non-finite number in request") << "id \"" << id << "\"";
   }

@@ -324,9 +324,9 @@ TEST(ServiceTeach, CalibrateRefusesATargetItCannotScanAndASensorOfAnotherKind) {
   hal::MonotonicClock clock;
   Service service(config, clock);
   ScanRequest req;
-  req.id = "calibrate-css";
+  req.id = "calibrate-pantilt";  // the head calibrates from sweeps at several tilts: CLI only
   req.kind = DetectKind::kCalibrate;
-  req.target.kind = "css";
+  req.target.kind = "pantilt";
   const auto refused = service.admit(req);
   ASSERT_TRUE(refused);
   EXPECT_NE(refused->reason.find("calibrate target must be \"stripe\""), std::string::npos)

@@ -120,7 +120,7 @@ TEST(SimPipeService, BothWallsThroughDdsEqualTheCliOnTheSpooledScan) {
   EXPECT_GT(std::abs(inner.linear().col(2).z()), std::cos(0.1 * std::numbers::pi / 180));
 
   // The CLI on the very cloud the service detected in, told the CSS's view direction.
-  const ScanSensor sensor = css_sensor(hal::CssGeometry{});
+  const ScanSensor sensor = css_sensor(hal::CssGeometry{}, 0.0);
   ASSERT_TRUE(sensor.view_dir);
   int code = -1;
   const nlohmann::json cli = run_cli_json(

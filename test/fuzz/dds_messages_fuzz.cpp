@@ -100,7 +100,10 @@ bool wire_numbers_finite(const Msg& m) {
          std::isfinite(m.target_bar) && point(m.target_pose.position) && std::isfinite(q.x) &&
          std::isfinite(q.y) && std::isfinite(q.z) && std::isfinite(q.w) &&
          std::isfinite(m.bore_half_angle) && std::isfinite(m.bore_cylinder_radius) &&
-         std::isfinite(m.bore_radius2) && point(m.bore_major_axis);
+         std::isfinite(m.bore_radius2) && point(m.bore_major_axis) &&
+         std::isfinite(m.target_radius) && point(m.robot_pose.position) &&
+         std::isfinite(m.robot_pose.orientation.x) && std::isfinite(m.robot_pose.orientation.y) &&
+         std::isfinite(m.robot_pose.orientation.z) && std::isfinite(m.robot_pose.orientation.w);
 }
 
 // What rangefitd does with a decoded request (either way it came): validate it, log a rejected

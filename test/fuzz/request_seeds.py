@@ -17,7 +17,12 @@ FIELDS = [('request_id','s'),('kind','s'),('model','s'),('bore_position',V3),('b
  ('bore_outer_radius','d'),('bore_walls','s'),('bore_normal_keep','d'),('view_dir',V3),
  ('sensor_position_given','?'),('sensor_position',V3),('parts','I'),('target','s'),
  ('target_edge','d'),('target_bar','d'),('target_pose',['d']*7),('bore_half_angle','d'),
- ('bore_cylinder_radius','d'),('bore_radius2','d'),('bore_major_axis',V3),('sensors','S')]
+ ('bore_cylinder_radius','d'),('bore_radius2','d'),('bore_major_axis',V3),('sensors','S'),
+ ('target_radius','d'),('robot_pose_given','?'),('robot_pose',['d']*7),('calibration_scans','S')]
+# The fields added last, with the value --migrate gives them in a seed written before they existed
+# (not given: a zero radius, no robot pose and its identity, no earlier scans).
+ADDED = {'target_radius':0.0,'robot_pose_given':False,'robot_pose':[0.0]*6+[1.0],
+ 'calibration_scans':[]}
 HEADER = [('rmw_client_guid','Q'),('rmw_sequence_number','q')]
 SIZE = {'d':8,'I':4,'Q':8,'q':8,'?':1}
 class R:
@@ -58,18 +63,26 @@ def encode(fields,vals,little):
 def decode(fields,data):
   little=data[1]==1; r=R(data[4:],'<' if little else '>'); return read(fields,r),little
 def migrate(corpus):
-  # Seeds written before the last field (sensors) existed: the same fields, then an empty list
-  # (request_learn: two sensors, as a fused learn sends them). Run once when a field is added.
-  old=FIELDS[:-1]
+  # Seeds written before the fields of ADDED existed: the same fields, then ADDED's values. Run
+  # once when fields are added (ADDED: those fields). It also writes request_calibrate_css, a
+  # css calibration (sphere radius, robot pose, two earlier scans) made from request_calibrate.
+  old=[f for f in FIELDS if f[0] not in ADDED]
   for f in sorted(os.listdir(corpus)):
     b=open(os.path.join(corpus,f),'rb').read()
     if b[0]==1 and ('request' in f): head=[]
     elif b[0]==4 and ('service' in f): head=HEADER
     else: continue
     vals,little=decode(head+old,b[1:])
-    vals['sensors']=[b'stripe',b'head'] if f=='request_learn' else []
+    vals.update({k:list(v) if isinstance(v,list) else v for k,v in ADDED.items()})
     open(os.path.join(corpus,f),'wb').write(b[:1]+encode(head+FIELDS,vals,little))
     print('migrated',f)
+  b=open(os.path.join(corpus,'request_calibrate'),'rb').read()
+  vals,little=decode(FIELDS,b[1:])
+  vals.update(request_id=b'css-pose-3',target=b'css',target_radius=0.0125,robot_pose_given=True,
+              robot_pose=[0.45,-0.1,0.6,0.0,0.7071067811865476,0.0,0.7071067811865476],
+              calibration_scans=[b'css-pose-1',b'css-pose-2'])
+  open(os.path.join(corpus,'request_calibrate_css'),'wb').write(b'\x01'+encode(FIELDS,vals,little))
+  print('wrote request_calibrate_css')
 if __name__=='__main__' and len(sys.argv)>2 and sys.argv[2]=='--migrate':
   migrate(sys.argv[1]); sys.exit(0)
 if __name__=='__main__':

@@ -66,7 +66,7 @@ ScanOutcome css_scan(RealDevices& cell, const DeviceConfig& device, const ScanRe
       health_watch(device.name, *css, robot_name, *joints), &why);
   if (end != ScanLoopEnd::kDone) return failed(device, why);
   return finish_scan(device, assembler.finish(), Eigen::Isometry3d::Identity(),
-                     css_sensor(fc.geometry), &cell.clock());
+                     css_sensor(fc.geometry, fc.omega_zero_rad), &cell.clock());
 }
 
 }  // namespace

@@ -48,6 +48,10 @@ struct RequestArgs {
   int parts = 0;                                     // learn
   std::vector<std::string> sensors;                  // learn: scans fused
   std::vector<double> cube{120.0, 12.0}, cube_pose;  // calibrate stripe
+  std::string target = "stripe";                     // calibrate: stripe | css
+  double sphere_radius_mm = 0;                       // calibrate css
+  std::vector<double> robot_pose;                    // calibrate css: X,Y,Z,ROLL,PITCH,YAW
+  std::vector<std::string> scans;                    // calibrate css: earlier request ids
 };
 
 Eigen::Vector3d vec3(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
@@ -85,7 +89,13 @@ int run(RequestArgs& a, daemon::DetectKind kind) {
   req.trials = a.trials;
   req.seed = a.seed;
   req.parts = a.parts;
-  if (kind == daemon::DetectKind::kCalibrate) {
+  if (kind == daemon::DetectKind::kCalibrate && a.target == "css") {
+    req.target.kind = "css";
+    req.target.radius_mm = a.sphere_radius_mm;
+    const std::vector<double>& v = a.robot_pose;
+    req.target.T_base_joint = hal::pose_xyz_rpy(v[0], v[1], v[2], v[3], v[4], v[5]);
+    req.target.scans = a.scans;
+  } else if (kind == daemon::DetectKind::kCalibrate) {
     req.target.kind = "stripe";
     req.target.edge_mm = a.cube[0];
     req.target.bar_mm = a.cube[1];
@@ -222,6 +232,33 @@ void add_learn_request(CLI::App* cmd, int* exit_code) {
   learn->callback([exit_code] { *exit_code = run(learn_args, daemon::DetectKind::kLearn); });
 }
 
+// `rangefit request calibrate css`: one robot pose's scan of the sphere; the request that names
+// the earlier poses' requests (--scans) also solves for the CSS mount on the last joint.
+void add_calibrate_css_request(CLI::App* calibrate, int* exit_code) {
+  static RequestArgs css_args;
+  css_args.target = "css";
+  auto* css = calibrate->add_subcommand(
+      "css",
+      "the CSS on the robot from sphere scans at several robot poses, one request per pose (as "
+      "`rangefit calibrate css`)");
+  common(css, css_args);
+  css->add_option("--sphere-radius", css_args.sphere_radius_mm,
+                  "certified radius of the reference sphere (mm)")
+      ->required()
+      ->check(finite_range(0.1, 1e4));
+  css->add_option("--robot-pose", css_args.robot_pose,
+                  "the last joint's frame in the robot base at this scan, as the robot "
+                  "controller reports it: X,Y,Z,ROLL,PITCH,YAW (mm, rad)")
+      ->required()
+      ->expected(6)
+      ->delimiter(',')
+      ->check(finite_range(-kMaxCoordinateMm, kMaxCoordinateMm));
+  css->add_option("--scans", css_args.scans,
+                  "ids of the earlier css requests (other poses) to solve with this one: ID,ID,...")
+      ->delimiter(',');
+  css->callback([exit_code] { *exit_code = run(css_args, daemon::DetectKind::kCalibrate); });
+}
+
 // `rangefit request calibrate stripe`: one sweep over the hollow cube.
 void add_calibrate_request(CLI::App* cmd, int* exit_code) {
   static RequestArgs calibrate_args;
@@ -244,6 +281,7 @@ void add_calibrate_request(CLI::App* cmd, int* exit_code) {
       ->check(finite_range(-kMaxCoordinateMm, kMaxCoordinateMm));
   stripe->callback(
       [exit_code] { *exit_code = run(calibrate_args, daemon::DetectKind::kCalibrate); });
+  add_calibrate_css_request(calibrate, exit_code);
 }
 
 }  // namespace

@@ -27,6 +27,12 @@ ScanOutcome css_scan(SimCell::Run& run) {
   o.speed_mm_s = fc.scan_speed_mm_s;
   o.joint_id = fc.joint;
   o.seed = run.seed;
+  // Standing in for the robot program: a CSS calibration scan is taken where the request says
+  // the robot holds the joint (the scene's frame being the robot base).
+  const CalibrationTarget& target = run.request.target;
+  if (run.request.kind == DetectKind::kCalibrate && target.T_base_joint) {
+    o.T_scene_world = *target.T_base_joint;
+  }
   o.css_faults = run.sensor_faults;
   if (run.config.sim.noise) o.css_faults.range_noise_sigma_mm = 0.06;  // thesis 4.2.1: 60 um
   sim::CssRig rig(run.scene.scene, run.scene.caster, o, run.clock);
@@ -45,8 +51,9 @@ ScanOutcome css_scan(SimCell::Run& run) {
                  fuse, run.healthy(rig.css(), rig.joint()), &why) == ScanLoopEnd::kDone;
   run.end(rig.css(), rig.joint(), ok);
   if (!ok) return {hal::Status::Error(run.device.name + ": " + why), {}};
-  return finish_scan(run.device, assembler.finish(), run.scene.scene.mounts.T_scene_css,
-                     css_sensor(fc.geometry), &run.clock);
+  return finish_scan(run.device, assembler.finish(),
+                     o.T_scene_world.value_or(run.scene.scene.mounts.T_scene_css),
+                     css_sensor(fc.geometry, fc.omega_zero_rad), &run.clock);
 }
 
 }  // namespace
