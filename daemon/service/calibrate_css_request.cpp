@@ -165,10 +165,7 @@ DetectionResult calibrate_css_request(const PointCloud& cloud, const ScanRequest
                                   "calibrate css: the scan's sensor reports no CSS geometry (a "
                                   "CSS scan on the cell is needed, not a replay)");
   }
-  PointCloud in_joint = cloud;
-  const Eigen::Isometry3d T_fusion_scan = sensor.T_scan_fusion.inverse();
-  for (auto& p : in_joint.points) p = T_fusion_scan * p;
-  CssRawSamples raw = css_raw_samples(in_joint, *sensor.css);
+  CssRawSamples raw = css_raw_samples(in_fusion_frame(cloud, sensor), *sensor.css);
   if (!raw.error.empty()) return DetectionResult::error(request, "calibrate css: " + raw.error);
 
   calib::CssSphereScan own{*target.T_base_joint, std::move(raw.samples)};

@@ -16,6 +16,13 @@ std::string toml_vec(const Eigen::Vector3d& v) {
   return s.str();
 }
 
+PointCloud in_fusion_frame(const PointCloud& cloud, const ScanSensor& sensor) {
+  PointCloud out = cloud;
+  const Eigen::Isometry3d T_fusion_scan = sensor.T_scan_fusion.inverse();
+  for (auto& p : out.points) p = T_fusion_scan * p;
+  return out;
+}
+
 RawStripeProfiles raw_stripe_profiles(const PointCloud& cloud, const hal::StripeCellGeometry& g) {
   RawStripeProfiles out;
   if (cloud.grid.empty() ||
@@ -107,10 +114,7 @@ DetectionResult calibrate_request(const PointCloud& cloud, const ScanRequest& re
                                   "calibrate stripe: the scan's sensor reports no stripe cell "
                                   "geometry (a stripe sweep on the cell is needed, not a replay)");
   }
-  PointCloud in_cell = cloud;
-  const Eigen::Isometry3d T_fusion_scan = sensor.T_scan_fusion.inverse();
-  for (auto& p : in_cell.points) p = T_fusion_scan * p;
-  const RawStripeProfiles raw = raw_stripe_profiles(in_cell, *sensor.stripe);
+  const RawStripeProfiles raw = raw_stripe_profiles(in_fusion_frame(cloud, sensor), *sensor.stripe);
   if (!raw.error.empty()) return DetectionResult::error(request, "calibrate stripe: " + raw.error);
   calib::StripeCalibrationInput in;
   in.profiles = raw.profiles;

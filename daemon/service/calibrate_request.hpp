@@ -30,6 +30,10 @@ std::string toml_vec(const Eigen::Vector3d& v);
 // Reasons of a calibration that ran but was not supported by the scan start with this.
 inline constexpr std::string_view kNotCalibrated = "not calibrated: ";
 
+// The scan's points in the frame fusion built them in (sensor.T_scan_fusion undone): where a
+// calibration takes them back to the sensor's raw samples.
+PointCloud in_fusion_frame(const PointCloud& cloud, const ScanSensor& sensor);
+
 struct RawStripeProfiles {
   std::vector<hal::RangerProfile> profiles;  // one per grid row, NaN where the row has no point
   std::vector<double> axis_mm;               // per profile: the mean axis position of its points

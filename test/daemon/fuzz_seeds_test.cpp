@@ -25,6 +25,22 @@ std::vector<std::uint8_t> bytes_of(const fs::path& p) {
 
 const fs::path kCorpus = fs::path(RANGEFIT_SOURCE_DIR) / "test/fuzz/corpus/dds_messages";
 
+// A topic request seed as the daemon decodes it (its first byte picks the message).
+ScanRequest decode_request_seed(const std::string& name, std::string* error) {
+  const std::vector<std::uint8_t> b = bytes_of(kCorpus / name);
+  if (b.size() < 2) {
+    *error = "no seed " + name;
+    return {};
+  }
+  const test::WireSample<rangefit_msgs_msg_dds__DetectRequest_> msg(
+      rangefit_msgs_msg_dds__DetectRequest__desc, std::span(b.data() + 1, b.size() - 1));
+  if (msg.get() == nullptr) {
+    *error = "seed " + name + " does not decode";
+    return {};
+  }
+  return from_msg(*msg.get(), error);
+}
+
 TEST(FuzzSeeds, EveryRequestSeedDecodesWithTheCurrentTypes) {
   int requests = 0, services = 0;
   for (const auto& entry : fs::directory_iterator(kCorpus)) {
@@ -51,13 +67,8 @@ TEST(FuzzSeeds, EveryRequestSeedDecodesWithTheCurrentTypes) {
 
 // The learn seed carries the sensors of a fused learn, and they come out of the decoding.
 TEST(FuzzSeeds, TheLearnSeedNamesTwoSensors) {
-  const std::vector<std::uint8_t> b = bytes_of(kCorpus / "request_learn");
-  ASSERT_FALSE(b.empty());
-  const test::WireSample<rangefit_msgs_msg_dds__DetectRequest_> msg(
-      rangefit_msgs_msg_dds__DetectRequest__desc, std::span(b.data() + 1, b.size() - 1));
-  ASSERT_NE(msg.get(), nullptr);
   std::string error;
-  const ScanRequest req = from_msg(*msg.get(), &error);
+  const ScanRequest req = decode_request_seed("request_learn", &error);
   EXPECT_EQ(error, "");
   EXPECT_EQ(req.kind, DetectKind::kLearn);
   EXPECT_EQ(req.sensors, (std::vector<std::string>{"stripe", "head"}));
@@ -69,13 +80,8 @@ TEST(FuzzSeeds, TheLearnSeedNamesTwoSensors) {
 
 // The css calibration seed carries the sphere, the robot pose and two earlier scans, in mm.
 TEST(FuzzSeeds, TheCssCalibrateSeedCarriesTheSphereThePoseAndTheScans) {
-  const std::vector<std::uint8_t> b = bytes_of(kCorpus / "request_calibrate_css");
-  ASSERT_FALSE(b.empty());
-  const test::WireSample<rangefit_msgs_msg_dds__DetectRequest_> msg(
-      rangefit_msgs_msg_dds__DetectRequest__desc, std::span(b.data() + 1, b.size() - 1));
-  ASSERT_NE(msg.get(), nullptr);
   std::string error;
-  const ScanRequest req = from_msg(*msg.get(), &error);
+  const ScanRequest req = decode_request_seed("request_calibrate_css", &error);
   EXPECT_EQ(error, "");
   EXPECT_EQ(req.kind, DetectKind::kCalibrate);
   EXPECT_EQ(req.target.kind, "css");
