@@ -19,7 +19,7 @@ struct ResultFile {
   std::string_view name;
   std::string_view content_type;
 };
-inline constexpr std::array<ResultFile, 8> kResultFiles = {{
+inline constexpr std::array<ResultFile, 11> kResultFiles = {{
     {"cloud.ply", "application/octet-stream"},
     {"picture.png", "image/png"},
     {"model.toml", "text/plain; charset=utf-8"},
@@ -28,6 +28,9 @@ inline constexpr std::array<ResultFile, 8> kResultFiles = {{
     {"css_sphere_scan.txt", "text/plain; charset=utf-8"},
     {"calibration_css.toml", "text/plain; charset=utf-8"},
     {"calibration_css.toml.report.txt", "text/plain; charset=utf-8"},
+    {"raw_sweep_pantilt.txt", "text/plain; charset=utf-8"},
+    {"calibration_pantilt.toml", "text/plain; charset=utf-8"},
+    {"calibration_pantilt.toml.report.txt", "text/plain; charset=utf-8"},
 }};
 
 // The entry of kResultFiles named `name`, or nullptr.

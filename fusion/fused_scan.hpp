@@ -3,6 +3,7 @@
 // above all the time-alignment faults that were met while building it. Faults
 // are counted, never smoothed over silently; past the configured limit the scan is marked bad.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -36,6 +37,9 @@ struct FrameInfo {
   std::uint32_t sequence = 0;  // device counter of the frame
   hal::Timestamp stamp{};      // frame stamp (CSS: sample 0; ranger: exposure centre)
   bool extrapolated = false;   // pose was extrapolated for at least one sample of the frame
+  // Profile scans: the pose channels the frame was placed with, interpolated at its stamp
+  // (stripe cell: axis position mm, 0; pan-tilt head: pan, tilt rad as reported). CSS: zero.
+  std::array<double, 2> pose{};
 };
 
 struct FusedScan {

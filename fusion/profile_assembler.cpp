@@ -88,7 +88,7 @@ void ProfileAssembler::fuse(const hal::RangerProfile& p) {
   }
   if (pose.extrapolated) ++scan_.faults.extrapolated;
   ++cloud.grid.rows;
-  scan_.frames.push_back({p.sequence, p.stamp, pose.extrapolated});
+  scan_.frames.push_back({p.sequence, p.stamp, pose.extrapolated, {pose.v0, pose.v1}});
 }
 
 FusedScan ProfileAssembler::finish() {

@@ -18,6 +18,10 @@ ScanOutcome finish_scan(const DeviceConfig& device, fusion::FusedScan scan,
   for (auto& p : scan.cloud.points) p = T * p;
   for (auto& n : scan.cloud.normals) n = T.linear() * n;
   ScanOutcome out{hal::Status::Ok(), std::move(scan.cloud), transformed(sensor, T), 0};
+  if (out.sensor.pan_tilt) {  // the poses a calibration takes the profiles back with
+    out.sensor.row_poses.reserve(scan.frames.size());
+    for (const auto& f : scan.frames) out.sensor.row_poses.push_back(f.pose);
+  }
   out.cloud.sensor = out.sensor.view;  // spooled and replayed with the cloud
   if (clock != nullptr && !out.cloud.stamps.empty()) {
     const hal::Timestamp last = *std::max_element(out.cloud.stamps.begin(), out.cloud.stamps.end());

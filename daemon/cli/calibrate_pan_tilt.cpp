@@ -3,12 +3,12 @@
 // more tilt angles, one raw sweep file each. Writes the [fusion.pan_tilt] fields.
 #include <iostream>
 #include <memory>
-#include <sstream>
 #include <stdexcept>
 
 #include "calib/pan_tilt_calibration.hpp"
 #include "daemon/cli/calibrate_output.hpp"
 #include "daemon/cli/commands.hpp"
+#include "daemon/service/calibrate_pan_tilt_request.hpp"
 
 namespace rangefit::cli::calibrate {
 namespace {
@@ -32,33 +32,10 @@ int run_pan_tilt(const CommonArgs& a, const std::vector<double>& cube,
     std::cerr << "rangefit calibrate pantilt: " << r.reason << "\n";
     return kExitNotFound;
   }
-  const hal::PanTiltGeometry& g = r.geometry;
-  std::ostringstream toml, rep;
-  toml.precision(12);
-  toml << "# rangefit calibrate pantilt, from " << sweeps.size()
-       << " sweeps; see the .report.txt beside it\n"
-       << "[fusion.pan_tilt]\n"
-       << "t_s_mm = " << vec(g.t_s_mm) << "\n"
-       << "t_w_mm = " << vec(g.t_w_mm) << "\n"
-       << "pan_zero_rad = " << g.pan_zero_rad << "\n"
-       << "tilt_zero_rad = " << g.tilt_zero_rad << "\n";
-  rep.precision(5);
-  rep << "pan-tilt head calibration (eq. 5.7), " << sweeps.size() << " sweeps\n";
-  for (std::size_t i = 0; i < r.rounds.size(); ++i) {
-    rep << "  round " << i + 1 << ": " << r.rounds[i].plane_points << " plane points, rms "
-        << r.rounds[i].rms_mm << " mm\n";
-  }
-  rep << "  plane rms " << r.initial_rms_mm << " -> " << r.rms_mm << " mm in " << r.lm_iterations
-      << " iterations\n"
-      << "  t_s " << vec(g.t_s_mm) << " mm (was " << vec(start.t_s_mm) << "), 1 sigma "
-      << vec(r.t_s_sigma_mm) << " mm\n"
-      << "  t_w " << vec(g.t_w_mm) << " mm (was " << vec(start.t_w_mm) << "), 1 sigma "
-      << vec(r.t_w_sigma_mm) << " mm\n"
-      << "  pan zero " << g.pan_zero_rad << " rad (was " << start.pan_zero_rad << "), 1 sigma "
-      << r.zero_sigma_rad.x() / kDeg << " deg\n"
-      << "  tilt zero " << g.tilt_zero_rad << " rad (was " << start.tilt_zero_rad << "), 1 sigma "
-      << r.zero_sigma_rad.y() / kDeg << " deg\n";
-  write_result(out_path(a, "calibration_pantilt.toml"), toml.str(), rep.str());
+  const std::string source = "rangefit calibrate pantilt";
+  write_result(out_path(a, "calibration_pantilt.toml"),
+               daemon::pan_tilt_calibration_toml(r, sweeps.size(), source),
+               daemon::pan_tilt_calibration_report(r, start, sweeps.size(), source));
   return kExitOk;
 }
 

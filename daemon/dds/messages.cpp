@@ -264,6 +264,9 @@ RequestOut::RequestOut(const ScanRequest& req, bool linear_sweep)
   for (std::string& id : req_.target.scans) scans_.push_back(dds_chars(id));
   const auto nc = static_cast<std::uint32_t>(scans_.size());
   msg_.calibration_scans = {nc, nc, scans_.data(), false};
+  // Not given: target_tilt_given false and a zero tilt, which the reader ignores.
+  msg_.target_tilt_given = req_.target.tilt_rad.has_value();
+  msg_.target_tilt = req_.target.tilt_rad.value_or(0.0);
 }
 
 ScanRequest from_msg(const rangefit_msgs_msg_dds__DetectRequest_& msg, std::string* error) {
@@ -317,22 +320,25 @@ ScanRequest from_msg(const rangefit_msgs_msg_dds__DetectRequest_& msg, std::stri
   // A few more than a calibration may join, so validation names the limit; the rest is dropped.
   constexpr std::uint32_t kMaxScans = 64;
   req.target.scans = strings(msg.calibration_scans, kMaxScans);
+  // Checked below whether given or not, as robot_pose.
+  if (msg.target_tilt_given) req.target.tilt_rad = msg.target_tilt;
   error->clear();
   if (!kind_from_string(kind, &req.kind)) {
     *error = "unknown kind \"" + kind + "\" (expected " + kKindNames + ")";
   }
   if (error->empty() && req.id.empty()) *error = "request_id is empty";
-  const bool finite =
-      req.bore.position_mm.allFinite() && req.bore.axis.allFinite() &&
-      std::isfinite(req.bore.radius_mm) && std::isfinite(req.sweep_start) &&
-      std::isfinite(req.sweep_end) && std::isfinite(req.sweep_speed) && n.allFinite() &&
-      std::isfinite(req.bore.outer_radius_mm) && std::isfinite(req.bore.normal_keep) &&
-      v.allFinite() && sp.allFinite() && std::isfinite(req.target.edge_mm) &&
-      std::isfinite(req.target.bar_mm) && req.target.T_table_target.matrix().allFinite() &&
-      finite_quaternion(msg.target_pose) && std::isfinite(req.target.radius_mm) &&
-      robot.matrix().allFinite() && finite_quaternion(msg.robot_pose) &&
-      std::isfinite(req.bore.half_angle_rad) && std::isfinite(req.bore.cylinder_radius_mm) &&
-      std::isfinite(req.bore.radius2_mm) && ma.allFinite();
+  const bool finite = req.bore.position_mm.allFinite() && req.bore.axis.allFinite() &&
+                      std::isfinite(req.bore.radius_mm) && std::isfinite(req.sweep_start) &&
+                      std::isfinite(req.sweep_end) && std::isfinite(req.sweep_speed) &&
+                      n.allFinite() && std::isfinite(req.bore.outer_radius_mm) &&
+                      std::isfinite(req.bore.normal_keep) && v.allFinite() && sp.allFinite() &&
+                      std::isfinite(req.target.edge_mm) && std::isfinite(req.target.bar_mm) &&
+                      req.target.T_table_target.matrix().allFinite() &&
+                      finite_quaternion(msg.target_pose) && std::isfinite(req.target.radius_mm) &&
+                      robot.matrix().allFinite() && finite_quaternion(msg.robot_pose) &&
+                      std::isfinite(msg.target_tilt) && std::isfinite(req.bore.half_angle_rad) &&
+                      std::isfinite(req.bore.cylinder_radius_mm) &&
+                      std::isfinite(req.bore.radius2_mm) && ma.allFinite();
   if (error->empty() && !finite) *error = "non-finite number in request";
   return req;
 }

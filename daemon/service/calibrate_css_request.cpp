@@ -93,24 +93,6 @@ CssRawSamples css_raw_samples(const PointCloud& cloud, const ScanSensor::CssFusi
   return out;
 }
 
-void CssCalibrationPoses::record(const std::string& id, calib::CssSphereScan scan) {
-  for (auto it = poses_.begin(); it != poses_.end(); ++it) {
-    if (it->first == id) {
-      poses_.erase(it);
-      break;
-    }
-  }
-  poses_.emplace_back(id, std::move(scan));
-  while (poses_.size() > kMaxCalibrationScans + 1) poses_.pop_front();
-}
-
-const calib::CssSphereScan* CssCalibrationPoses::find(const std::string& id) const {
-  for (const auto& [name, scan] : poses_) {
-    if (name == id) return &scan;
-  }
-  return nullptr;
-}
-
 std::string css_calibration_toml(const calib::CssCalibrationResult& r, std::size_t poses,
                                  const std::string& source) {
   std::ostringstream toml;
@@ -178,11 +160,8 @@ DetectionResult calibrate_css_request(const PointCloud& cloud, const ScanRequest
     const calib::CssSphereScan* earlier = poses.find(id);
     if (earlier == nullptr) {
       poses.record(request.id, own);
-      out.reason = std::string(kNotCalibrated) + "no css calibration scan \"" + id +
-                   "\" is known to this service (it keeps the last " +
-                   std::to_string(kMaxCalibrationScans + 1) +
-                   " until it restarts; the spool keeps each one's css_sphere_scan.txt for "
-                   "`rangefit calibrate css`)";
+      out.reason =
+          std::string(kNotCalibrated) + unknown_record_reason("css", id, "css_sphere_scan.txt");
       return out;
     }
     scans.push_back(*earlier);

@@ -17,12 +17,11 @@
 // zero; the configured geometry is the calibration's start, as in the CLI's --config.
 
 #include <cstddef>
-#include <deque>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "calib/css_calibration.hpp"
+#include "daemon/service/calibration_records.hpp"
 #include "daemon/service/scan_sensor.hpp"
 #include "daemon/service/scan_types.hpp"
 #include "detect/common/point_cloud.hpp"
@@ -38,17 +37,8 @@ struct CssRawSamples {
 // sample), points in the fusion (joint) frame.
 CssRawSamples css_raw_samples(const PointCloud& cloud_in_joint, const ScanSensor::CssFusion& css);
 
-// The poses recorded by earlier css calibration requests, by request id; the newest
-// kMaxCalibrationScans + 1 are kept, in memory (a restart forgets them; their files stay in the
-// spool).
-class CssCalibrationPoses {
- public:
-  void record(const std::string& id, calib::CssSphereScan scan);
-  const calib::CssSphereScan* find(const std::string& id) const;
-
- private:
-  std::deque<std::pair<std::string, calib::CssSphereScan>> poses_;
-};
+// The robot poses earlier css calibration requests recorded.
+using CssCalibrationPoses = CalibrationRecords<calib::CssSphereScan>;
 
 // The [fusion.css] fields of the result, and the report beside them (also `rangefit calibrate
 // css`'s). start: the configured geometry; omega_zero_start: the configured zero.

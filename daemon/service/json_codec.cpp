@@ -65,6 +65,7 @@ nlohmann::json to_json(const ScanRequest& r) {
     if (r.target.radius_mm > 0.0) j["target"]["radius_mm"] = r.target.radius_mm;
     if (r.target.T_base_joint) j["target"]["robot_pose"] = pose_array(*r.target.T_base_joint);
     if (!r.target.scans.empty()) j["target"]["scans"] = r.target.scans;
+    if (r.target.tilt_rad) j["target"]["tilt_rad"] = *r.target.tilt_rad;
   }
   return j;
 }
@@ -145,6 +146,7 @@ bool from_json(const nlohmann::json& j, ScanRequest& out, std::string* error) {
         out.target.T_base_joint = pose_of(t.at("robot_pose"), "target.robot_pose");
       }
       if (t.contains("scans")) out.target.scans = t.at("scans").get<std::vector<std::string>>();
+      if (t.contains("tilt_rad")) out.target.tilt_rad = t.at("tilt_rad").get<double>();
     }
     return true;
   } catch (const std::exception& e) {

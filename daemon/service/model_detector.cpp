@@ -6,6 +6,7 @@
 #include "daemon/service/bore_fit_json.hpp"
 #include "daemon/service/bore_shape_json.hpp"
 #include "daemon/service/calibrate_css_request.hpp"
+#include "daemon/service/calibrate_pan_tilt_request.hpp"
 #include "daemon/service/calibrate_request.hpp"
 #include "daemon/service/detection_adapter.hpp"
 #include "daemon/service/learn_request.hpp"
@@ -25,6 +26,10 @@ DetectionResult ModelDetector::detect(const PointCloud& cloud, const ScanRequest
     case DetectKind::kCalibrate:
       if (request.target.kind == "css") {
         return calibrate_css_request(cloud, request, seen, css_poses_);
+      }
+      if (request.target.kind == "pantilt") {
+        return calibrate_pan_tilt_request(cloud, request, seen, pan_tilt_sweeps_,
+                                          config_.detection.seed);
       }
       return calibrate_request(cloud, request, seen, config_.detection.seed);
     case DetectKind::kBore:

@@ -5,6 +5,7 @@
 // (no gate of its own).
 
 #include "daemon/service/calibrate_css_request.hpp"
+#include "daemon/service/calibrate_pan_tilt_request.hpp"
 #include "daemon/service/config.hpp"
 #include "daemon/service/pipeline.hpp"
 #include "detect/bore/bore_workspace.hpp"
@@ -27,8 +28,9 @@ class ModelDetector final : public Detector {
   // allocates nothing in the detector. One call at a time: the pipeline joins a detection before
   // it starts the next.
   BoreWorkspace bore_workspace_;
-  // The robot poses css calibration requests recorded, for the requests that join them.
+  // The robot poses and sweeps calibration requests recorded, for the requests that join them.
   CssCalibrationPoses css_poses_;
+  PanTiltCalibrationSweeps pan_tilt_sweeps_;
 };
 
 }  // namespace rangefit::daemon

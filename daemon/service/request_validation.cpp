@@ -1,6 +1,7 @@
 #include "daemon/service/request_validation.hpp"
 
 #include <cmath>
+#include <numbers>
 
 #include "daemon/service/scan_types.hpp"
 
@@ -75,22 +76,15 @@ std::string check_bore(BorePrior& bore) {
   return check_bore_shape(bore);
 }
 
-// The kind whose calibration body a calibrate target names; null: none the service calibrates.
+// The kind whose calibration body a calibrate target names (by its name or its CLI spelling,
+// as `rangefit calibrate pantilt`); null: none the service calibrates.
 const SensorKind* target_kind(const CalibrationTarget& t) {
   const SensorKind* k = find_sensor_kind(t.kind);
-  return k != nullptr && t.kind == k->name && k->calibrated_by_service ? k : nullptr;
+  return k != nullptr && k->calibrated_by_service ? k : nullptr;
 }
 
-std::string check_css_target(const CalibrationTarget& t, const std::string& own_id) {
-  if (!(t.radius_mm > 0.0 && t.radius_mm <= 1e4))
-    return "calibrate css needs the sphere's radius_mm, in (0, 1e4] mm";
-  if (!t.T_base_joint) {
-    return "calibrate css needs robot_pose: the last joint's frame in the robot base at this "
-           "scan, as the robot controller reports it";
-  }
-  if (!t.T_base_joint->matrix().allFinite() ||
-      !finite_within(t.T_base_joint->translation(), kMaxMm))
-    return "robot_pose must be finite, within +-1e6 mm";
+// The ids of earlier requests a calibration over several requests joins.
+std::string check_scans(const CalibrationTarget& t, const std::string& own_id) {
   if (t.scans.size() > kMaxCalibrationScans) {
     return "scans names at most " + std::to_string(kMaxCalibrationScans) + " earlier requests";
   }
@@ -106,18 +100,49 @@ std::string check_css_target(const CalibrationTarget& t, const std::string& own_
   return "";
 }
 
-std::string check_target(const CalibrationTarget& t, const std::string& own_id) {
-  if (target_kind(t) == nullptr) {
-    return "calibrate target must be \"stripe\" (the hollow cube on the stripe cell) or \"css\" "
-           "(a precision sphere, one request per robot pose)";
+std::string check_css_target(const CalibrationTarget& t) {
+  if (!(t.radius_mm > 0.0 && t.radius_mm <= 1e4))
+    return "calibrate css needs the sphere's radius_mm, in (0, 1e4] mm";
+  if (!t.T_base_joint) {
+    return "calibrate css needs robot_pose: the last joint's frame in the robot base at this "
+           "scan, as the robot controller reports it";
   }
-  if (t.kind == "css") return check_css_target(t, own_id);
+  if (!t.T_base_joint->matrix().allFinite() ||
+      !finite_within(t.T_base_joint->translation(), kMaxMm))
+    return "robot_pose must be finite, within +-1e6 mm";
+  return "";
+}
+
+// The cube (stripe, pantilt) and, for the head, the tilt it is held at.
+std::string check_cube_target(const CalibrationTarget& t, bool pan_tilt) {
   if (!(t.edge_mm > 0.0 && t.edge_mm <= kMaxMm && t.bar_mm > 0.0 && t.bar_mm < 0.5 * t.edge_mm))
     return "target size must be an edge > 0 and a bar in (0, edge / 2), mm";
   if (!t.T_table_target.matrix().allFinite() ||
       !finite_within(t.T_table_target.translation(), kMaxMm))
     return "target pose must be finite";
+  if (t.tilt_rad && !pan_tilt) return "tilt_rad is for the pantilt target only";
+  if (t.tilt_rad && !(std::abs(*t.tilt_rad) <= 0.5 * std::numbers::pi))
+    return "tilt_rad must be within +-pi/2";
+  if (!t.scans.empty() && !pan_tilt) {
+    return "scans is for the pantilt and css targets (calibrated over several requests); the "
+           "stripe cell calibrates from one sweep";
+  }
   return "";
+}
+
+// Completes the target's kind to its CLI spelling ("stripe", "pantilt", "css"): the name the
+// detector, the files and `rangefit calibrate` use.
+std::string check_target(CalibrationTarget& t, const std::string& own_id) {
+  const SensorKind* k = target_kind(t);
+  if (k == nullptr) {
+    return "calibrate target must be \"stripe\" (the hollow cube on the stripe cell), "
+           "\"pantilt\" (the cube before the pan-tilt head, one request per tilt) or \"css\" (a "
+           "precision sphere, one request per robot pose)";
+  }
+  t.kind = *k->cli_name != '\0' ? k->cli_name : k->name;
+  if (auto why = check_scans(t, own_id); !why.empty()) return why;
+  if (t.kind == "css") return check_css_target(t);
+  return check_cube_target(t, t.kind == "pantilt");
 }
 
 // Several sensors' scans fused (kind = learn): each a configured device, named once, scanning
@@ -203,8 +228,9 @@ std::string validate_request(ScanRequest& request, const DaemonConfig& config) {
                                   : "unknown sensor \"" + request.sensor + "\"";
   }
   if (request.kind == DetectKind::kCalibrate && device->kind != *target_kind(request.target)) {
-    return "calibrate " + request.target.kind + " needs a " + request.target.kind + " sensor; \"" +
-           request.sensor + "\" is a " + std::string(device->kind.name());
+    return "calibrate " + request.target.kind + " needs a " +
+           std::string(target_kind(request.target)->name) + " sensor; \"" + request.sensor +
+           "\" is a " + std::string(device->kind.name());
   }
   if (!std::isfinite(request.sweep_start) || !std::isfinite(request.sweep_end) ||
       !std::isfinite(request.sweep_speed) || request.sweep_speed < 0.0) {

@@ -39,6 +39,7 @@ ScanSensor pan_tilt_sensor(const hal::PanTiltGeometry& g, double half_sweep_rad,
   v.pivot = g.t_w_mm;
   v.sweep_min = -half_sweep_rad;
   v.sweep_max = half_sweep_rad;
+  s.pan_tilt = g;
   return s;
 }
 

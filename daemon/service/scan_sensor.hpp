@@ -5,7 +5,9 @@
 // the drivers, the simulator and fusion use, for the sweep that was actually run.
 
 #include <Eigen/Geometry>
+#include <array>
 #include <optional>
+#include <vector>
 
 #include "detect/common/sensor_view.hpp"
 #include "hal/css_geometry.hpp"
@@ -30,6 +32,11 @@ struct ScanSensor {
     double omega_zero_rad = 0.0;
   };
   std::optional<CssFusion> css;
+  // The pan-tilt head's geometry fusion used, and per grid row of the scan the pan and tilt
+  // (rad, as the head reported them) fusion placed that profile with: what takes the fused
+  // points back to the ranger's raw profiles.
+  std::optional<hal::PanTiltGeometry> pan_tilt;
+  std::vector<std::array<double, 2>> row_poses;
 };
 
 // The CSS in fusion's CSS world frame (eq. 4.17): it looks along the sensor's -z at the scan

@@ -44,20 +44,27 @@ struct BorePrior {                                        // from CAD
 };
 
 // A calibration body for kind = calibrate: "stripe", the hollow six-plane cube on the stripe
-// cell's table, scanned once (as `rangefit calibrate stripe --cube --cube-pose`); or "css", a
-// precision sphere the CSS scans at several robot poses, one request per pose (as `rangefit
-// calibrate css --sphere-radius`): each request records its pose's scan, and one that names
-// earlier ones in `scans` (at least 3 poses in all) also solves for the mount.
+// cell's table, scanned once (as `rangefit calibrate stripe --cube --cube-pose`); "pantilt", the
+// same cube before the pan-tilt head, one pan sweep per request at the tilt the cell program
+// holds (as `rangefit calibrate pantilt`); or "css", a precision sphere the CSS scans at several
+// robot poses, one request per pose (as `rangefit calibrate css --sphere-radius`). A pantilt or
+// css request records its sweep or pose, and one that names earlier ones in `scans` (at least 2
+// tilts, 3 robot poses in all) also solves.
 struct CalibrationTarget {
-  std::string kind;                                                  // "stripe" or "css"
-  double edge_mm = 120.0;                                            // stripe: cube edge
-  double bar_mm = 12.0;                                              // stripe: bar thickness
-  Eigen::Isometry3d T_table_target = Eigen::Isometry3d::Identity();  // where the fixture holds it
+  std::string kind;        // "stripe", "pantilt" or "css"
+  double edge_mm = 120.0;  // stripe, pantilt: cube edge
+  double bar_mm = 12.0;    // stripe, pantilt: bar thickness
+  // stripe: where the fixture holds the cube on the table; pantilt: in the head's world frame.
+  Eigen::Isometry3d T_table_target = Eigen::Isometry3d::Identity();
+  // pantilt: the tilt the cell program holds the head at for this sweep, as the head reports it
+  // (rad); the service checks the head's report against it. Unset: whatever the head reports.
+  std::optional<double> tilt_rad;
   double radius_mm = 0.0;  // css: the sphere's certified radius
   // css: the last joint's frame in the robot base at this scan, as the robot controller reports
   // it (the robot program moved the robot there; the daemon does not read it).
   std::optional<Eigen::Isometry3d> T_base_joint;
-  std::vector<std::string> scans;  // css: ids of earlier css requests whose poses join this one
+  // pantilt, css: ids of earlier requests of the same target whose sweeps or poses join this one.
+  std::vector<std::string> scans;
 };
 
 struct ScanRequest {

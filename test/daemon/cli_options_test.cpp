@@ -67,6 +67,24 @@ TEST(CliOptions, RequestCalibrateCssNeedsAFiniteSphereAndRobotPose) {
     EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
   }
 }
+// `rangefit request calibrate pantilt` needs the cube's pose in the head's world; a tilt, when
+// given, is finite and within +-pi/2. Both are checked before the daemon is looked for.
+TEST(CliOptions, RequestCalibratePantiltNeedsTheCubePoseAndAFiniteTilt) {
+  const std::string pantilt = "request calibrate pantilt --timeout 0.001";
+  const std::string pose = " --cube-pose 900,-40,250,0,0,0.6";
+  const std::pair<std::string, std::string> cases[] = {
+      {" --tilt 0.1", "--cube-pose is required"},
+      {" --tilt 0.1 --scans sweep-1", "--cube-pose is required"},
+      {pose + " --tilt nan", "--tilt: value nan is not a finite number"},
+      {pose + " --tilt 2", "--tilt: value 2 is not a finite number"},
+      {" --cube-pose 900,-40,inf,0,0,0.6", "--cube-pose: value inf"},
+  };
+  for (const auto& [args, message] : cases) {
+    const CliRun r = run_cli(pantilt + args);
+    EXPECT_EQ(r.exit_code, 1) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
+  }
+}
 TEST(CliOptions, WatchRejectsANonFiniteDuration) {
   // Before, seconds * 1000 went through an undefined double-to-long conversion.
   for (const std::string v : {"nan", "1e300", "-1"}) {

@@ -76,6 +76,8 @@ TEST(FuzzSeeds, TheLearnSeedNamesTwoSensors) {
   EXPECT_EQ(req.target.radius_mm, 0.0);
   EXPECT_FALSE(req.target.T_base_joint);
   EXPECT_TRUE(req.target.scans.empty());
+  // Nor the pantilt tilt.
+  EXPECT_FALSE(req.target.tilt_rad);
 }
 
 // The css calibration seed carries the sphere, the robot pose and two earlier scans, in mm.
@@ -90,6 +92,22 @@ TEST(FuzzSeeds, TheCssCalibrateSeedCarriesTheSphereThePoseAndTheScans) {
   EXPECT_LT((req.target.T_base_joint->translation() - Eigen::Vector3d(450, -100, 600)).norm(),
             1e-9);
   EXPECT_EQ(req.target.scans, (std::vector<std::string>{"css-pose-1", "css-pose-2"}));
+}
+
+// The pantilt calibration seed carries the cube's pose in mm, the tilt given and one earlier
+// sweep.
+TEST(FuzzSeeds, ThePantiltCalibrateSeedCarriesTheTiltAndTheScans) {
+  std::string error;
+  const ScanRequest req = decode_request_seed("request_calibrate_pantilt", &error);
+  EXPECT_EQ(error, "");
+  EXPECT_EQ(req.kind, DetectKind::kCalibrate);
+  EXPECT_EQ(req.target.kind, "pantilt");
+  EXPECT_LT((req.target.T_table_target.translation() - Eigen::Vector3d(900, -40, 250)).norm(),
+            1e-9);
+  ASSERT_TRUE(req.target.tilt_rad);
+  EXPECT_EQ(*req.target.tilt_rad, 0.1);
+  EXPECT_EQ(req.target.scans, (std::vector<std::string>{"sweep-1"}));
+  EXPECT_FALSE(req.target.T_base_joint);
 }
 
 }  // namespace fuzz_seeds_test

@@ -56,6 +56,22 @@ ScanRequest css_calibrate_request() {
   return req;
 }
 
+// One tilt's pan sweep of a pantilt calibration that joins an earlier tilt's request.
+ScanRequest pantilt_calibrate_request() {
+  ScanRequest req;
+  req.id = "sweep-2";
+  req.kind = DetectKind::kCalibrate;
+  req.target.kind = "pantilt";
+  req.target.edge_mm = 100.0;
+  req.target.bar_mm = 10.0;
+  req.target.T_table_target.linear() =
+      Eigen::AngleAxisd(0.6, Eigen::Vector3d(0.2, -0.4, 1).normalized()).toRotationMatrix();
+  req.target.T_table_target.translation() = Eigen::Vector3d(900.0, -40.0, 250.0);
+  req.target.tilt_rad = 0.35;
+  req.target.scans = {"sweep-1"};
+  return req;
+}
+
 DaemonConfig css_and_stripe() {
   DaemonConfig config;
   DeviceConfig css, stripe;
@@ -176,6 +192,57 @@ TEST(RequestKinds, CssCalibrationRoundTripsTheWireTheServiceAndJson) {
   bad["target"]["robot_pose"] = {1.0, 2.0, 3.0};
   EXPECT_FALSE(from_json(bad, json, &json_error));
   EXPECT_EQ(json_error, "request: target.robot_pose must be [x, y, z, roll, pitch, yaw]");
+}
+
+TEST(RequestKinds, PantiltCalibrationRoundTripsTheWireTheServiceAndJson) {
+  const ScanRequest pantilt = pantilt_calibrate_request();
+  const RequestOut out(pantilt, false);
+  EXPECT_TRUE(out.msg().target_tilt_given);
+  EXPECT_EQ(out.msg().target_tilt, 0.35);  // radians on the wire, as given
+  EXPECT_NEAR(out.msg().target_pose.position.x, 0.9, 1e-12);
+  std::string topic_error, service_error, json_error;
+  const ScanRequest topic = from_msg(out.msg(), &topic_error);
+  // The same fields as a /rangefit/detect service call.
+  const auto call = service_sample<rangefit_msgs_srv_dds__Detect_Request_>(7, 4, out.msg());
+  const ScanRequest service = from_service_request(call, &service_error);
+  ScanRequest json;
+  EXPECT_TRUE(from_json(to_json(pantilt), json, &json_error)) << json_error;
+  EXPECT_EQ(topic_error, "");
+  EXPECT_EQ(service_error, "");
+  for (const ScanRequest& back : {topic, service, json}) {
+    EXPECT_EQ(back.id, "sweep-2");
+    EXPECT_EQ(back.kind, DetectKind::kCalibrate);
+    EXPECT_EQ(back.target.kind, "pantilt");
+    EXPECT_NEAR(back.target.edge_mm, 100.0, 1e-9);
+    EXPECT_NEAR(back.target.bar_mm, 10.0, 1e-9);
+    EXPECT_TRUE(back.target.T_table_target.isApprox(pantilt.target.T_table_target, 1e-9));
+    ASSERT_TRUE(back.target.tilt_rad);
+    EXPECT_EQ(*back.target.tilt_rad, 0.35);
+    EXPECT_EQ(back.target.scans, pantilt.target.scans);
+    EXPECT_FALSE(back.target.T_base_joint);
+  }
+  // Not given: target_tilt_given false on the wire and no tilt_rad in JSON.
+  const ScanRequest stripe = calibrate_request();
+  const RequestOut stripe_out(stripe, false);
+  EXPECT_FALSE(stripe_out.msg().target_tilt_given);
+  EXPECT_EQ(stripe_out.msg().target_tilt, 0.0);
+  EXPECT_FALSE(from_msg(stripe_out.msg(), &topic_error).target.tilt_rad);
+  EXPECT_EQ(topic_error, "");
+  const nlohmann::json stripe_json = to_json(stripe);
+  EXPECT_FALSE(stripe_json.at("target").contains("tilt_rad"));
+  // A pantilt request without a tilt (whatever the head reports) stays without one.
+  ScanRequest untilted = pantilt;
+  untilted.target.tilt_rad.reset();
+  const RequestOut untilted_out(untilted, false);
+  EXPECT_FALSE(untilted_out.msg().target_tilt_given);
+  EXPECT_FALSE(from_msg(untilted_out.msg(), &topic_error).target.tilt_rad);
+  EXPECT_EQ(topic_error, "");
+  EXPECT_FALSE(to_json(untilted).at("target").contains("tilt_rad"));
+  // A request read into one that held a tilt keeps none of it.
+  ASSERT_TRUE(from_json(stripe_json, json, &json_error)) << json_error;
+  EXPECT_EQ(json.target.kind, "stripe");
+  EXPECT_FALSE(json.target.tilt_rad);
+  EXPECT_TRUE(json.target.scans.empty());
 }
 
 TEST(RequestKinds, AnOlderClientsRequestHasNoPipeAndNoSensorOverride) {

@@ -80,6 +80,15 @@ TEST(ServiceRequest, NonFiniteNumbersAreRefusedAlsoWhenTheIdIsLeftToTheCall) {
     m.robot_pose.orientation.w = nan;  // would silently become the identity rotation
     (void)from_service_request(m, &error);
     EXPECT_EQ(error, "non-finite number in request") << "id \"" << id << "\"";
+    m = bore_call(id);
+    m.target_tilt = nan;  // target_tilt_given false: unused, still refused
+    (void)from_service_request(m, &error);
+    EXPECT_EQ(error, "non-finite number in request") << "id \"" << id << "\"";
+    m = bore_call(id);
+    m.target_tilt_given = true;
+    m.target_tilt = nan;
+    (void)from_service_request(m, &error);
+    EXPECT_EQ(error, "non-finite number in request") << "id \"" << id << "\"";
   }
 }
 

@@ -19,6 +19,7 @@
 #include "detect/learn/model_learning.hpp"
 #include "io/object_model_file.hpp"
 #include "sim/scene_objects.hpp"
+#include "test/daemon/cube_scene.hpp"
 #include "test/daemon/replay_service.hpp"
 #include "test/detect/learn_scenes.hpp"
 
@@ -240,32 +241,6 @@ TEST(ServiceTeach, LearnOnAnEmptyTableIsNotFound) {
   fs::remove_all(dir);
 }
 
-// The hollow cube of twelve bars (sim/calibration_scans.hpp) as a scene file, held by its
-// fixture at T above the table.
-void write_cube_scene(const fs::path& path, double edge, double bar, const Eigen::Isometry3d& T) {
-  std::ofstream out(path);
-  out.precision(12);
-  out << "[[object]]\nname = \"table\"\ntype = \"plane\"\nsize = [2000, 2000]\n";
-  const double c = 0.5 * edge - 0.5 * bar;
-  const Eigen::Vector3d rpy = T.linear().eulerAngles(2, 1, 0).reverse() / kDeg;
-  int n = 0;
-  for (int a = 0; a < 3; ++a) {
-    for (int s1 = -1; s1 <= 1; s1 += 2) {
-      for (int s2 = -1; s2 <= 1; s2 += 2) {
-        Eigen::Vector3d size = Eigen::Vector3d::Constant(bar), centre = Eigen::Vector3d::Zero();
-        size[a] = edge;
-        centre[(a + 1) % 3] = s1 * c;
-        centre[(a + 2) % 3] = s2 * c;
-        const Eigen::Vector3d p = T * centre;
-        out << "[[object]]\nname = \"bar" << n++ << "\"\ntype = \"box\"\nsize = [" << size.x()
-            << ", " << size.y() << ", " << size.z() << "]\nposition = [" << p.x() << ", " << p.y()
-            << ", " << p.z() << "]\nrpy_deg = [" << rpy.x() << ", " << rpy.y() << ", " << rpy.z()
-            << "]\n";
-      }
-    }
-  }
-}
-
 TEST(ServiceTeach, CalibrateRequestRecoversTheStripeCellAndAppliesNothing) {
   const fs::path dir = test::fresh_test_dir("rangefit_service_calibrate");
   // Held on a corner, a body diagonal tilted toward the ranger (as test/calib's fixture).
@@ -275,7 +250,7 @@ TEST(ServiceTeach, CalibrateRequestRecoversTheStripeCellAndAppliesNothing) {
                      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::Ones().normalized(), b))
                         .toRotationMatrix();
   T_cube.translation() = Eigen::Vector3d(5.0, 3.0, 130.0);
-  write_cube_scene(dir / "cube.toml", 120.0, 12.0, T_cube);
+  test::write_cube_scene(dir / "cube.toml", 120.0, 12.0, T_cube, true);
   DaemonConfig config = stripe_cell(dir, dir / "cube.toml");
   config.sim.noise = false;
   hal::MonotonicClock clock;
@@ -324,9 +299,9 @@ TEST(ServiceTeach, CalibrateRefusesATargetItCannotScanAndASensorOfAnotherKind) {
   hal::MonotonicClock clock;
   Service service(config, clock);
   ScanRequest req;
-  req.id = "calibrate-pantilt";  // the head calibrates from sweeps at several tilts: CLI only
+  req.id = "calibrate-robot";  // a device the service does not calibrate
   req.kind = DetectKind::kCalibrate;
-  req.target.kind = "pantilt";
+  req.target.kind = "robot";
   const auto refused = service.admit(req);
   ASSERT_TRUE(refused);
   EXPECT_NE(refused->reason.find("calibrate target must be \"stripe\""), std::string::npos)

@@ -103,7 +103,8 @@ bool wire_numbers_finite(const Msg& m) {
          std::isfinite(m.bore_radius2) && point(m.bore_major_axis) &&
          std::isfinite(m.target_radius) && point(m.robot_pose.position) &&
          std::isfinite(m.robot_pose.orientation.x) && std::isfinite(m.robot_pose.orientation.y) &&
-         std::isfinite(m.robot_pose.orientation.z) && std::isfinite(m.robot_pose.orientation.w);
+         std::isfinite(m.robot_pose.orientation.z) && std::isfinite(m.robot_pose.orientation.w) &&
+         std::isfinite(m.target_tilt);
 }
 
 // What rangefitd does with a decoded request (either way it came): validate it, log a rejected

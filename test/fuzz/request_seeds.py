@@ -18,11 +18,11 @@ FIELDS = [('request_id','s'),('kind','s'),('model','s'),('bore_position',V3),('b
  ('sensor_position_given','?'),('sensor_position',V3),('parts','I'),('target','s'),
  ('target_edge','d'),('target_bar','d'),('target_pose',['d']*7),('bore_half_angle','d'),
  ('bore_cylinder_radius','d'),('bore_radius2','d'),('bore_major_axis',V3),('sensors','S'),
- ('target_radius','d'),('robot_pose_given','?'),('robot_pose',['d']*7),('calibration_scans','S')]
+ ('target_radius','d'),('robot_pose_given','?'),('robot_pose',['d']*7),('calibration_scans','S'),
+ ('target_tilt_given','?'),('target_tilt','d')]
 # The fields added last, with the value --migrate gives them in a seed written before they existed
-# (not given: a zero radius, no robot pose and its identity, no earlier scans).
-ADDED = {'target_radius':0.0,'robot_pose_given':False,'robot_pose':[0.0]*6+[1.0],
- 'calibration_scans':[]}
+# (not given: no tilt and a zero one).
+ADDED = {'target_tilt_given':False,'target_tilt':0.0}
 HEADER = [('rmw_client_guid','Q'),('rmw_sequence_number','q')]
 SIZE = {'d':8,'I':4,'Q':8,'q':8,'?':1}
 class R:
@@ -64,8 +64,10 @@ def decode(fields,data):
   little=data[1]==1; r=R(data[4:],'<' if little else '>'); return read(fields,r),little
 def migrate(corpus):
   # Seeds written before the fields of ADDED existed: the same fields, then ADDED's values. Run
-  # once when fields are added (ADDED: those fields). It also writes request_calibrate_css, a
-  # css calibration (sphere radius, robot pose, two earlier scans) made from request_calibrate.
+  # once when fields are added (ADDED: those fields). It also writes, made from
+  # request_calibrate, request_calibrate_css, a css calibration (sphere radius, robot pose, two
+  # earlier scans), and request_calibrate_pantilt, a pantilt calibration (the cube's pose in the
+  # head's world, the tilt given, one earlier sweep).
   old=[f for f in FIELDS if f[0] not in ADDED]
   for f in sorted(os.listdir(corpus)):
     b=open(os.path.join(corpus,f),'rb').read()
@@ -76,13 +78,20 @@ def migrate(corpus):
     vals.update({k:list(v) if isinstance(v,list) else v for k,v in ADDED.items()})
     open(os.path.join(corpus,f),'wb').write(b[:1]+encode(head+FIELDS,vals,little))
     print('migrated',f)
-  b=open(os.path.join(corpus,'request_calibrate'),'rb').read()
-  vals,little=decode(FIELDS,b[1:])
-  vals.update(request_id=b'css-pose-3',target=b'css',target_radius=0.0125,robot_pose_given=True,
-              robot_pose=[0.45,-0.1,0.6,0.0,0.7071067811865476,0.0,0.7071067811865476],
-              calibration_scans=[b'css-pose-1',b'css-pose-2'])
-  open(os.path.join(corpus,'request_calibrate_css'),'wb').write(b'\x01'+encode(FIELDS,vals,little))
-  print('wrote request_calibrate_css')
+  def calibrate_seed(name,**changes):
+    b=open(os.path.join(corpus,'request_calibrate'),'rb').read()
+    vals,little=decode(FIELDS,b[1:])
+    vals.update(changes)
+    open(os.path.join(corpus,name),'wb').write(b'\x01'+encode(FIELDS,vals,little))
+    print('wrote',name)
+  calibrate_seed('request_calibrate_css',request_id=b'css-pose-3',target=b'css',
+                 target_radius=0.0125,robot_pose_given=True,
+                 robot_pose=[0.45,-0.1,0.6,0.0,0.7071067811865476,0.0,0.7071067811865476],
+                 calibration_scans=[b'css-pose-1',b'css-pose-2'])
+  # The cube 0.9 m before the head, turned 0.6 rad about z.
+  calibrate_seed('request_calibrate_pantilt',request_id=b'sweep-2',target=b'pantilt',
+                 target_pose=[0.9,-0.04,0.25,0.0,0.0,0.29552020666133955,0.955336489125606],
+                 target_tilt_given=True,target_tilt=0.1,calibration_scans=[b'sweep-1'])
 if __name__=='__main__' and len(sys.argv)>2 and sys.argv[2]=='--migrate':
   migrate(sys.argv[1]); sys.exit(0)
 if __name__=='__main__':

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <numbers>
 #include <optional>
 #include <random>
 #include <vector>
@@ -47,11 +48,12 @@ struct RequestArgs {
   std::uint64_t seed = 0;
   int parts = 0;                                     // learn
   std::vector<std::string> sensors;                  // learn: scans fused
-  std::vector<double> cube{120.0, 12.0}, cube_pose;  // calibrate stripe
-  std::string target = "stripe";                     // calibrate: stripe | css
+  std::vector<double> cube{120.0, 12.0}, cube_pose;  // calibrate stripe, pantilt
+  std::string target = "stripe";                     // calibrate: stripe | pantilt | css
+  std::optional<double> tilt_rad;                    // calibrate pantilt: the held tilt
   double sphere_radius_mm = 0;                       // calibrate css
   std::vector<double> robot_pose;                    // calibrate css: X,Y,Z,ROLL,PITCH,YAW
-  std::vector<std::string> scans;                    // calibrate css: earlier request ids
+  std::vector<std::string> scans;                    // calibrate pantilt, css: earlier request ids
 };
 
 Eigen::Vector3d vec3(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
@@ -95,12 +97,14 @@ int run(RequestArgs& a, daemon::DetectKind kind) {
     const std::vector<double>& v = a.robot_pose;
     req.target.T_base_joint = hal::pose_xyz_rpy(v[0], v[1], v[2], v[3], v[4], v[5]);
     req.target.scans = a.scans;
-  } else if (kind == daemon::DetectKind::kCalibrate) {
-    req.target.kind = "stripe";
+  } else if (kind == daemon::DetectKind::kCalibrate) {  // the cube: stripe or pantilt
+    req.target.kind = a.target;
     req.target.edge_mm = a.cube[0];
     req.target.bar_mm = a.cube[1];
     const std::vector<double>& v = a.cube_pose;
     req.target.T_table_target = hal::pose_xyz_rpy(v[0], v[1], v[2], v[3], v[4], v[5]);
+    req.target.tilt_rad = a.tilt_rad;  // pantilt only; unset for stripe
+    req.target.scans = a.scans;        // pantilt only; empty for stripe
   }
   try {
     const std::uint32_t domain = a.domain ? *a.domain : daemon::ros_domain_id().value_or(0);
@@ -259,6 +263,47 @@ void add_calibrate_css_request(CLI::App* calibrate, int* exit_code) {
   css->callback([exit_code] { *exit_code = run(css_args, daemon::DetectKind::kCalibrate); });
 }
 
+// --cube and --cube-pose of the hollow cube's calibrate requests (stripe, pantilt); where: the
+// frame the pose is in, as the help text names it.
+void add_cube_options(CLI::App* sub, RequestArgs& a, const std::string& where) {
+  sub->add_option("--cube", a.cube, "cube EDGE,BAR (mm)")
+      ->expected(2)
+      ->delimiter(',')
+      ->check(finite_range(1.0, kMaxCoordinateMm));
+  sub->add_option("--cube-pose", a.cube_pose,
+                  "cube pose " + where + " X,Y,Z,ROLL,PITCH,YAW (mm, rad)")
+      ->required()
+      ->expected(6)
+      ->delimiter(',')
+      ->check(finite_range(-kMaxCoordinateMm, kMaxCoordinateMm));
+}
+
+// `rangefit request calibrate pantilt`: one pan sweep over the hollow cube at the tilt the cell
+// program holds the head at; the request that names the earlier tilts' requests (--scans) also
+// solves for the head.
+void add_calibrate_pantilt_request(CLI::App* calibrate, int* exit_code) {
+  static RequestArgs pantilt_args;
+  pantilt_args.target = "pantilt";
+  auto* pantilt = calibrate->add_subcommand(
+      "pantilt",
+      "the pan-tilt head from pan sweeps over the hollow cube at two or more tilts, one request "
+      "per tilt (as `rangefit calibrate pantilt`)");
+  common(pantilt, pantilt_args);
+  add_cube_options(pantilt, pantilt_args, "in the head's world frame");
+  pantilt
+      ->add_option("--tilt", pantilt_args.tilt_rad,
+                   "the tilt the cell program holds the head at for this sweep, as the head "
+                   "reports it (rad; default: whatever the head reports)")
+      ->check(finite_range(-std::numbers::pi / 2, std::numbers::pi / 2));
+  pantilt
+      ->add_option("--scans", pantilt_args.scans,
+                   "ids of the earlier pantilt requests (other tilts) to solve with this one: "
+                   "ID,ID,...")
+      ->delimiter(',');
+  pantilt->callback(
+      [exit_code] { *exit_code = run(pantilt_args, daemon::DetectKind::kCalibrate); });
+}
+
 // `rangefit request calibrate stripe`: one sweep over the hollow cube.
 void add_calibrate_request(CLI::App* cmd, int* exit_code) {
   static RequestArgs calibrate_args;
@@ -268,19 +313,10 @@ void add_calibrate_request(CLI::App* cmd, int* exit_code) {
   auto* stripe = calibrate->add_subcommand(
       "stripe", "the stripe cell from one sweep over the hollow cube (as `rangefit calibrate`)");
   common(stripe, calibrate_args);
-  stripe->add_option("--cube", calibrate_args.cube, "cube EDGE,BAR (mm)")
-      ->expected(2)
-      ->delimiter(',')
-      ->check(finite_range(1.0, kMaxCoordinateMm));
-  stripe
-      ->add_option("--cube-pose", calibrate_args.cube_pose,
-                   "cube pose on the table X,Y,Z,ROLL,PITCH,YAW (mm, rad)")
-      ->required()
-      ->expected(6)
-      ->delimiter(',')
-      ->check(finite_range(-kMaxCoordinateMm, kMaxCoordinateMm));
+  add_cube_options(stripe, calibrate_args, "on the table");
   stripe->callback(
       [exit_code] { *exit_code = run(calibrate_args, daemon::DetectKind::kCalibrate); });
+  add_calibrate_pantilt_request(calibrate, exit_code);
   add_calibrate_css_request(calibrate, exit_code);
 }
 

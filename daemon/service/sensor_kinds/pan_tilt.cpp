@@ -1,7 +1,8 @@
 // kind = "pan_tilt": the laser-stripe ranger on a pan-tilt head (thesis 5.3). It scans while the
 // cell program pans the head: a rotary sweep, in rad. The ranger (can_node) and the head's pan
 // and tilt axes (pan_node, tilt_node) share one CAN interface. `rangefit simulate` spells it
-// "pantilt". Its drivers and scans: daemon/cell/sensors/pan_tilt.cpp and sim/pan_tilt.cpp.
+// "pantilt". The service calibrates it from the hollow cube swept at several tilts (calibrate
+// target "pantilt"). Its drivers and scans: daemon/cell/sensors/pan_tilt.cpp and sim/pan_tilt.cpp.
 #include "daemon/service/bus_addresses.hpp"
 #include "daemon/service/sensor_kind.hpp"
 
@@ -20,6 +21,7 @@ extern const SensorKind pan_tilt;
 const SensorKind pan_tilt{.name = "pan_tilt",
                           .cli_name = "pantilt",
                           .scans = true,
+                          .calibrated_by_service = true,
                           .fields = {.can_node = true, .pan_node = true, .tilt_node = true},
                           .can_nodes = pan_tilt_nodes};
 

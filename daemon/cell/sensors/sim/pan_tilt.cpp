@@ -22,6 +22,11 @@ ScanOutcome pan_tilt_scan(SimCell::Run& run) {
   o.geometry = fc.geometry;
   o.quantise = run.config.sim.noise;
   o.seed = run.seed;
+  // Standing in for the cell program: a calibration sweep is taken at the tilt the request says
+  // the head is held at.
+  if (run.request.kind == DetectKind::kCalibrate && run.request.target.tilt_rad) {
+    o.tilt_rad = *run.request.target.tilt_rad;
+  }
   o.ranger_faults = run.sensor_faults;
   sim::PanTiltHead head(run.scene.scene, run.scene.caster, o, run.clock);
   fusion::PanTiltAssembler assembler(fc);
