@@ -20,6 +20,7 @@
 #include "daemon/rangefitd/service.hpp"
 #include "detect/common/angles.hpp"
 #include "fusion/config.hpp"
+#include "test/calib/calib_fixtures.hpp"
 #include "test/daemon/cli_run.hpp"
 #include "test/daemon/cube_scene.hpp"
 #include "test/daemon/replay_service.hpp"
@@ -77,6 +78,21 @@ std::optional<DetectionResult> run(Service& service, const ScanRequest& req) {
   EXPECT_TRUE(service.board().reserve(req.id));
   if (const auto refused = service.admit(req)) return refused;
   return service.board().wait_for(req.id, std::chrono::seconds(120));
+}
+
+// The cell with a stripe cell beside it: a sensor of another kind.
+DaemonConfig with_stripe(DaemonConfig config, const fs::path& scene) {
+  DeviceConfig stripe;
+  stripe.name = stripe.kind = "stripe";
+  stripe.scene = scene;
+  config.devices.push_back(stripe);
+  return config;
+}
+
+// Why the service refuses the request; "admitted" when it does not.
+std::string refusal(Service& service, const ScanRequest& req) {
+  const auto r = service.admit(req);
+  return r ? r->reason : std::string("admitted");
 }
 
 std::string text_of(const fs::path& p) {
@@ -171,18 +187,11 @@ TEST(ServiceCalibrateCss, AnUnknownEarlierScanIsNamedAndThisPoseIsStillRecorded)
 
 TEST(ServiceCalibrateCss, ARequestWithoutRobotPoseOrRadiusOrOnAnotherSensorIsRefused) {
   const fs::path dir = test::fresh_test_dir("rangefit_service_calibrate_css_refused");
-  DaemonConfig config = css_cell(dir);
-  DeviceConfig stripe;
-  stripe.name = stripe.kind = "stripe";
-  stripe.scene = dir / "sphere.toml";
-  config.devices.push_back(stripe);
+  const DaemonConfig config = with_stripe(css_cell(dir), dir / "sphere.toml");
   hal::MonotonicClock clock;
   Service service(config, clock);
   const Eigen::Isometry3d pose = robot_pose(config.fusion.css.geometry, 0);
-  const auto refused = [&](ScanRequest req) {
-    const auto r = service.admit(req);
-    return r ? r->reason : std::string("admitted");
-  };
+  const auto refused = [&](const ScanRequest& req) { return refusal(service, req); };
   ScanRequest no_pose = css_request("a", pose, {});
   no_pose.target.T_base_joint.reset();
   EXPECT_NE(refused(no_pose).find("needs robot_pose"), std::string::npos) << refused(no_pose);
@@ -202,20 +211,8 @@ TEST(ServiceCalibrateCss, ARequestWithoutRobotPoseOrRadiusOrOnAnotherSensorIsRef
   fs::remove_all(dir);
 }
 
-// The cube before the head, a body diagonal between the laser and the camera (as the
-// calibration tests' fixture), in the head's world frame.
-Eigen::Isometry3d cube_before_head() {
-  const Eigen::Vector3d b(0.0, std::sin(15.0 * kDeg), -std::cos(15.0 * kDeg));
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = (Eigen::AngleAxisd(20.0 * kDeg, b) *
-                Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::Ones().normalized(), b))
-                   .toRotationMatrix();
-  T.translation() = Eigen::Vector3d(4.0, -6.0, 750.0);
-  return T;
-}
-
 DaemonConfig head_cell(const fs::path& dir) {
-  test::write_cube_scene(dir / "cube.toml", 120.0, 12.0, cube_before_head(), false);
+  test::write_cube_scene(dir / "cube.toml", 120.0, 12.0, test::cube_before_head(), false);
   DaemonConfig config;
   config.dds.domain_id = test::dds_test_domain();
   config.spool.directory = dir / "spool";
@@ -247,7 +244,7 @@ ScanRequest pan_tilt_request(const std::string& id, double tilt_deg,
   req.sweep_speed = 10.0 * kDeg;
   req.seed = 3;
   req.target.kind = "pantilt";
-  req.target.T_table_target = cube_before_head();
+  req.target.T_table_target = test::cube_before_head();
   req.target.tilt_rad = tilt_deg * kDeg;
   req.target.scans = std::move(earlier);
   return req;
@@ -296,7 +293,7 @@ TEST(ServiceCalibratePanTilt, ThreeTiltsGiveTheConfiguredHeadAndTheCliAgrees) {
 
   // The spooled sweeps are what `rangefit calibrate pantilt --scans` reads: same answer.
   double pose[6];
-  calib::xyz_rpy_of(cube_before_head(), pose);
+  calib::xyz_rpy_of(test::cube_before_head(), pose);
   std::ostringstream args;
   args.precision(17);
   args << "calibrate pantilt --seed 3 --cube 120,12 --cube-pose " << pose[0];
@@ -314,17 +311,10 @@ TEST(ServiceCalibratePanTilt, ThreeTiltsGiveTheConfiguredHeadAndTheCliAgrees) {
 
 TEST(ServiceCalibratePanTilt, TheHeadsTargetTakesItsCliSpellingAndAStripeTargetNoTiltOrScans) {
   const fs::path dir = test::fresh_test_dir("rangefit_service_calibrate_pantilt_refused");
-  DaemonConfig config = head_cell(dir);
-  DeviceConfig stripe;
-  stripe.name = stripe.kind = "stripe";
-  stripe.scene = dir / "cube.toml";
-  config.devices.push_back(stripe);
+  const DaemonConfig config = with_stripe(head_cell(dir), dir / "cube.toml");
   hal::MonotonicClock clock;
   Service service(config, clock);
-  const auto refused = [&](ScanRequest req) {
-    const auto r = service.admit(req);
-    return r ? r->reason : std::string("admitted");
-  };
+  const auto refused = [&](const ScanRequest& req) { return refusal(service, req); };
   ScanRequest tilt_on_stripe = pan_tilt_request("a", 0.0, {});
   tilt_on_stripe.target.kind = "stripe";
   tilt_on_stripe.sensor = "stripe";
