@@ -262,14 +262,51 @@ def run(args, tmp, procs):
             180)
         print("page says:", status)
         assert status.endswith(": found"), status
-        href = browser.js("const a = document.getElementById('model-link');"
-                          "return !a.hidden && a.href")
+        href = browser.js("const a = document.querySelector('#result-files a[download=\"model.toml\"]');"
+                          "return a && a.href")
         assert href, "no link to the learnt model"
         with urllib.request.urlopen(href, timeout=10) as r:
             model = r.read().decode()
         assert 'name = "taught"' in model and model.count("[[part]]") == 1, model
         print("learnt model:", " ".join(line for line in model.splitlines()
                                         if line.startswith("size")))
+
+        # Calibrate from the page: the CSS at one robot pose (the bore plate's scan pose) is
+        # recorded, not yet calibrated (one of at least three poses), and the page offers the
+        # recorded samples, the file `rangefit calibrate css` reads.
+        browser.js("const k = document.getElementById('kind'); k.value = 'calibrate';"
+                   "k.dispatchEvent(new Event('change'));"
+                   "const t = document.getElementById('calibrate-target'); t.value = 'css';"
+                   "t.dispatchEvent(new Event('change'));"
+                   "document.getElementById('calibrate-robot-pose').value = '0, 0, 0, 0, 0, 0';")
+        assert browser.js("return document.getElementById('send').textContent") == \
+            "Scan and calibrate"
+        assert browser.js("return document.getElementById('calibrate-cube').closest('label')"
+                          ".hidden"), "the cube's fields show for the CSS"
+        # The page shows the learnt result before it has drawn its cloud; it takes the next
+        # request once the button is back.
+        wait("the page ready for the next request",
+             lambda: browser.js("return !document.getElementById('send').disabled"), 60)
+        browser.call("POST", f"/element/{browser.element('#send')}/click", {})
+        learn_status = status
+        status = wait("the recorded CSS pose in the page", lambda: browser.js(
+            "const s = document.getElementById('request-status').textContent;"
+            "return s !== arguments[0] && /: (found|not found|\\w+:)/.test(s) && s",
+            learn_status), 180)
+        print("page says:", status)
+        assert ": not found: not calibrated: pose recorded; 1 of at least 3 robot poses" in status, \
+            status
+        href = browser.js("const a = document.querySelector("
+                          "'#result-files a[download=\"css_sphere_scan.txt\"]');"
+                          "return a && a.href")
+        assert href, "no link to the recorded sphere scan"
+        with urllib.request.urlopen(href, timeout=10) as r:
+            scan = r.read().decode()
+        lines = scan.splitlines()
+        assert lines[0] == "rangefit-css-sphere-scans 1", lines[0]
+        pose = [float(v) for v in lines[1].split()[1:]]
+        assert lines[1].startswith("pose ") and max(map(abs, pose)) < 1e-12, lines[1]
+        print("recorded CSS pose:", len(scan.splitlines()) - 2, "samples")
     finally:
         browser.quit()
     daemon.send_signal(signal.SIGTERM)

@@ -110,6 +110,32 @@ async function poll() {
   setTimeout(poll, 1000);
 }
 
+function numbers(text, count, what) {
+  const v = text.split(/[\s,]+/).filter((s) => s !== '').map(Number);
+  if (v.length !== count || v.some((x) => !Number.isFinite(x))) {
+    throw new Error(`${what}: ${count} numbers, comma separated`);
+  }
+  return v;
+}
+
+function calibrationTarget() {
+  const kind = $('calibrate-target').value;
+  const t = { kind };
+  const scans = $('calibrate-scans').value.split(',').map((s) => s.trim()).filter((s) => s);
+  if (kind === 'css') {
+    t.radius_mm = Number($('calibrate-radius').value);
+    t.robot_pose = numbers($('calibrate-robot-pose').value, 6, 'robot pose');
+  } else {
+    t.size_mm = numbers($('calibrate-cube').value, 2, 'cube edge, bar');
+    t.pose = numbers($('calibrate-pose').value, 6, 'cube pose');
+    if (kind === 'pantilt' && $('calibrate-tilt').value.trim() !== '') {
+      t.tilt_rad = Number($('calibrate-tilt').value);
+    }
+  }
+  if (kind !== 'stripe' && scans.length) t.scans = scans;
+  return t;
+}
+
 function request() {
   const kind = $('kind').value;
   const r = { kind, sensor: $('sensor').value };
@@ -126,6 +152,8 @@ function request() {
     } else if (fused.length === 1) {
       r.sensor = fused[0];
     }
+  } else if (kind === 'calibrate') {
+    r.target = calibrationTarget();
   } else {
     r.model = $('object-model').value;
     r.instances = Number($('object-instances').value) || 1;
@@ -140,7 +168,7 @@ async function send(event) {
   try { body = request(); } catch (e) { status.textContent = e.message; return; }
   localStorage.setItem('rangefit-token', $('token').value);
   $('send').disabled = true;
-  $('model-link').hidden = true;
+  $('result-files').replaceChildren();
   status.textContent = 'sending';
   try {
     const sent = await json('/v1/detect?wait=0', {
@@ -159,10 +187,14 @@ async function send(event) {
       status.textContent = `${id}: ${outcome(r.body)[1]}`;
       status.className = outcome(r.body)[0];
       $('last-result').textContent = JSON.stringify(r.body, null, 1);
-      const model = r.body.files && r.body.files['model.toml'];
-      if (model) {
-        $('model-link').href = model;
-        $('model-link').hidden = false;
+      // What the result wrote for the user (model.toml, calibration_*.toml and its report, a
+      // recorded calibration scan): one link each.
+      for (const [name, href] of Object.entries(r.body.files || {})) {
+        const a = document.createElement('a');
+        a.href = href;
+        a.download = name;
+        a.textContent = name;
+        $('result-files').append(a);
       }
       selectedByUser = false;
       await showCloud(r.body);
@@ -180,8 +212,19 @@ $('kind').addEventListener('change', () => {
   $('bore-fields').hidden = kind !== 'bore';
   $('object-fields').hidden = kind !== 'object';
   $('learn-fields').hidden = kind !== 'learn';
-  $('send').textContent = kind === 'learn' ? 'Scan and learn' : 'Scan and detect';
+  $('calibrate-fields').hidden = kind !== 'calibrate';
+  $('send').textContent = { learn: 'Scan and learn', calibrate: 'Scan and calibrate' }[kind] ||
+    'Scan and detect';
 });
+function showTargetFields() {
+  const target = $('calibrate-target').value;
+  for (const label of $('calibrate-fields').querySelectorAll('label[class]')) {
+    label.hidden = !label.classList.contains(target === 'stripe' ? 'cube' : target) &&
+      !(target === 'pantilt' && label.classList.contains('cube'));
+  }
+}
+$('calibrate-target').addEventListener('change', showTargetFields);
+showTargetFields();
 $('token').value = localStorage.getItem('rangefit-token') || '';
 $('request-form').addEventListener('submit', send);
 poll();
