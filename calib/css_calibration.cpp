@@ -2,6 +2,7 @@
 #include "calib/axis_rotations.hpp"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 
 namespace rangefit::calib {
@@ -65,6 +66,26 @@ void set_weights(const CssState& st, std::vector<Prepared>& pts) {
     p.c = std::max(0.2, std::abs(u.dot(A * (st.R_m * p.beam))));
     if (!std::isfinite(p.c)) p.c = 1.0;
   }
+}
+
+// Moves the samples within 4 robust sigma of the sphere at st to the front, in order; returns
+// how many. A floor of 1 um keeps noise-free scans whole.
+std::size_t trim_off_sphere(const CssState& st, std::vector<Prepared>& pts, double radius) {
+  std::vector<double> r(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const Prepared& p = pts[i];
+    const Matrix3d A = p.R_base_joint * rot_y(p.omega - st.omega_zero);
+    r[i] = std::abs((A * (st.R_m * p.s + st.t_m) + p.t_base_joint - st.centre).norm() - radius);
+  }
+  std::vector<double> sorted = r;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2),
+                   sorted.end());
+  const double limit = std::max(1e-3, 4.0 * 1.4826 * sorted[sorted.size() / 2]);
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    if (r[i] <= limit) pts[kept++] = pts[i];
+  }
+  return kept;
 }
 
 CssState css_step(const CssState& s, const LmVector<9>& h) {
@@ -132,7 +153,21 @@ CssCalibrationResult calibrate_css_mount(std::span<const CssSphereScan> scans,
         [&](const CssState& s) { return linearise(s, pts, options.sphere_radius_mm); }, css_step,
         [](const CssState& s) { return s.t_m.norm() + s.centre.norm(); });
   };
-  const auto first = solve(st);
+  auto first = solve(st);
+  // Samples that are not on the sphere (its stand, the table, a stray reflection) would pull the
+  // fit: up to three times, the samples beyond 4 robust sigma (1.4826 MAD) of the fit are left
+  // out and the fit is redone from where it was.
+  for (int pass = 0; pass < 3; ++pass) {
+    const std::size_t kept = trim_off_sphere(first.x, pts, options.sphere_radius_mm);
+    if (kept == pts.size()) break;
+    result.rejected += pts.size() - kept;
+    pts.resize(kept);
+    if (pts.size() < 50) {
+      result.reason = "too few samples on the sphere (" + std::to_string(pts.size()) + ")";
+      return result;
+    }
+    first = solve(first.x);
+  }
   set_weights(first.x, pts);
   auto fit = solve(first.x);
   fit.initial_cost = first.initial_cost;

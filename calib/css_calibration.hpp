@@ -50,7 +50,8 @@ struct CssCalibrationResult {
   Eigen::Isometry3d T_joint_css = Eigen::Isometry3d::Identity();  // mount x = 0 (see above)
   double omega_zero_rad = 0.0;
   Eigen::Vector3d sphere_centre_mm = Eigen::Vector3d::Zero();
-  std::size_t samples = 0;
+  std::size_t samples = 0;   // fitted
+  std::size_t rejected = 0;  // left out as not on the sphere (beyond 4 robust sigma of the fit)
   double rms_mm = 0.0, initial_rms_mm = 0.0;  // residuals as range errors along the beam
   int iterations = 0;
   Matrix9d covariance = Matrix9d::Zero();

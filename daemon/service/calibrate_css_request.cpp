@@ -114,7 +114,8 @@ std::string css_calibration_report(const calib::CssCalibrationResult& r,
   std::ostringstream rep;
   rep.precision(5);
   rep << "CSS mount calibration (hand-eye, sphere of radius " << radius_mm << " mm), " << poses
-      << " robot poses, " << r.samples << " samples, " << source << "\n"
+      << " robot poses, " << r.samples << " samples (" << r.rejected
+      << " more left out, not on the sphere), " << source << "\n"
       << "  range rms " << r.initial_rms_mm << " -> " << r.rms_mm << " mm in " << r.iterations
       << " iterations\n"
       << "  omega_zero " << r.omega_zero_rad << " rad (was " << omega_zero_start << "), 1 sigma "
@@ -186,6 +187,7 @@ DetectionResult calibrate_css_request(const PointCloud& cloud, const ScanRequest
   out.found = true;
   out.details["rms_mm"] = r.rms_mm;
   out.details["initial_rms_mm"] = r.initial_rms_mm;
+  out.details["rejected_samples"] = r.rejected;
   out.details["fusion.css"] = {{"omega_zero_rad", r.omega_zero_rad},
                                {"eta_rad", r.eta_rad},
                                {"pivot_radius_mm", r.pivot_radius_mm}};
