@@ -143,22 +143,29 @@ TEST(RequestKinds, LearnAndCalibrateRoundTripTheWireAndJson) {
   }
 }
 
+// The request back from its topic message, the same fields as a /rangefit/detect service call
+// (sequence number seq), and JSON; each decodes without an error.
+std::vector<ScanRequest> decoded_three_ways(const ScanRequest& req, const RequestOut& out,
+                                            std::int64_t seq) {
+  std::string topic_error, service_error, json_error;
+  std::vector<ScanRequest> back;
+  back.push_back(from_msg(out.msg(), &topic_error));
+  const auto call = service_sample<rangefit_msgs_srv_dds__Detect_Request_>(7, seq, out.msg());
+  back.push_back(from_service_request(call, &service_error));
+  back.emplace_back();
+  EXPECT_TRUE(from_json(to_json(req), back.back(), &json_error)) << json_error;
+  EXPECT_EQ(topic_error, "");
+  EXPECT_EQ(service_error, "");
+  return back;
+}
+
 TEST(RequestKinds, CssCalibrationRoundTripsTheWireTheServiceAndJson) {
   const ScanRequest css = css_calibrate_request();
   const RequestOut out(css, false);
   EXPECT_DOUBLE_EQ(out.msg().target_radius, 0.0127);  // metres on the wire
   EXPECT_TRUE(out.msg().robot_pose_given);
   EXPECT_NEAR(out.msg().robot_pose.position.z, 0.61, 1e-12);
-  std::string topic_error, service_error, json_error;
-  const ScanRequest topic = from_msg(out.msg(), &topic_error);
-  // The same fields as a /rangefit/detect service call.
-  const auto call = service_sample<rangefit_msgs_srv_dds__Detect_Request_>(7, 3, out.msg());
-  const ScanRequest service = from_service_request(call, &service_error);
-  ScanRequest json;
-  EXPECT_TRUE(from_json(to_json(css), json, &json_error)) << json_error;
-  EXPECT_EQ(topic_error, "");
-  EXPECT_EQ(service_error, "");
-  for (const ScanRequest& back : {topic, service, json}) {
+  for (const ScanRequest& back : decoded_three_ways(css, out, 3)) {
     EXPECT_EQ(back.id, "css-3");
     EXPECT_EQ(back.kind, DetectKind::kCalibrate);
     EXPECT_EQ(back.target.kind, "css");
@@ -167,6 +174,8 @@ TEST(RequestKinds, CssCalibrationRoundTripsTheWireTheServiceAndJson) {
     EXPECT_TRUE(back.target.T_base_joint->isApprox(*css.target.T_base_joint, 1e-9));
     EXPECT_EQ(back.target.scans, css.target.scans);
   }
+  std::string topic_error, json_error;
+  ScanRequest json = css;  // a request that holds a css target
   // Not given: nothing on the wire says otherwise, and JSON leaves the fields out.
   const ScanRequest stripe = calibrate_request();
   const RequestOut stripe_out(stripe, false);
@@ -200,16 +209,7 @@ TEST(RequestKinds, PantiltCalibrationRoundTripsTheWireTheServiceAndJson) {
   EXPECT_TRUE(out.msg().target_tilt_given);
   EXPECT_EQ(out.msg().target_tilt, 0.35);  // radians on the wire, as given
   EXPECT_NEAR(out.msg().target_pose.position.x, 0.9, 1e-12);
-  std::string topic_error, service_error, json_error;
-  const ScanRequest topic = from_msg(out.msg(), &topic_error);
-  // The same fields as a /rangefit/detect service call.
-  const auto call = service_sample<rangefit_msgs_srv_dds__Detect_Request_>(7, 4, out.msg());
-  const ScanRequest service = from_service_request(call, &service_error);
-  ScanRequest json;
-  EXPECT_TRUE(from_json(to_json(pantilt), json, &json_error)) << json_error;
-  EXPECT_EQ(topic_error, "");
-  EXPECT_EQ(service_error, "");
-  for (const ScanRequest& back : {topic, service, json}) {
+  for (const ScanRequest& back : decoded_three_ways(pantilt, out, 4)) {
     EXPECT_EQ(back.id, "sweep-2");
     EXPECT_EQ(back.kind, DetectKind::kCalibrate);
     EXPECT_EQ(back.target.kind, "pantilt");
@@ -221,6 +221,8 @@ TEST(RequestKinds, PantiltCalibrationRoundTripsTheWireTheServiceAndJson) {
     EXPECT_EQ(back.target.scans, pantilt.target.scans);
     EXPECT_FALSE(back.target.T_base_joint);
   }
+  std::string topic_error, json_error;
+  ScanRequest json = pantilt;  // a request that holds a tilt
   // Not given: target_tilt_given false on the wire and no tilt_rad in JSON.
   const ScanRequest stripe = calibrate_request();
   const RequestOut stripe_out(stripe, false);
