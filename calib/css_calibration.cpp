@@ -156,16 +156,18 @@ CssCalibrationResult calibrate_css_mount(std::span<const CssSphereScan> scans,
   auto first = solve(st);
   // Samples that are not on the sphere (its stand, the table, a stray reflection) would pull the
   // fit: up to three times, the samples beyond 4 robust sigma (1.4826 MAD) of the fit are left
-  // out and the fit is redone from where it was.
+  // out and, when they were more than the noise's own tail (0.1 %), the fit is redone from
+  // where it was.
   for (int pass = 0; pass < 3; ++pass) {
+    const std::size_t before = pts.size();
     const std::size_t kept = trim_off_sphere(first.x, pts, options.sphere_radius_mm);
-    if (kept == pts.size()) break;
-    result.rejected += pts.size() - kept;
+    result.rejected += before - kept;
     pts.resize(kept);
     if (pts.size() < 50) {
       result.reason = "too few samples on the sphere (" + std::to_string(pts.size()) + ")";
       return result;
     }
+    if ((before - kept) * 1000 <= before) break;
     first = solve(first.x);
   }
   set_weights(first.x, pts);
