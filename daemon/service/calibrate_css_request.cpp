@@ -1,5 +1,6 @@
 #include "daemon/service/calibrate_css_request.hpp"
 
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -66,21 +67,23 @@ CssRawSamples css_raw_samples(const PointCloud& cloud, const ScanSensor::CssFusi
   const hal::CssGeometry& g = css.geometry;
   const Eigen::Isometry3d mount = g.T_world_css(0.0);
   const Eigen::Vector3d L = mount * g.laser_point();
+  std::array<Eigen::Vector3d, kCols> beams;  // of each sample column, in the joint frame
+  for (int i = 0; i < kCols; ++i)
+    beams[i] = mount.linear() * g.beam_direction(g.beam_angle(i, kCols));
   std::size_t failed = 0;
   for (int r = 0; r < cloud.grid.rows; ++r) {
     double omega = 0.0;
     for (int i = 0; i < kCols; ++i) {
       const std::int32_t k = cloud.grid.at(r, i);
       if (k < 0 || static_cast<std::size_t>(k) >= cloud.points.size()) continue;
-      const double beam = g.beam_angle(i, kCols);
       const Inverse x = invert(cloud.points[static_cast<std::size_t>(k)], L,
-                               mount.linear() * g.beam_direction(beam), omega);
+                               beams[static_cast<std::size_t>(i)], omega);
       if (!x.ok) {
         ++failed;
         continue;
       }
       omega = x.omega;
-      out.samples.push_back({x.omega + css.omega_zero_rad, beam, x.range});
+      out.samples.push_back({x.omega + css.omega_zero_rad, g.beam_angle(i, kCols), x.range});
     }
   }
   if (failed > out.samples.size() / 100) {
@@ -156,19 +159,14 @@ DetectionResult calibrate_css_request(const PointCloud& cloud, const ScanRequest
   out.details = {{"target", target.kind}, {"applied", false}, {"samples", own.samples.size()}};
   // This pose's samples, in the file `rangefit calibrate css --scans` reads.
   out.files.emplace_back("css_sphere_scan.txt", calib::format_css_scans({own}));
-  std::vector<calib::CssSphereScan> scans;
-  for (const std::string& id : target.scans) {
-    const calib::CssSphereScan* earlier = poses.find(id);
-    if (earlier == nullptr) {
-      poses.record(request.id, own);
-      out.reason =
-          std::string(kNotCalibrated) + unknown_record_reason("css", id, "css_sphere_scan.txt");
-      return out;
-    }
-    scans.push_back(*earlier);
+  std::string unknown;
+  const std::vector<calib::CssSphereScan> scans =
+      poses.join(request.id, std::move(own), target.scans, &unknown);
+  if (!unknown.empty()) {
+    out.reason =
+        std::string(kNotCalibrated) + unknown_record_reason("css", unknown, "css_sphere_scan.txt");
+    return out;
   }
-  scans.push_back(own);
-  poses.record(request.id, std::move(own));
   out.details["poses"] = scans.size();
   if (scans.size() < 3) {
     out.reason = std::string(kNotCalibrated) + "pose recorded; " + std::to_string(scans.size()) +

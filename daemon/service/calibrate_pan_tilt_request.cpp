@@ -135,19 +135,14 @@ DetectionResult calibrate_pan_tilt_request(const PointCloud& cloud, const ScanRe
   }
   // This sweep, in the file `rangefit calibrate pantilt --scans` reads.
   out.files.emplace_back("raw_sweep_pantilt.txt", calib::format_raw_sweep(raw.sweep));
-  std::vector<calib::RawSweep> all;
-  for (const std::string& id : target.scans) {
-    const calib::RawSweep* earlier = sweeps.find(id);
-    if (earlier == nullptr) {
-      sweeps.record(request.id, std::move(raw.sweep));
-      out.reason = std::string(kNotCalibrated) +
-                   unknown_record_reason("pantilt", id, "raw_sweep_pantilt.txt");
-      return out;
-    }
-    all.push_back(*earlier);
+  std::string unknown;
+  const std::vector<calib::RawSweep> all =
+      sweeps.join(request.id, std::move(raw.sweep), target.scans, &unknown);
+  if (!unknown.empty()) {
+    out.reason = std::string(kNotCalibrated) +
+                 unknown_record_reason("pantilt", unknown, "raw_sweep_pantilt.txt");
+    return out;
   }
-  all.push_back(raw.sweep);
-  sweeps.record(request.id, std::move(raw.sweep));
   out.details["sweeps"] = all.size();
   if (all.size() < 2) {
     out.reason = std::string(kNotCalibrated) +

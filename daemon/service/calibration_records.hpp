@@ -7,6 +7,7 @@
 #include <deque>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "daemon/service/request_validation.hpp"
 
@@ -31,6 +32,26 @@ class CalibrationRecords {
       if (name == id) return &r;
     }
     return nullptr;
+  }
+  // Records `own` under id and returns the records `earlier` names, in order, followed by own.
+  // When one of them is not held, returns nothing and names it in *unknown; own is recorded
+  // either way, so a retry can name it.
+  std::vector<Record> join(const std::string& id, Record own,
+                           const std::vector<std::string>& earlier, std::string* unknown) {
+    std::vector<Record> out;
+    unknown->clear();
+    for (const std::string& name : earlier) {
+      const Record* r = find(name);
+      if (r == nullptr) {
+        *unknown = name;
+        out.clear();
+        break;
+      }
+      out.push_back(*r);
+    }
+    if (unknown->empty()) out.push_back(own);
+    record(id, std::move(own));
+    return out;
   }
 
  private:
