@@ -4,7 +4,8 @@
 // learning fit (pose, size, shape and taper, detect/model_learning_fit.cpp) both run it. The
 // caller supplies the linearisation (cost 0.5 sum r^2, J^T J and J^T r) at a state and the step
 // x <- x (+) h, so states on a manifold (rotations) and bounded parameters stay the caller's
-// business.
+// business. N may be Eigen::Dynamic when the count is known only at run time (the stripe
+// calibration's cameras); the linearisation is then made with its size.
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -28,9 +29,12 @@ using LmVector = Eigen::Matrix<double, N, 1>;
 
 template <int N>
 struct LmLinearisation {
+  LmLinearisation() : LmLinearisation(N == Eigen::Dynamic ? 0 : N) {}
+  explicit LmLinearisation(Eigen::Index n)
+      : jtj(Eigen::Matrix<double, N, N>::Zero(n, n)), g(LmVector<N>::Zero(n)) {}
   double cost = 0.0;  // 0.5 sum r^2 (eq. 2.49)
-  Eigen::Matrix<double, N, N> jtj = Eigen::Matrix<double, N, N>::Zero();
-  LmVector<N> g = LmVector<N>::Zero();  // J^T r
+  Eigen::Matrix<double, N, N> jtj;
+  LmVector<N> g;  // J^T r
 };
 
 template <int N, class State>

@@ -106,13 +106,57 @@ struct Sweep {
 };
 
 inline Sweep stripe_cube_sweep(const hal::StripeCellGeometry& truth, const sim::RangerNoise& noise,
-                               double step_mm = 1.0) {
+                               double step_mm = 1.0,
+                               const Eigen::Isometry3d& T_table_cube = cube_on_table()) {
   const calib::CalibrationCube cube;
   Sweep s;
   for (double a = 60.0; a <= 340.0; a += step_mm) s.axis.push_back(a);
   const sim::Scene scene =
-      sim::calibration_cube_scene(cube.edge_mm, cube.bar_mm, cube_on_table(), true);
+      sim::calibration_cube_scene(cube.edge_mm, cube.bar_mm, T_table_cube, true);
   s.profiles = sim::simulate_stripe_sweep(scene, truth, s.axis, noise);
+  return s;
+}
+
+// Cube body diagonal straight up towards the laser, turned 20 deg about it: cameras on both
+// sides of the laser plane see its three outer faces.
+inline Eigen::Isometry3d cube_between_cameras() {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = (Eigen::AngleAxisd(20.0 * kDeg, Eigen::Vector3d::UnitZ()) *
+                Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::Ones().normalized(),
+                                                   Eigen::Vector3d::UnitZ()))
+                   .toRotationMatrix();
+  T.translation() = Eigen::Vector3d(5.0, 3.0, 130.0);
+  return T;
+}
+
+// A second camera of camera a's laser plane, on the other side of it (baseline negated), that
+// reports its points in its own frame of the plane: T_cell_ranger = a's T_cell_ranger P, P a
+// turn about the plane's normal y and a shift along x and z.
+inline hal::StripeCellGeometry other_side_camera(const hal::StripeCellGeometry& a,
+                                                 const Eigen::Isometry3d& P) {
+  hal::StripeCellGeometry b = a;
+  b.ranger.baseline_mm = -a.ranger.baseline_mm;
+  const Eigen::Isometry3d T = a.T_cell_ranger() * P;
+  b.ranger_position_cell_mm = T.translation();
+  b.ranger_rpy_cell_rad = calib::rpy_of(T.linear(), a.ranger_rpy_cell_rad);
+  return b;
+}
+
+// That camera's sweep: camera a's laser seen from the other side, in the frame P.
+inline Sweep other_side_sweep(const hal::StripeCellGeometry& a, const Eigen::Isometry3d& P,
+                              const sim::RangerNoise& noise, double step_mm,
+                              const Eigen::Isometry3d& T_table_cube) {
+  hal::StripeCellGeometry seen_from = a;
+  seen_from.ranger.baseline_mm = -a.ranger.baseline_mm;
+  Sweep s = stripe_cube_sweep(seen_from, noise, step_mm, T_table_cube);
+  const Eigen::Isometry3d to_b = P.inverse();
+  for (hal::RangerProfile& p : s.profiles) {
+    for (std::size_t k = 0; k < p.x_mm.size(); ++k) {
+      const Eigen::Vector3d q = to_b * Eigen::Vector3d(p.x_mm[k], 0.0, p.z_mm[k]);
+      p.x_mm[k] = static_cast<float>(q.x());
+      p.z_mm[k] = static_cast<float>(q.z());
+    }
+  }
   return s;
 }
 

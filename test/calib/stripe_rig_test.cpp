@@ -1,0 +1,128 @@
+// Two cameras triangulating one laser plane from its two sides (thesis 3.2.1, fig. 3.6b),
+// calibrated together from their sweeps of the hollow cube.
+#include <gtest/gtest.h>
+
+#include "calib/stripe_calibration.hpp"
+#include "calib_fixtures.hpp"
+
+namespace rangefit::test {
+namespace stripe_rig_test {
+
+// Camera b's frame of the laser plane against camera a's.
+Eigen::Isometry3d b_in_a() {
+  Eigen::Isometry3d P = Eigen::Isometry3d::Identity();
+  P.linear() = Eigen::AngleAxisd(2.0 * kDeg, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  P.translation() = Eigen::Vector3d(6.0, 0.0, -5.0);
+  return P;
+}
+
+struct Rig {
+  hal::StripeCellGeometry truth_a, truth_b;
+  Sweep a, b;
+};
+
+Rig two_sided_rig(std::uint64_t seed, const sim::RangerNoise& noise) {
+  Rig r;
+  r.truth_a = perturbed_cell(hal::StripeCellGeometry{}, seed);
+  r.truth_b = other_side_camera(r.truth_a, b_in_a());
+  r.a = stripe_cube_sweep(r.truth_a, noise, 2.0, cube_between_cameras());
+  sim::RangerNoise other = noise;
+  other.seed += 1000;
+  r.b = other_side_sweep(r.truth_a, b_in_a(), other, 2.0, cube_between_cameras());
+  return r;
+}
+
+// Both cameras start from the configured layout: b the same pose as a, on the other side.
+calib::StripeRigResult calibrate_rig(const Sweep& a, const Sweep& b) {
+  const hal::StripeCellGeometry nominal;
+  calib::StripeRigInput in;
+  in.cameras.push_back({a.profiles, a.axis, nominal});
+  in.cameras.push_back(
+      {b.profiles, b.axis, other_side_camera(nominal, Eigen::Isometry3d::Identity())});
+  in.T_table_cube = cube_between_cameras();
+  return calib::calibrate_stripe_rig(in);
+}
+
+double position_error(const calib::StripeCalibrationResult& r, const hal::StripeCellGeometry& t) {
+  return (r.geometry.ranger_position_cell_mm - t.ranger_position_cell_mm).norm();
+}
+double rotation_error(const calib::StripeCalibrationResult& r, const hal::StripeCellGeometry& t) {
+  return angle_between(r.geometry.T_cell_ranger().linear(), t.T_cell_ranger().linear());
+}
+
+class StripeRigSeeds : public ::testing::TestWithParam<std::uint64_t> {};
+
+TEST_P(StripeRigSeeds, BothCamerasAndTheAxisAreRecoveredFromAStartFarOff) {
+  const Rig rig = two_sided_rig(GetParam(), {});
+  const calib::StripeRigResult r = calibrate_rig(rig.a, rig.b);
+  ASSERT_TRUE(r.ok) << r.reason;
+  ASSERT_EQ(r.cameras.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const hal::StripeCellGeometry& truth = k == 0 ? rig.truth_a : rig.truth_b;
+    const calib::StripeCalibrationResult& c = r.cameras[k];
+    SCOPED_TRACE("camera " + std::to_string(k + 1));
+    EXPECT_LT(position_error(c, truth), 0.05);
+    EXPECT_LT(rotation_error(c, truth), 0.01 * kDeg);
+    EXPECT_LT(std::acos(std::min(
+                  1.0, c.geometry.axis_direction_cell.dot(truth.axis_direction_cell.normalized()))),
+              0.01 * kDeg);
+    EXPECT_LT(c.rms_mm, 0.01);
+    // Three rounds of its own and the fourth with the piercing points averaged.
+    ASSERT_EQ(c.rounds.size(), 4u);
+    EXPECT_LT(c.rounds.back().corner_rms_mm, 0.05);
+    for (const std::size_t n : c.rounds.back().plane_points) EXPECT_GT(n, 200u);
+    // The camera on the far side kept its own baseline.
+    EXPECT_EQ(c.geometry.ranger.baseline_mm, truth.ranger.baseline_mm);
+  }
+  // The start of b was off by a's perturbation and its own frame of the plane.
+  EXPECT_GT((other_side_camera(hal::StripeCellGeometry{}, Eigen::Isometry3d::Identity())
+                 .ranger_position_cell_mm -
+             rig.truth_b.ranger_position_cell_mm)
+                .norm(),
+            5.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Perturbed, StripeRigSeeds, ::testing::Values(1u, 2u));
+
+TEST(StripeRig, ReportsPerCameraCovariancesThatMatchTheNoise) {
+  double z2 = 0.0;
+  int count = 0;
+  for (const std::uint64_t seed : {21u, 22u, 23u}) {
+    const Rig rig = two_sided_rig(7, {.sigma_mm = 0.06, .seed = seed});
+    const calib::StripeRigResult r = calibrate_rig(rig.a, rig.b);
+    ASSERT_TRUE(r.ok) << r.reason;
+    for (std::size_t k = 0; k < 2; ++k) {
+      const hal::StripeCellGeometry& truth = k == 0 ? rig.truth_a : rig.truth_b;
+      const calib::StripeCalibrationResult& c = r.cameras[k];
+      const Eigen::Vector3d dp = c.geometry.ranger_position_cell_mm - truth.ranger_position_cell_mm;
+      const Eigen::AngleAxisd w(truth.T_cell_ranger().linear().transpose() *
+                                c.geometry.T_cell_ranger().linear());
+      const Eigen::Vector3d dw = w.angle() * w.axis();
+      for (int i = 0; i < 3; ++i) {
+        z2 += std::pow(dp[i] / c.position_sigma_mm[i], 2) +
+              std::pow(dw[i] / c.rotation_sigma_rad[i], 2);
+        count += 2;
+      }
+    }
+  }
+  // Mean squared normalised error: 1 when the covariance is right; a factor of 1.5 in sigma
+  // is 2.25 in it.
+  const double mean = z2 / count;
+  EXPECT_GT(mean, 1.0 / 2.25);
+  EXPECT_LT(mean, 2.25);
+}
+
+TEST(StripeRig, ACameraThatMissesTheCubeIsNamed) {
+  const Rig rig = two_sided_rig(3, {});
+  Sweep away = rig.b;
+  for (double& s : away.axis) s += 1000.0;  // its profiles claim a part of the axis far off
+  for (hal::RangerProfile& p : away.profiles) {
+    std::fill(p.z_mm.begin(), p.z_mm.end(), std::numeric_limits<float>::quiet_NaN());
+  }
+  const calib::StripeRigResult r = calibrate_rig(rig.a, away);
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.reason.rfind("camera 2: ", 0), 0u) << r.reason;
+}
+
+}  // namespace stripe_rig_test
+}  // namespace rangefit::test
