@@ -70,7 +70,7 @@ void read_ranger(Fields& parent, hal::StripeRanger& r) {
   f.read("min_depth_mm", r.min_depth_mm, 0.0, kBig);
   f.read("max_depth_mm", r.max_depth_mm, 0.0, kBig);
   if (r.max_depth_mm <= r.min_depth_mm) f.fail("max_depth_mm", "must exceed min_depth_mm");
-  f.read("baseline_mm", r.baseline_mm, 0.0, kBig);
+  f.read("baseline_mm", r.baseline_mm, -kBig, kBig);
   f.read("camera_angle_rad", r.camera_angle_rad, 0.0, kPi);
   f.reject_unknown();
 }
@@ -88,6 +88,26 @@ void read_stripe_cell(Fields& f, StripeCellFusionConfig& c) {
   f.read("max_speed_mm_s", g.max_speed_mm_s, 0.0, kBig);
   read_ms(f, "profile_period_ms", c.profile_period, 0.0, 1e5);
   f.read_int("expected_profiles", c.expected_profiles, 1, 10000000);
+  if (const toml::array* cams = f.table_array("cameras")) {
+    for (std::size_t i = 0; i < cams->size(); ++i) {
+      Fields e = f.element("cameras", *cams, i);
+      StripeCameraConfig cam;
+      for (const char* key :
+           {"name", "ranger_position_cell_mm", "ranger_rpy_cell_rad", "baseline_mm"}) {
+        e.require(key);
+      }
+      e.read("name", cam.name);
+      if (cam.name.empty()) e.fail("name", "must not be empty");
+      for (const StripeCameraConfig& other : c.cameras) {
+        if (other.name == cam.name) e.fail("name", "\"" + cam.name + "\" is given twice");
+      }
+      e.read("ranger_position_cell_mm", cam.ranger_position_cell_mm, -kBig, kBig);
+      e.read("ranger_rpy_cell_rad", cam.ranger_rpy_cell_rad, -2 * kPi, 2 * kPi);
+      e.read("baseline_mm", cam.baseline_mm, -kBig, kBig);
+      e.reject_unknown();
+      c.cameras.push_back(std::move(cam));
+    }
+  }
   f.reject_unknown();
 }
 

@@ -18,8 +18,12 @@
 //                         ranger_rpy_cell_rad = [3.14159, 0, 0], axis_direction_cell = [0, 1, 0],
 //                         axis_travel_mm = 400, max_speed_mm_s = 6.3, profile_period_ms = 0,
 //                         expected_profiles = 8192
+//   [[fusion.stripe_cell.cameras]]  further cameras of the same laser plane (thesis fig. 3.6b):
+//                         name (the stripe device's), ranger_position_cell_mm,
+//                         ranger_rpy_cell_rad, baseline_mm (< 0: the other side); all required
 //   [fusion.stripe_cell.ranger]  points_per_profile = 512, fan_angle_rad = 0.523599 (30 deg),
-//                         min_depth_mm = 250, max_depth_mm = 650, baseline_mm = 300,
+//                         min_depth_mm = 250, max_depth_mm = 650, baseline_mm = 300 (< 0: camera on
+//                         the other side of the laser plane),
 //                         camera_angle_rad = 1.047198 (60 deg)
 //   [fusion.pan_tilt]     t_s_mm = [0, 0, 0], t_w_mm = [0, 0, 0], pan_zero_rad = 0,
 //                         tilt_zero_rad = 0, sweep_angle_rad = 0.872665 (50 deg),

@@ -11,6 +11,9 @@
 
 #include <cstddef>
 #include <deque>
+#include <string>
+#include <string_view>
+#include <vector>
 
 #include "fusion/fused_scan.hpp"
 #include "fusion/time_alignment.hpp"
@@ -20,14 +23,47 @@
 
 namespace rangefit::fusion {
 
+// A further camera of the cell's laser plane (thesis 3.2.1, fig. 3.6b; the first is the
+// geometry's ranger): the stripe device called `name` reports its profiles in its own frame of
+// the plane and may see it from the other side.
+struct StripeCameraConfig {
+  std::string name;
+  Eigen::Vector3d ranger_position_cell_mm = Eigen::Vector3d::Zero();
+  Eigen::Vector3d ranger_rpy_cell_rad = Eigen::Vector3d::Zero();
+  double baseline_mm = 0.0;  // camera offset from the laser plane along its y; < 0: other side
+};
+
 struct StripeCellFusionConfig {
   hal::StripeCellGeometry geometry{};
+  std::vector<StripeCameraConfig> cameras;  // further cameras of the same laser plane
   // Expected profile period for the clock-jump check; zero: the step between the last two
   // profiles is expected.
   hal::Duration profile_period{};
   std::size_t expected_profiles = 8192;  // memory reserved per scan (400 mm at 0.05 mm steps)
   TimeLimits limits{};
 };
+
+// The cell as the stripe device `device` sees it: the geometry with its camera's pose and side
+// when `cameras` names it, else unchanged.
+inline StripeCellFusionConfig stripe_cell_for(const StripeCellFusionConfig& c,
+                                              std::string_view device) {
+  StripeCellFusionConfig out = c;
+  for (const StripeCameraConfig& cam : c.cameras) {
+    if (cam.name != device) continue;
+    out.geometry.ranger_position_cell_mm = cam.ranger_position_cell_mm;
+    out.geometry.ranger_rpy_cell_rad = cam.ranger_rpy_cell_rad;
+    out.geometry.ranger.baseline_mm = cam.baseline_mm;
+  }
+  return out;
+}
+
+// The name of the device's camera in `cameras`, or empty when it is the first camera.
+inline std::string stripe_camera_of(const StripeCellFusionConfig& c, std::string_view device) {
+  for (const StripeCameraConfig& cam : c.cameras) {
+    if (cam.name == device) return cam.name;
+  }
+  return {};
+}
 
 struct PanTiltFusionConfig {
   hal::PanTiltGeometry geometry{};

@@ -21,26 +21,42 @@ using namespace calibrate;
 
 int run_stripe(const CommonArgs& a, const std::vector<double>& cube,
                const std::vector<double>& pose) {
-  if (a.scans.size() != 1) throw std::runtime_error("stripe: exactly one --scans sweep");
-  const calib::RawSweep sweep = load_sweep(a.scans[0], calib::SweepKind::kStripe);
   const fusion::FusionConfig config = start_config(a);
-  const hal::StripeCellGeometry& start = config.stripe_cell.geometry;
-  calib::StripeCalibrationInput in;
-  in.profiles = sweep.profiles;
-  in.axis_mm = sweep.axis_mm;
+  const fusion::StripeCellFusionConfig& cell = config.stripe_cell;
+  // Sweep k is camera k: the first [fusion.stripe_cell], then [[fusion.stripe_cell.cameras]].
+  if (a.scans.size() > 1 + cell.cameras.size()) {
+    throw std::runtime_error("stripe: " + std::to_string(a.scans.size()) +
+                             " sweeps, but the configuration has " +
+                             std::to_string(1 + cell.cameras.size()) +
+                             " camera(s) ([fusion.stripe_cell] and "
+                             "[[fusion.stripe_cell.cameras]]), one sweep each");
+  }
+  std::vector<calib::RawSweep> sweeps;
+  std::vector<daemon::StripeCameraStart> cameras;
+  calib::StripeRigInput in;
+  for (std::size_t k = 0; k < a.scans.size(); ++k) {
+    sweeps.push_back(load_sweep(a.scans[k], calib::SweepKind::kStripe));
+    const std::string name = k == 0 ? std::string() : cell.cameras[k - 1].name;
+    cameras.push_back({name, fusion::stripe_cell_for(cell, name).geometry});
+  }
+  for (std::size_t k = 0; k < sweeps.size(); ++k) {
+    in.cameras.push_back({sweeps[k].profiles, sweeps[k].axis_mm, cameras[k].start});
+  }
   in.cube = {cube[0], cube[1]};
   in.T_table_cube = pose_of(pose);
   calib::StripeCalibrationOptions options;
   options.planes.seed = a.seed;
-  const calib::StripeCalibrationResult r = calib::calibrate_stripe_cell(in, start, options);
+  const calib::StripeRigResult r = calib::calibrate_stripe_rig(in, options);
   if (!r.ok) {
     std::cerr << "rangefit calibrate stripe: " << r.reason << "\n";
     return kExitNotFound;
   }
   // The same fragment and report as the service's calibrate request writes.
-  const std::string source = "sweep " + a.scans[0];
-  write_result(out_path(a, "calibration_stripe.toml"), daemon::stripe_calibration_toml(r, source),
-               daemon::stripe_calibration_report(r, start, source));
+  std::string source = a.scans.size() > 1 ? "sweeps" : "sweep";
+  for (const std::string& s : a.scans) source += " " + s;
+  write_result(out_path(a, "calibration_stripe.toml"),
+               daemon::stripe_calibration_toml(r, cameras, source),
+               daemon::stripe_calibration_report(r, cameras, source));
   return kExitOk;
 }
 
@@ -53,14 +69,18 @@ void add_calibrate_command(CLI::App& app, int* exit_code) {
       "review, never applied)");
   cmd->require_subcommand(1);
   {
-    auto* s = cmd->add_subcommand("stripe",
-                                  "stripe cell from one sweep over the hollow calibration cube");
+    auto* s = cmd->add_subcommand(
+        "stripe",
+        "stripe cell from a sweep over the hollow calibration cube, or one per camera of the "
+        "laser plane");
     struct Args {
       CommonArgs common;
       std::vector<double> cube{120.0, 12.0}, pose;
     };
     auto a = std::make_shared<Args>();
-    add_common(s, a->common, "one raw stripe sweep (calib/raw_sweep_text.hpp)");
+    add_common(s, a->common,
+               "raw stripe sweep (calib/raw_sweep_text.hpp); one per camera, the first camera's "
+               "first, then those of [[fusion.stripe_cell.cameras]] in order");
     add_cube_options(s, a->cube, a->pose, "table");
     on_run(s, exit_code, [a] { return run_stripe(a->common, a->cube, a->pose); });
   }

@@ -9,14 +9,23 @@
 // not the ranger's raw profiles; fusion mapped every profile point q at axis position s to
 // p = T_cell_ranger q - s d with the configured geometry, which is invertible: s is where p
 // pierces the configured laser plane, q = T_cell_ranger^-1 (p + s d). The configured geometry
-// is the calibration's start, as in the CLI's --config.
+// is the calibration's start, as in the CLI's --config. The sweep is written to the spool entry
+// as raw_sweep_stripe.txt, the file `rangefit calibrate stripe --scans` reads.
+//
+// Several cameras of one laser plane (the stripe devices [[fusion.stripe_cell.cameras]] names,
+// besides the first) calibrate together: each sweeps the cube in a request of its own, and the
+// last names the earlier ones in `scans`; they are solved as one rig (calib/
+// stripe_calibration.hpp), and the result holds every camera's fields.
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "calib/raw_sweep_text.hpp"
 #include "calib/stripe_calibration.hpp"
+#include "daemon/service/calibration_records.hpp"
 #include "daemon/service/scan_sensor.hpp"
 #include "daemon/service/scan_types.hpp"
 #include "detect/common/point_cloud.hpp"
@@ -45,14 +54,35 @@ struct RawStripeProfiles {
 RawStripeProfiles raw_stripe_profiles(const PointCloud& cloud_in_cell,
                                       const hal::StripeCellGeometry& g);
 
-// The [fusion.stripe_cell] fields of the result, and the report beside them.
-std::string stripe_calibration_toml(const calib::StripeCalibrationResult& r,
+// One camera of a stripe calibration: the stripe device's name in [[fusion.stripe_cell.cameras]],
+// or empty for the cell's first camera ([fusion.stripe_cell] itself); its configured layout.
+struct StripeCameraStart {
+  std::string name;
+  hal::StripeCellGeometry start;
+};
+
+// The [fusion.stripe_cell] fields of the result (the first camera's pose when it took part, and
+// the axis) and a [[fusion.stripe_cell.cameras]] entry per further camera; the report beside
+// them. cameras: one per camera of r, in its order.
+std::string stripe_calibration_toml(const calib::StripeRigResult& r,
+                                    std::span<const StripeCameraStart> cameras,
                                     const std::string& source);
-std::string stripe_calibration_report(const calib::StripeCalibrationResult& r,
-                                      const hal::StripeCellGeometry& start,
+std::string stripe_calibration_report(const calib::StripeRigResult& r,
+                                      std::span<const StripeCameraStart> cameras,
                                       const std::string& source);
 
+// What a stripe calibrate request keeps for a later one that names it: the camera's sweep, its
+// configured layout and the cube it swept.
+struct StripeCalibrationSweep {
+  std::string sensor;
+  StripeCameraStart camera;
+  calib::RawSweep sweep;
+  CalibrationTarget target;
+};
+using StripeCalibrationSweeps = CalibrationRecords<StripeCalibrationSweep>;
+
 DetectionResult calibrate_request(const PointCloud& cloud, const ScanRequest& request,
-                                  const ScanSensor& sensor, std::uint64_t default_seed);
+                                  const ScanSensor& sensor, StripeCalibrationSweeps& sweeps,
+                                  std::uint64_t default_seed);
 
 }  // namespace rangefit::daemon

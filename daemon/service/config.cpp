@@ -373,6 +373,16 @@ void read_devices(FieldReader& r, DaemonConfig& c, std::string_view source_name,
           "devices[" + std::to_string(i) + "].motion: no device named \"" + m + "\"");
     }
   }
+  // A further camera of the stripe cell's laser plane is a stripe device of that name.
+  const auto& cameras = c.fusion.stripe_cell.cameras;
+  for (std::size_t i = 0; i < cameras.size(); ++i) {
+    const DeviceConfig* d = c.device(cameras[i].name);
+    if (d == nullptr || d->kind.name() != std::string_view("stripe")) {
+      throw io::TomlError(source_name, 0,
+                          "fusion.stripe_cell.cameras[" + std::to_string(i) +
+                              "].name: no stripe device named \"" + cameras[i].name + "\"");
+    }
+  }
 }
 
 // [[objects]]: unique names.

@@ -31,7 +31,7 @@ DetectionResult ModelDetector::detect(const PointCloud& cloud, const ScanRequest
         return calibrate_pan_tilt_request(cloud, request, seen, pan_tilt_sweeps_,
                                           config_.detection.seed);
       }
-      return calibrate_request(cloud, request, seen, config_.detection.seed);
+      return calibrate_request(cloud, request, seen, stripe_sweeps_, config_.detection.seed);
     case DetectKind::kBore:
       break;
   }

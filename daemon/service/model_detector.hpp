@@ -6,6 +6,7 @@
 
 #include "daemon/service/calibrate_css_request.hpp"
 #include "daemon/service/calibrate_pan_tilt_request.hpp"
+#include "daemon/service/calibrate_request.hpp"
 #include "daemon/service/config.hpp"
 #include "daemon/service/pipeline.hpp"
 #include "detect/bore/bore_workspace.hpp"
@@ -31,6 +32,7 @@ class ModelDetector final : public Detector {
   // The robot poses and sweeps calibration requests recorded, for the requests that join them.
   CssCalibrationPoses css_poses_;
   PanTiltCalibrationSweeps pan_tilt_sweeps_;
+  StripeCalibrationSweeps stripe_sweeps_;
 };
 
 }  // namespace rangefit::daemon

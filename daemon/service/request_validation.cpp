@@ -123,10 +123,6 @@ std::string check_cube_target(const CalibrationTarget& t, bool pan_tilt) {
   if (t.tilt_rad && !pan_tilt) return "tilt_rad is for the pantilt target only";
   if (t.tilt_rad && !(std::abs(*t.tilt_rad) <= 0.5 * std::numbers::pi))
     return "tilt_rad must be within +-pi/2";
-  if (!t.scans.empty() && !pan_tilt) {
-    return "scans is for the pantilt and css targets (calibrated over several requests); the "
-           "stripe cell calibrates from one sweep";
-  }
   return "";
 }
 

@@ -11,7 +11,8 @@ ScanSensor css_sensor(const hal::CssGeometry& g, double omega_zero_rad) {
   return s;
 }
 
-ScanSensor stripe_sensor(const hal::StripeCellGeometry& g, double from_mm, double to_mm) {
+ScanSensor stripe_sensor(const hal::StripeCellGeometry& g, double from_mm, double to_mm,
+                         std::string camera) {
   const Eigen::Isometry3d T0 = g.T_world_ranger(0.0);
   ScanSensor s;
   SensorView& v = s.view;
@@ -23,6 +24,7 @@ ScanSensor stripe_sensor(const hal::StripeCellGeometry& g, double from_mm, doubl
   v.sweep_min = std::min(from_mm, to_mm);
   v.sweep_max = std::max(from_mm, to_mm);
   s.stripe = g;
+  s.stripe_camera = std::move(camera);
   return s;
 }
 

@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "detect/common/sensor_view.hpp"
@@ -25,6 +26,7 @@ struct ScanSensor {
   // back to the ranger's raw profiles (daemon/service/calibrate_request.hpp).
   Eigen::Isometry3d T_scan_fusion = Eigen::Isometry3d::Identity();
   std::optional<hal::StripeCellGeometry> stripe;
+  std::string stripe_camera;  // its name in [[fusion.stripe_cell.cameras]]; empty: the first
   // The CSS geometry and joint zero fusion used (omega = reported angle - zero): what takes a
   // fused CSS point back to the joint angle, beam angle and range it was made of.
   struct CssFusion {
@@ -45,7 +47,9 @@ ScanSensor css_sensor(const hal::CssGeometry& g, double omega_zero_rad);
 
 // The stripe cell in the table frame (the fused cloud's): the fan apex moves relative to the
 // table by -s * axis_direction while the axis runs from `from` to `to` (mm).
-ScanSensor stripe_sensor(const hal::StripeCellGeometry& g, double from_mm, double to_mm);
+// camera: as ScanSensor::stripe_camera.
+ScanSensor stripe_sensor(const hal::StripeCellGeometry& g, double from_mm, double to_mm,
+                         std::string camera = {});
 
 // The pan-tilt head in its world frame (eq. 5.7): the laser plane turns about world x through
 // the pan-tilt centre by pan - pan_zero in [-half, +half], at the fixed tilt the unit reports.

@@ -199,6 +199,69 @@ TEST(CalibrateCommand, BadSphereScanFileIsBadInputNamingTheLine) {
   fs::remove_all(dir);
 }
 
+// Two cameras of one laser plane, one on each side: a sweep each, in the order the configuration
+// lists the cameras; the fragment holds both, and reads back as the true cell.
+TEST(CalibrateCommand, StripeCalibratesTheCamerasOfOneLaserPlaneFromASweepEach) {
+  const fs::path dir = temp_dir("stripe_rig");
+  const hal::StripeCellGeometry nominal;
+  const hal::StripeCellGeometry truth_a = perturbed_cell(nominal, 8);
+  Eigen::Isometry3d P = Eigen::Isometry3d::Identity();
+  P.linear() = Eigen::AngleAxisd(-3.0 * kDeg, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  P.translation() = Eigen::Vector3d(-4.0, 0.0, 7.0);
+  const hal::StripeCellGeometry truth_b = other_side_camera(truth_a, P);
+  const Eigen::Isometry3d T_cube = cube_between_cameras();
+  for (const auto& [name, sweep] :
+       {std::pair{"a.txt", stripe_cube_sweep(truth_a, {.sigma_mm = 0.06, .seed = 4}, 2.0, T_cube)},
+        std::pair{"b.txt",
+                  other_side_sweep(truth_a, P, {.sigma_mm = 0.06, .seed = 5}, 2.0, T_cube)}}) {
+    calib::RawSweep raw;
+    raw.axis_mm = sweep.axis;
+    raw.profiles = sweep.profiles;
+    std::ofstream(dir / name) << calib::format_raw_sweep(raw);
+  }
+  const hal::StripeCellGeometry start_b = other_side_camera(nominal, Eigen::Isometry3d::Identity());
+  std::ostringstream config;
+  config.precision(17);
+  config << "[[fusion.stripe_cell.cameras]]\nname = \"stripe_b\"\n"
+         << "ranger_position_cell_mm = [" << start_b.ranger_position_cell_mm.x() << ", "
+         << start_b.ranger_position_cell_mm.y() << ", " << start_b.ranger_position_cell_mm.z()
+         << "]\nranger_rpy_cell_rad = [" << start_b.ranger_rpy_cell_rad.x() << ", "
+         << start_b.ranger_rpy_cell_rad.y() << ", " << start_b.ranger_rpy_cell_rad.z()
+         << "]\nbaseline_mm = -300\n";
+  std::ofstream(dir / "rangefitd.toml") << config.str();
+  const std::string scans =
+      " --scans " + (dir / "a.txt").string() + " --scans " + (dir / "b.txt").string();
+  const std::string rest =
+      " --config " + (dir / "rangefitd.toml").string() + " --cube-pose " + pose_arg(T_cube);
+  ASSERT_EQ(run("calibrate stripe" + scans + rest, dir / "log.txt"), 0) << slurp(dir / "log.txt");
+  const auto parsed = fusion::load_fusion_config(dir / "calibration_stripe.toml");
+  ASSERT_TRUE(parsed.config) << parsed.error << "\n" << slurp(dir / "calibration_stripe.toml");
+  const fusion::StripeCellFusionConfig& cell = parsed.config->stripe_cell;
+  ASSERT_EQ(cell.cameras.size(), 1u);
+  EXPECT_EQ(cell.cameras[0].name, "stripe_b");
+  for (const auto& [name, truth] : {std::pair{"", truth_a}, std::pair{"stripe_b", truth_b}}) {
+    const hal::StripeCellGeometry g = fusion::stripe_cell_for(cell, name).geometry;
+    SCOPED_TRACE(name);
+    EXPECT_LT((g.ranger_position_cell_mm - truth.ranger_position_cell_mm).norm(), 0.05);
+    EXPECT_LT(angle_between(g.T_cell_ranger().linear(), truth.T_cell_ranger().linear()),
+              0.01 * kDeg);
+    EXPECT_EQ(g.ranger.baseline_mm, truth.ranger.baseline_mm);
+  }
+  EXPECT_NE(slurp(dir / "calibration_stripe.toml.report.txt").find("camera 2, \"stripe_b\""),
+            std::string::npos)
+      << slurp(dir / "calibration_stripe.toml.report.txt");
+  // A third sweep has no camera in the configuration to belong to.
+  EXPECT_EQ(run("calibrate stripe" + scans + " --scans " + (dir / "a.txt").string() + rest +
+                    " --out " + (dir / "o.toml").string(),
+                dir / "log3.txt"),
+            1);
+  EXPECT_NE(slurp(dir / "log3.txt").find("3 sweeps, but the configuration has 2 camera(s)"),
+            std::string::npos)
+      << slurp(dir / "log3.txt");
+  EXPECT_FALSE(fs::exists(dir / "o.toml"));
+  fs::remove_all(dir);
+}
+
 TEST(CalibrateCommand, BadSweepFileIsBadInputNamingTheLine) {
   const fs::path dir = temp_dir("bad");
   std::ofstream(dir / "sweep.txt") << "rangefit-raw-sweep 1 stripe 512\np 1.0\n3 1.0\n";

@@ -75,6 +75,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"[[devices]]\nname = \"a\"\nkind = \"css\"\nscene = \"s.toml\"\n"
                 "[devices.sim_fault]\ndisconnect_for_s = -1\n",
                 "devices[0].sim_fault.disconnect_for_s"},
+        BadCase{"[sim]\nscene = \"s.toml\"\n[[devices]]\nname = \"b\"\nkind = \"css\"\n"
+                "[[fusion.stripe_cell.cameras]]\nname = \"b\"\nranger_position_cell_mm = [0, 0, "
+                "0]\nranger_rpy_cell_rad = [0, 0, 0]\nbaseline_mm = 1\n",
+                "fusion.stripe_cell.cameras[0].name: no stripe device named \"b\""},
         BadCase{"[sim]\ntime_scale = -1\n", "sim.time_scale"},
         BadCase{"[sim]\nnoise = 1\n", "sim.noise: must be true or false"},
         BadCase{"[fusion.css]\ndeflection_rad = \"x\"\n", "fusion.css.deflection_rad"},

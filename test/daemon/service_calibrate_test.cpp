@@ -312,7 +312,7 @@ TEST(ServiceCalibratePanTilt, ThreeTiltsGiveTheConfiguredHeadAndTheCliAgrees) {
   fs::remove_all(dir);
 }
 
-TEST(ServiceCalibratePanTilt, TheHeadsTargetTakesItsCliSpellingAndAStripeTargetNoTiltOrScans) {
+TEST(ServiceCalibratePanTilt, TheHeadsTargetTakesItsCliSpellingAndAStripeTargetNoTilt) {
   const fs::path dir = test::fresh_test_dir("rangefit_service_calibrate_pantilt_refused");
   const DaemonConfig config = with_stripe(head_cell(dir), dir / "cube.toml");
   hal::MonotonicClock clock;
@@ -323,11 +323,12 @@ TEST(ServiceCalibratePanTilt, TheHeadsTargetTakesItsCliSpellingAndAStripeTargetN
   tilt_on_stripe.sensor = "stripe";
   EXPECT_NE(refused(tilt_on_stripe).find("tilt_rad is for the pantilt target only"),
             std::string::npos);
+  // A stripe target joins the other cameras' sweeps, checked as the other targets' scans.
   ScanRequest scans_on_stripe = tilt_on_stripe;
   scans_on_stripe.target.tilt_rad.reset();
-  scans_on_stripe.target.scans = {"x"};
-  EXPECT_NE(refused(scans_on_stripe).find("stripe cell calibrates from one sweep"),
-            std::string::npos);
+  scans_on_stripe.target.scans = {"x", "x"};
+  EXPECT_NE(refused(scans_on_stripe).find("scans names a request twice"), std::string::npos)
+      << refused(scans_on_stripe);
   ScanRequest steep = pan_tilt_request("b", 100.0, {});
   EXPECT_NE(refused(steep).find("tilt_rad must be within"), std::string::npos);
   ScanRequest on_stripe = pan_tilt_request("c", 0.0, {});

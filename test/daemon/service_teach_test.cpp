@@ -14,6 +14,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "calib/stripe_calibration.hpp"
 #include "daemon/rangefitd/service.hpp"
 #include "detect/common/angles.hpp"
 #include "detect/learn/model_learning.hpp"
@@ -289,6 +290,82 @@ TEST(ServiceTeach, CalibrateRequestRecoversTheStripeCellAndAppliesNothing) {
   // Never applied: the running configuration is the one it started with.
   EXPECT_EQ(service.config_copy().fusion.stripe_cell.geometry.ranger_position_cell_mm,
             truth.ranger_position_cell_mm);
+  fs::remove_all(dir);
+}
+
+// Two cameras of one laser plane, one on each side of it: each sweeps the cube in a request of
+// its own, the second names the first, and both come back to the configured cell together.
+TEST(ServiceTeach, TwoCamerasOfOneLaserPlaneCalibrateTogether) {
+  const fs::path dir = test::fresh_test_dir("rangefit_service_calibrate_rig");
+  // Body diagonal straight up towards the laser: both sides see the three outer faces.
+  Eigen::Isometry3d T_cube = Eigen::Isometry3d::Identity();
+  T_cube.linear() = (Eigen::AngleAxisd(20.0 * kDeg, Eigen::Vector3d::UnitZ()) *
+                     Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::Ones().normalized(),
+                                                        Eigen::Vector3d::UnitZ()))
+                        .toRotationMatrix();
+  T_cube.translation() = Eigen::Vector3d(5.0, 3.0, 130.0);
+  test::write_cube_scene(dir / "cube.toml", 120.0, 12.0, T_cube, true);
+  DaemonConfig config = stripe_cell(dir, dir / "cube.toml");
+  config.sim.noise = false;
+  DeviceConfig b = config.devices.front();
+  b.name = "stripe_b";
+  config.devices.push_back(b);
+  // Its own frame of the plane: turned 2 deg about the plane's normal, shifted 6 and -5 mm.
+  Eigen::Isometry3d P = Eigen::Isometry3d::Identity();
+  P.linear() = Eigen::AngleAxisd(2.0 * kDeg, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  P.translation() = Eigen::Vector3d(6.0, 0.0, -5.0);
+  const hal::StripeCellGeometry a = config.fusion.stripe_cell.geometry;
+  const Eigen::Isometry3d T_b = a.T_cell_ranger() * P;
+  config.fusion.stripe_cell.cameras.push_back({"stripe_b", T_b.translation(),
+                                               calib::rpy_of(T_b.linear(), a.ranger_rpy_cell_rad),
+                                               -a.ranger.baseline_mm});
+  hal::MonotonicClock clock;
+  Service service(config, clock);
+  auto loop = std::make_unique<test::ServiceLoop>(service);
+  ScanRequest req;
+  req.id = "calibrate-a";
+  req.kind = DetectKind::kCalibrate;
+  req.sensor = "stripe";
+  req.target.kind = "stripe";
+  req.target.T_table_target = T_cube;
+  const auto first = run(service, req);
+  req.id = "calibrate-b";
+  req.sensor = "stripe_b";
+  req.target.scans = {"calibrate-a"};
+  const auto both = run(service, req);
+  req.id = "calibrate-b-again";  // the same camera twice is no rig
+  req.target.scans = {"calibrate-b"};
+  const auto twice = run(service, req);
+  loop.reset();
+  ASSERT_TRUE(first && both && twice);
+  ASSERT_TRUE(first->found) << first->reason;  // the first camera on its own, as before
+  ASSERT_TRUE(both->found) << both->reason << " " << both->details.dump();
+  EXPECT_EQ(both->details.at("cameras").get<int>(), 2);
+  const auto v = [](const nlohmann::json& j) {
+    return Eigen::Vector3d(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>());
+  };
+  const auto& cams = both->details.at("stripe_cameras");
+  ASSERT_EQ(cams.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const hal::StripeCellGeometry truth =
+        fusion::stripe_cell_for(config.fusion.stripe_cell, k == 0 ? "stripe" : "stripe_b").geometry;
+    SCOPED_TRACE(cams[k].dump());
+    EXPECT_EQ(cams[k].at("sensor").get<std::string>(), k == 0 ? "stripe" : "stripe_b");
+    EXPECT_LT((v(cams[k].at("ranger_position_cell_mm")) - truth.ranger_position_cell_mm).norm(),
+              0.05);
+    EXPECT_LT((v(cams[k].at("ranger_rpy_cell_rad")) - truth.ranger_rpy_cell_rad).norm(),
+              0.01 * kDeg);
+  }
+  const auto& files = both->details.at("files");
+  const std::string toml = text_of(files.at("calibration_stripe.toml").get<std::string>());
+  EXPECT_NE(toml.find("[[fusion.stripe_cell.cameras]]"), std::string::npos) << toml;
+  EXPECT_NE(toml.find("name = \"stripe_b\""), std::string::npos) << toml;
+  EXPECT_NE(text_of(files.at("calibration_stripe.toml.report.txt").get<std::string>())
+                .find("piercing points averaged"),
+            std::string::npos);
+  EXPECT_TRUE(fs::exists(files.at("raw_sweep_stripe.txt").get<std::string>()));
+  EXPECT_FALSE(twice->found);
+  EXPECT_NE(twice->reason.find("one sweep per camera"), std::string::npos) << twice->reason;
   fs::remove_all(dir);
 }
 

@@ -98,8 +98,40 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"[fusion.pan_tilt.ranger]\nfan_angle = 1\n",
                 "fusion.pan_tilt.ranger.fan_angle: unknown field"},
         BadCase{"[fusion]\ncss = 3\n", "fusion.css: must be a table"},
-        BadCase{"fusion = 1\n", "fusion: must be a table"},
-        BadCase{"[fusion.css\n", "cell.toml:1"}));
+        BadCase{"fusion = 1\n", "fusion: must be a table"}, BadCase{"[fusion.css\n", "cell.toml:1"},
+        BadCase{"[[fusion.stripe_cell.cameras]]\nranger_position_cell_mm = [0, 0, 0]\n"
+                "ranger_rpy_cell_rad = [0, 0, 0]\nbaseline_mm = 1\n",
+                "name: is required"},
+        BadCase{"[[fusion.stripe_cell.cameras]]\nname = \"b\"\nranger_position_cell_mm = [0, 0, "
+                "0]\nranger_rpy_cell_rad = [0, 0, 0]\nbaseline_mm = 1\nbase = 2\n",
+                "base: unknown field"},
+        BadCase{"[[fusion.stripe_cell.cameras]]\nname = \"b\"\nranger_position_cell_mm = [0, 0, "
+                "0]\nranger_rpy_cell_rad = [0, 0, 0]\nbaseline_mm = 1\n"
+                "[[fusion.stripe_cell.cameras]]\nname = \"b\"\nranger_position_cell_mm = [0, 0, "
+                "0]\nranger_rpy_cell_rad = [0, 0, 0]\nbaseline_mm = 1\n",
+                "\"b\" is given twice"}));
+
+// A further camera of the laser plane: its device sees the cell from its own pose and side; the
+// others see the first camera's, and all share the axis.
+TEST(FusionConfig, AFurtherCameraOfTheLaserPlaneGivesItsDeviceItsOwnPoseAndSide) {
+  const FusionConfigResult r = parse_fusion_config(std::string_view(
+      "[fusion.stripe_cell]\naxis_direction_cell = [0, 0.6, 0.8]\n"
+      "[[fusion.stripe_cell.cameras]]\nname = \"stripe_b\"\n"
+      "ranger_position_cell_mm = [6, 200, 595]\nranger_rpy_cell_rad = [3.1, 0.03, 0]\n"
+      "baseline_mm = -300\n"));
+  ASSERT_TRUE(r.config) << r.error;
+  const StripeCellFusionConfig& c = r.config->stripe_cell;
+  const hal::StripeCellGeometry b = stripe_cell_for(c, "stripe_b").geometry;
+  EXPECT_EQ(b.ranger_position_cell_mm, Eigen::Vector3d(6, 200, 595));
+  EXPECT_EQ(b.ranger_rpy_cell_rad, Eigen::Vector3d(3.1, 0.03, 0));
+  EXPECT_EQ(b.ranger.baseline_mm, -300.0);
+  EXPECT_EQ(b.axis_direction_cell, Eigen::Vector3d(0, 0.6, 0.8));
+  EXPECT_EQ(stripe_camera_of(c, "stripe_b"), "stripe_b");
+  const hal::StripeCellGeometry a = stripe_cell_for(c, "stripe").geometry;
+  EXPECT_EQ(a.ranger_position_cell_mm, hal::StripeCellGeometry{}.ranger_position_cell_mm);
+  EXPECT_EQ(a.ranger.baseline_mm, 300.0);
+  EXPECT_EQ(stripe_camera_of(c, "stripe"), "");
+}
 
 TEST(FusionConfig, ErrorsNameTheLineAndCrashInputsAreRefused) {
   EXPECT_EQ(

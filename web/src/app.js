@@ -132,7 +132,7 @@ function calibrationTarget() {
       t.tilt_rad = Number($('calibrate-tilt').value);
     }
   }
-  if (kind !== 'stripe' && scans.length) t.scans = scans;
+  if (scans.length) t.scans = scans;
   return t;
 }
 

@@ -23,7 +23,8 @@ ScanOutcome stripe_scan(RealDevices& cell, const DeviceConfig& device, const Sca
   if (ranger == nullptr) return {hal::Status::Error(why), {}};
   const std::string axis_name = axis->name();
   if (hal::Status s = usable(device.name, *ranger, axis_name, *axis); !s) return {s, {}};
-  const fusion::StripeCellFusionConfig& fc = cell.config().fusion.stripe_cell;
+  const fusion::StripeCellFusionConfig fc =
+      fusion::stripe_cell_for(cell.config().fusion.stripe_cell, device.name);
   double from = 0.0, to = fc.geometry.axis_travel_mm;
   if (request.sweep_start != request.sweep_end) {
     from = request.sweep_start;
@@ -47,8 +48,11 @@ ScanOutcome stripe_scan(RealDevices& cell, const DeviceConfig& device, const Sca
     if (const hal::Status halted = axis->halt(); !halted) why += "; halt failed: " + halted.message;
   }
   if (end != ScanLoopEnd::kDone) return failed(device, why);
-  return finish_scan(device, assembler.finish(), Eigen::Isometry3d::Identity(),
-                     stripe_sensor(fc.geometry, from, to), &cell.clock());
+  return finish_scan(
+      device, assembler.finish(), Eigen::Isometry3d::Identity(),
+      stripe_sensor(fc.geometry, from, to,
+                    fusion::stripe_camera_of(cell.config().fusion.stripe_cell, device.name)),
+      &cell.clock());
 }
 
 }  // namespace

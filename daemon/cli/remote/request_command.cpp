@@ -304,16 +304,24 @@ void add_calibrate_pantilt_request(CLI::App* calibrate, int* exit_code) {
       [exit_code] { *exit_code = run(pantilt_args, daemon::DetectKind::kCalibrate); });
 }
 
-// `rangefit request calibrate stripe`: one sweep over the hollow cube.
+// `rangefit request calibrate stripe`: one sweep over the hollow cube; the request that names
+// the other cameras' requests (--scans) solves for all of them.
 void add_calibrate_request(CLI::App* cmd, int* exit_code) {
   static RequestArgs calibrate_args;
   auto* calibrate = cmd->add_subcommand(
       "calibrate", "scan a calibration body and calibrate; written to the spool, never applied");
   calibrate->require_subcommand(1);
   auto* stripe = calibrate->add_subcommand(
-      "stripe", "the stripe cell from one sweep over the hollow cube (as `rangefit calibrate`)");
+      "stripe",
+      "the stripe cell from a sweep over the hollow cube, one request per camera of the laser "
+      "plane (as `rangefit calibrate stripe`)");
   common(stripe, calibrate_args);
   add_cube_options(stripe, calibrate_args, "on the table");
+  stripe
+      ->add_option("--scans", calibrate_args.scans,
+                   "ids of the earlier stripe requests (the laser plane's other cameras, each "
+                   "its own --sensor) to solve with this one: ID,ID,...")
+      ->delimiter(',');
   stripe->callback(
       [exit_code] { *exit_code = run(calibrate_args, daemon::DetectKind::kCalibrate); });
   add_calibrate_pantilt_request(calibrate, exit_code);

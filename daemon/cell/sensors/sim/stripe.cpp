@@ -10,7 +10,9 @@ namespace {
 
 ScanOutcome stripe_scan(SimCell::Run& run) {
   run.motion_name = run.device.name + "/axis";
-  const fusion::StripeCellFusionConfig& fc = run.config.fusion.stripe_cell;
+  // A further camera of the laser plane sees the cell from its own pose and side.
+  const fusion::StripeCellFusionConfig fc =
+      fusion::stripe_cell_for(run.config.fusion.stripe_cell, run.device.name);
   sim::StripeCellOptions o;
   o.geometry = fc.geometry;
   o.quantise = run.config.sim.noise;
@@ -48,8 +50,11 @@ ScanOutcome stripe_scan(SimCell::Run& run) {
   const bool ok = end == ScanLoopEnd::kDone;
   run.end(ranger, axis, ok);
   if (!ok) return {hal::Status::Error(run.device.name + ": " + why), {}};
-  return finish_scan(run.device, assembler.finish(), run.scene.scene.mounts.T_scene_stripe,
-                     stripe_sensor(fc.geometry, from, to), &run.clock);
+  return finish_scan(
+      run.device, assembler.finish(), run.scene.scene.mounts.T_scene_stripe,
+      stripe_sensor(fc.geometry, from, to,
+                    fusion::stripe_camera_of(run.config.fusion.stripe_cell, run.device.name)),
+      &run.clock);
 }
 
 }  // namespace
