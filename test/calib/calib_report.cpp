@@ -1,8 +1,9 @@
 // Spread over many seeds against the reported covariance (what the tests check with few seeds):
-//   build/test/calib/calib_report [SEEDS] [stripe|css|pantilt|all]     (default 20 all)
+//   build/test/calib/calib_report [SEEDS] [stripe|css|pantilt|all] [quantised]  (default 20 all)
 // Per calibration and parameter: the rms error over the seeds, the mean reported 1 sigma and
 // their ratio (1: the covariance is right; the goal is within a factor of 1.5), all at 0.06 mm
-// noise.
+// noise. `quantised`: the stripe cell's and the head's depths also rounded to the chip's rows
+// as the real ranger (and the daemon's simulated one) does; the cell is then drawn anew per seed.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -40,16 +41,20 @@ void print(const char* title, int n, std::vector<Spread>& s) {
   std::printf("  worst factor %.2f (goal <= 1.5)\n", worst);
 }
 
-void stripe(int seeds) {
+void stripe(int seeds, bool quantise) {
   const hal::StripeCellGeometry nominal;
-  const hal::StripeCellGeometry truth = perturbed_cell(nominal, 7);
   std::vector<Spread> s = {{"x mm", 1.0},        {"y mm", 1.0},        {"z mm", 1.0},
                            {"rx deg", 1 / kDeg}, {"ry deg", 1 / kDeg}, {"rz deg", 1 / kDeg}};
   int n = 0;
   for (int k = 0; k < seeds; ++k) {
-    const auto r = calibrate(
-        stripe_cube_sweep(truth, {.sigma_mm = 0.06, .seed = 100000u + static_cast<unsigned>(k)}),
-        nominal);
+    // Quantised depths are a fixed function of the geometry: the cell is drawn anew per seed so
+    // that their errors vary over the seeds.
+    const hal::StripeCellGeometry truth =
+        perturbed_cell(nominal, quantise ? 500u + static_cast<unsigned>(k) : 7u);
+    const auto r = calibrate(stripe_cube_sweep(truth, {.sigma_mm = 0.06,
+                                                       .quantise = quantise,
+                                                       .seed = 100000u + static_cast<unsigned>(k)}),
+                             nominal);
     if (!r.ok) {
       std::printf("stripe seed %d: %s\n", k, r.reason.c_str());
       continue;
@@ -66,7 +71,8 @@ void stripe(int seeds) {
     }
     ++n;
   }
-  print("stripe cell, 1 mm profiles", n, s);
+  print(quantise ? "stripe cell, 1 mm profiles, depths quantised" : "stripe cell, 1 mm profiles", n,
+        s);
 }
 
 void css(int seeds) {
@@ -109,17 +115,20 @@ void css(int seeds) {
   print("CSS mount, 8 sphere scans of 7 revolutions", n, s);
 }
 
-void pan_tilt(int seeds) {
+void pan_tilt(int seeds, bool quantise) {
   const hal::PanTiltGeometry nominal = configured_head();
-  const hal::PanTiltGeometry truth = perturbed_head(nominal, 7);
   std::vector<Spread> s = {{"t_s x mm", 1.0},          {"t_s y mm", 1.0},
                            {"t_s z mm", 1.0},          {"t_w x mm", 1.0},
                            {"t_w y mm", 1.0},          {"t_w z mm", 1.0},
                            {"pan zero deg", 1 / kDeg}, {"tilt zero deg", 1 / kDeg}};
   int n = 0;
   for (int k = 0; k < seeds; ++k) {
-    const auto r = run_pan_tilt(
-        pan_tilt_sweeps(truth, 0.06, 300000u + 10u * static_cast<unsigned>(k)), nominal);
+    const hal::PanTiltGeometry truth =
+        perturbed_head(nominal, quantise ? 500u + static_cast<unsigned>(k) : 7u);
+    const auto r =
+        run_pan_tilt(pan_tilt_sweeps(truth, 0.06, 300000u + 10u * static_cast<unsigned>(k),
+                                     {-6.0, 0.0, 6.0}, 0.2, quantise),
+                     nominal);
     if (!r.ok) {
       std::printf("pan-tilt seed %d: %s\n", k, r.reason.c_str());
       continue;
@@ -134,7 +143,9 @@ void pan_tilt(int seeds) {
     }
     ++n;
   }
-  print("pan-tilt head, 3 sweeps at tilt -6/0/6 deg", n, s);
+  print(quantise ? "pan-tilt head, 3 sweeps at tilt -6/0/6 deg, depths quantised"
+                 : "pan-tilt head, 3 sweeps at tilt -6/0/6 deg",
+        n, s);
 }
 
 }  // namespace
@@ -143,11 +154,12 @@ int main(int argc, char** argv) {
   const int seeds = argc > 1 ? std::atoi(argv[1]) : 20;
   const std::string which = argc > 2 ? argv[2] : "all";
   if (seeds < 2 || (which != "all" && which != "stripe" && which != "css" && which != "pantilt")) {
-    std::fprintf(stderr, "usage: calib_report [SEEDS >= 2] [stripe|css|pantilt|all]\n");
+    std::fprintf(stderr, "usage: calib_report [SEEDS >= 2] [stripe|css|pantilt|all] [quantised]\n");
     return 1;
   }
-  if (which == "all" || which == "stripe") stripe(seeds);
+  const bool quantise = argc > 3 && std::string(argv[3]) == "quantised";
+  if (which == "all" || which == "stripe") stripe(seeds, quantise);
   if (which == "all" || which == "css") css(seeds);
-  if (which == "all" || which == "pantilt") pan_tilt(seeds);
+  if (which == "all" || which == "pantilt") pan_tilt(seeds, quantise);
   return 0;
 }

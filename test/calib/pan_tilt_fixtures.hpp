@@ -18,15 +18,16 @@ struct PanTiltSweeps {
 inline PanTiltSweeps pan_tilt_sweeps(const hal::PanTiltGeometry& truth, double sigma_mm,
                                      std::uint64_t seed,
                                      std::vector<double> tilts_deg = {-6.0, 0.0, 6.0},
-                                     double step_deg = 0.2) {
+                                     double step_deg = 0.2, bool quantise = false) {
   const calib::CalibrationCube cube;
   const sim::Scene scene =
       sim::calibration_cube_scene(cube.edge_mm, cube.bar_mm, cube_before_head(), false);
   PanTiltSweeps s;
   for (std::size_t k = 0; k < tilts_deg.size(); ++k) {
     s.angles.push_back(pan_sweep(tilts_deg[k], step_deg));
-    s.profiles.push_back(sim::simulate_pan_tilt_sweep(scene, truth, s.angles.back(),
-                                                      {.sigma_mm = sigma_mm, .seed = seed + k}));
+    s.profiles.push_back(sim::simulate_pan_tilt_sweep(
+        scene, truth, s.angles.back(),
+        {.sigma_mm = sigma_mm, .quantise = quantise, .seed = seed + k}));
   }
   return s;
 }
