@@ -160,6 +160,25 @@ inline Sweep other_side_sweep(const hal::StripeCellGeometry& a, const Eigen::Iso
   return s;
 }
 
+// Squared errors of calibrated ranger poses in units of their reported sigmas, over the
+// position's and the rotation's three axes: their mean is 1 when the covariance is right.
+struct NormalisedErrors {
+  double z2 = 0.0;
+  int count = 0;
+  void add(const calib::StripeCalibrationResult& r, const hal::StripeCellGeometry& truth) {
+    const Eigen::Vector3d dp = r.geometry.ranger_position_cell_mm - truth.ranger_position_cell_mm;
+    const Eigen::AngleAxisd w(truth.T_cell_ranger().linear().transpose() *
+                              r.geometry.T_cell_ranger().linear());
+    const Eigen::Vector3d dw = w.angle() * w.axis();
+    for (int i = 0; i < 3; ++i) {
+      z2 += std::pow(dp[i] / r.position_sigma_mm[i], 2) +
+            std::pow(dw[i] / r.rotation_sigma_rad[i], 2);
+      count += 2;
+    }
+  }
+  double mean() const { return count > 0 ? z2 / count : 0.0; }
+};
+
 // The stripe cell calibrated from that sweep, starting from `start` (the configured cell).
 inline calib::StripeCalibrationResult calibrate(const Sweep& s,
                                                 const hal::StripeCellGeometry& start) {

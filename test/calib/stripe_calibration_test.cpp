@@ -51,27 +51,16 @@ TEST(StripeCalibration, RecoversACellOffByTheFullRangeInEveryField) {
 TEST(StripeCalibration, ReportsACovarianceThatMatchesTheNoise) {
   const hal::StripeCellGeometry nominal;
   const hal::StripeCellGeometry truth = perturbed_cell(nominal, 7);
-  const Eigen::Matrix3d R_true = truth.T_cell_ranger().linear();
-  double z2 = 0.0;
-  int count = 0;
+  NormalisedErrors e;
   for (const std::uint64_t seed : {11u, 12u, 13u}) {
     const auto r =
         calibrate(stripe_cube_sweep(truth, {.sigma_mm = 0.06, .seed = seed}, 2.0), nominal);
     ASSERT_TRUE(r.ok) << r.reason;
-    const Eigen::Vector3d dp = r.geometry.ranger_position_cell_mm - truth.ranger_position_cell_mm;
-    const Eigen::AngleAxisd w(R_true.transpose() * r.geometry.T_cell_ranger().linear());
-    const Eigen::Vector3d dw = w.angle() * w.axis();
-    for (int i = 0; i < 3; ++i) {
-      z2 += std::pow(dp[i] / r.position_sigma_mm[i], 2) +
-            std::pow(dw[i] / r.rotation_sigma_rad[i], 2);
-      count += 2;
-    }
+    e.add(r, truth);
   }
-  // Mean squared normalised error: 1 when the covariance is right; a factor of 1.5 in sigma
-  // is 2.25 in it.
-  const double mean = z2 / count;
-  EXPECT_GT(mean, 1.0 / 2.25);
-  EXPECT_LT(mean, 2.25);
+  // A factor of 1.5 in sigma is 2.25 in the mean squared normalised error.
+  EXPECT_GT(e.mean(), 1.0 / 2.25);
+  EXPECT_LT(e.mean(), 2.25);
 }
 
 TEST(StripeCalibration, EmptySweepIsAClearError) {

@@ -85,31 +85,17 @@ TEST_P(StripeRigSeeds, BothCamerasAndTheAxisAreRecoveredFromAStartFarOff) {
 INSTANTIATE_TEST_SUITE_P(Perturbed, StripeRigSeeds, ::testing::Values(1u, 2u));
 
 TEST(StripeRig, ReportsPerCameraCovariancesThatMatchTheNoise) {
-  double z2 = 0.0;
-  int count = 0;
+  NormalisedErrors e;
   for (const std::uint64_t seed : {21u, 22u, 23u}) {
     const Rig rig = two_sided_rig(7, {.sigma_mm = 0.06, .seed = seed});
     const calib::StripeRigResult r = calibrate_rig(rig.a, rig.b);
     ASSERT_TRUE(r.ok) << r.reason;
-    for (std::size_t k = 0; k < 2; ++k) {
-      const hal::StripeCellGeometry& truth = k == 0 ? rig.truth_a : rig.truth_b;
-      const calib::StripeCalibrationResult& c = r.cameras[k];
-      const Eigen::Vector3d dp = c.geometry.ranger_position_cell_mm - truth.ranger_position_cell_mm;
-      const Eigen::AngleAxisd w(truth.T_cell_ranger().linear().transpose() *
-                                c.geometry.T_cell_ranger().linear());
-      const Eigen::Vector3d dw = w.angle() * w.axis();
-      for (int i = 0; i < 3; ++i) {
-        z2 += std::pow(dp[i] / c.position_sigma_mm[i], 2) +
-              std::pow(dw[i] / c.rotation_sigma_rad[i], 2);
-        count += 2;
-      }
-    }
+    e.add(r.cameras[0], rig.truth_a);
+    e.add(r.cameras[1], rig.truth_b);
   }
-  // Mean squared normalised error: 1 when the covariance is right; a factor of 1.5 in sigma
-  // is 2.25 in it.
-  const double mean = z2 / count;
-  EXPECT_GT(mean, 1.0 / 2.25);
-  EXPECT_LT(mean, 2.25);
+  // A factor of 1.5 in sigma is 2.25 in the mean squared normalised error.
+  EXPECT_GT(e.mean(), 1.0 / 2.25);
+  EXPECT_LT(e.mean(), 2.25);
 }
 
 TEST(StripeRig, ACameraThatMissesTheCubeIsNamed) {

@@ -43,6 +43,17 @@ DaemonConfig stripe_cell(const fs::path& dir, const fs::path& scene) {
   return config;
 }
 
+// The calibration cube held on a corner in the table frame: its body diagonal along b, turned
+// 20 deg about it so that no edge lies in the laser plane.
+Eigen::Isometry3d cube_on_corner(const Eigen::Vector3d& b) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = (Eigen::AngleAxisd(20.0 * kDeg, b) *
+                Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::Ones().normalized(), b))
+                   .toRotationMatrix();
+  T.translation() = Eigen::Vector3d(5.0, 3.0, 130.0);
+  return T;
+}
+
 std::optional<DetectionResult> run(Service& service, const ScanRequest& req) {
   EXPECT_TRUE(service.board().reserve(req.id));
   if (const auto refused = service.admit(req)) return refused;
@@ -245,12 +256,8 @@ TEST(ServiceTeach, LearnOnAnEmptyTableIsNotFound) {
 TEST(ServiceTeach, CalibrateRequestRecoversTheStripeCellAndAppliesNothing) {
   const fs::path dir = test::fresh_test_dir("rangefit_service_calibrate");
   // Held on a corner, a body diagonal tilted toward the ranger (as test/calib's fixture).
-  const Eigen::Vector3d b(0.0, -std::sin(18.0 * kDeg), std::cos(18.0 * kDeg));
-  Eigen::Isometry3d T_cube = Eigen::Isometry3d::Identity();
-  T_cube.linear() = (Eigen::AngleAxisd(20.0 * kDeg, b) *
-                     Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::Ones().normalized(), b))
-                        .toRotationMatrix();
-  T_cube.translation() = Eigen::Vector3d(5.0, 3.0, 130.0);
+  const Eigen::Isometry3d T_cube =
+      cube_on_corner(Eigen::Vector3d(0.0, -std::sin(18.0 * kDeg), std::cos(18.0 * kDeg)));
   test::write_cube_scene(dir / "cube.toml", 120.0, 12.0, T_cube, true);
   DaemonConfig config = stripe_cell(dir, dir / "cube.toml");
   config.sim.noise = false;
@@ -298,12 +305,7 @@ TEST(ServiceTeach, CalibrateRequestRecoversTheStripeCellAndAppliesNothing) {
 TEST(ServiceTeach, TwoCamerasOfOneLaserPlaneCalibrateTogether) {
   const fs::path dir = test::fresh_test_dir("rangefit_service_calibrate_rig");
   // Body diagonal straight up towards the laser: both sides see the three outer faces.
-  Eigen::Isometry3d T_cube = Eigen::Isometry3d::Identity();
-  T_cube.linear() = (Eigen::AngleAxisd(20.0 * kDeg, Eigen::Vector3d::UnitZ()) *
-                     Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::Ones().normalized(),
-                                                        Eigen::Vector3d::UnitZ()))
-                        .toRotationMatrix();
-  T_cube.translation() = Eigen::Vector3d(5.0, 3.0, 130.0);
+  const Eigen::Isometry3d T_cube = cube_on_corner(Eigen::Vector3d::UnitZ());
   test::write_cube_scene(dir / "cube.toml", 120.0, 12.0, T_cube, true);
   DaemonConfig config = stripe_cell(dir, dir / "cube.toml");
   config.sim.noise = false;

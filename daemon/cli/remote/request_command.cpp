@@ -53,7 +53,7 @@ struct RequestArgs {
   std::optional<double> tilt_rad;                    // calibrate pantilt: the held tilt
   double sphere_radius_mm = 0;                       // calibrate css
   std::vector<double> robot_pose;                    // calibrate css: X,Y,Z,ROLL,PITCH,YAW
-  std::vector<std::string> scans;                    // calibrate pantilt, css: earlier request ids
+  std::vector<std::string> scans;                    // calibrate: earlier request ids to join
 };
 
 Eigen::Vector3d vec3(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
@@ -104,7 +104,7 @@ int run(RequestArgs& a, daemon::DetectKind kind) {
     const std::vector<double>& v = a.cube_pose;
     req.target.T_table_target = hal::pose_xyz_rpy(v[0], v[1], v[2], v[3], v[4], v[5]);
     req.target.tilt_rad = a.tilt_rad;  // pantilt only; unset for stripe
-    req.target.scans = a.scans;        // pantilt only; empty for stripe
+    req.target.scans = a.scans;
   }
   try {
     const std::uint32_t domain = a.domain ? *a.domain : daemon::ros_domain_id().value_or(0);
