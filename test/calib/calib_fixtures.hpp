@@ -160,6 +160,44 @@ inline Sweep other_side_sweep(const hal::StripeCellGeometry& a, const Eigen::Iso
   return s;
 }
 
+// Camera b's frame of the laser plane against camera a's.
+inline Eigen::Isometry3d b_in_a() {
+  Eigen::Isometry3d P = Eigen::Isometry3d::Identity();
+  P.linear() = Eigen::AngleAxisd(2.0 * kDeg, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  P.translation() = Eigen::Vector3d(6.0, 0.0, -5.0);
+  return P;
+}
+
+// Two cameras of one laser plane, one on each side of it, the truth drawn from `seed`, and
+// their sweeps of the cube standing on a corner between them.
+struct Rig {
+  hal::StripeCellGeometry truth_a, truth_b;
+  Sweep a, b;
+};
+
+inline Rig two_sided_rig(std::uint64_t seed, const sim::RangerNoise& noise) {
+  Rig r;
+  r.truth_a = perturbed_cell(hal::StripeCellGeometry{}, seed);
+  r.truth_b = other_side_camera(r.truth_a, b_in_a());
+  r.a = stripe_cube_sweep(r.truth_a, noise, 2.0, cube_between_cameras());
+  sim::RangerNoise other = noise;
+  other.seed += 1000;
+  r.b = other_side_sweep(r.truth_a, b_in_a(), other, 2.0, cube_between_cameras());
+  return r;
+}
+
+// Calibrated together, both starting from the configured layout: b the same pose as a, on the
+// other side.
+inline calib::StripeRigResult calibrate_rig(const Sweep& a, const Sweep& b) {
+  const hal::StripeCellGeometry nominal;
+  calib::StripeRigInput in;
+  in.cameras.push_back({a.profiles, a.axis, nominal});
+  in.cameras.push_back(
+      {b.profiles, b.axis, other_side_camera(nominal, Eigen::Isometry3d::Identity())});
+  in.T_table_cube = cube_between_cameras();
+  return calib::calibrate_stripe_rig(in);
+}
+
 // Squared errors of calibrated ranger poses in units of their reported sigmas, over the
 // position's and the rotation's three axes: their mean is 1 when the covariance is right.
 struct NormalisedErrors {

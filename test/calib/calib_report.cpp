@@ -1,9 +1,12 @@
 // Spread over many seeds against the reported covariance (what the tests check with few seeds):
-//   build/test/calib/calib_report [SEEDS] [stripe|css|pantilt|all] [quantised]  (default 20 all)
+//   build/test/calib/calib_report [SEEDS] [stripe|rig|css|pantilt|all] [quantised]
+//                                                                         (default 20 all)
 // Per calibration and parameter: the rms error over the seeds, the mean reported 1 sigma and
 // their ratio (1: the covariance is right; the goal is within a factor of 1.5), all at 0.06 mm
 // noise. `quantised`: the stripe cell's and the head's depths also rounded to the chip's rows
 // as the real ranger (and the daemon's simulated one) does; the cell is then drawn anew per seed.
+// `rig`: two cameras of one laser plane, one on each side (calib_fixtures.hpp Rig), calibrated
+// together and each on its own: their rms errors side by side, and the joint covariance.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -73,6 +76,52 @@ void stripe(int seeds, bool quantise) {
   }
   print(quantise ? "stripe cell, 1 mm profiles, depths quantised" : "stripe cell, 1 mm profiles", n,
         s);
+}
+
+void rig(int seeds) {
+  // Per camera: position (mm) and rotation (deg) errors, together and alone.
+  double joint_p = 0.0, joint_r = 0.0, alone_p = 0.0, alone_r = 0.0;
+  NormalisedErrors e;
+  int n = 0;
+  for (int k = 0; k < seeds; ++k) {
+    const auto seed = static_cast<std::uint64_t>(500 + k);
+    const Rig r = two_sided_rig(seed, {.sigma_mm = 0.06, .seed = 100000u + seed});
+    const calib::StripeRigResult joint = calibrate_rig(r.a, r.b);
+    calib::StripeCalibrationInput in;
+    in.T_table_cube = cube_between_cameras();
+    in.profiles = r.b.profiles;
+    in.axis_mm = r.b.axis;
+    const auto alone_b = calib::calibrate_stripe_cell(
+        in, other_side_camera(hal::StripeCellGeometry{}, Eigen::Isometry3d::Identity()));
+    in.profiles = r.a.profiles;
+    in.axis_mm = r.a.axis;
+    const auto alone_a = calib::calibrate_stripe_cell(in, hal::StripeCellGeometry{});
+    if (!joint.ok || !alone_a.ok || !alone_b.ok) {
+      std::printf("rig seed %d: %s%s%s\n", k, joint.reason.c_str(), alone_a.reason.c_str(),
+                  alone_b.reason.c_str());
+      continue;
+    }
+    for (std::size_t c = 0; c < 2; ++c) {
+      const hal::StripeCellGeometry& t = c == 0 ? r.truth_a : r.truth_b;
+      const auto& j = joint.cameras[c];
+      const auto& a = c == 0 ? alone_a : alone_b;
+      joint_p += (j.geometry.ranger_position_cell_mm - t.ranger_position_cell_mm).squaredNorm();
+      alone_p += (a.geometry.ranger_position_cell_mm - t.ranger_position_cell_mm).squaredNorm();
+      joint_r += std::pow(
+          angle_between(j.geometry.T_cell_ranger().linear(), t.T_cell_ranger().linear()), 2);
+      alone_r += std::pow(
+          angle_between(a.geometry.T_cell_ranger().linear(), t.T_cell_ranger().linear()), 2);
+      e.add(j, t);
+    }
+    n += 2;
+  }
+  std::printf("two cameras on both sides of one laser plane, 0.06 mm noise, %d seeds\n", n / 2);
+  std::printf("  per camera rms position error: together %.4f mm, each alone %.4f mm\n",
+              std::sqrt(joint_p / n), std::sqrt(alone_p / n));
+  std::printf("  per camera rms rotation error: together %.5f deg, each alone %.5f deg\n",
+              std::sqrt(joint_r / n) / kDeg, std::sqrt(alone_r / n) / kDeg);
+  std::printf("  together: mean squared error / reported variance %.2f (goal 1/2.25 .. 2.25)\n",
+              e.mean());
 }
 
 void css(int seeds) {
@@ -153,12 +202,15 @@ void pan_tilt(int seeds, bool quantise) {
 int main(int argc, char** argv) {
   const int seeds = argc > 1 ? std::atoi(argv[1]) : 20;
   const std::string which = argc > 2 ? argv[2] : "all";
-  if (seeds < 2 || (which != "all" && which != "stripe" && which != "css" && which != "pantilt")) {
-    std::fprintf(stderr, "usage: calib_report [SEEDS >= 2] [stripe|css|pantilt|all] [quantised]\n");
+  if (seeds < 2 || (which != "all" && which != "stripe" && which != "rig" && which != "css" &&
+                    which != "pantilt")) {
+    std::fprintf(stderr,
+                 "usage: calib_report [SEEDS >= 2] [stripe|rig|css|pantilt|all] [quantised]\n");
     return 1;
   }
   const bool quantise = argc > 3 && std::string(argv[3]) == "quantised";
   if (which == "all" || which == "stripe") stripe(seeds, quantise);
+  if (which == "all" || which == "rig") rig(seeds);
   if (which == "all" || which == "css") css(seeds);
   if (which == "all" || which == "pantilt") pan_tilt(seeds, quantise);
   return 0;

@@ -8,41 +8,6 @@
 namespace rangefit::test {
 namespace stripe_rig_test {
 
-// Camera b's frame of the laser plane against camera a's.
-Eigen::Isometry3d b_in_a() {
-  Eigen::Isometry3d P = Eigen::Isometry3d::Identity();
-  P.linear() = Eigen::AngleAxisd(2.0 * kDeg, Eigen::Vector3d::UnitY()).toRotationMatrix();
-  P.translation() = Eigen::Vector3d(6.0, 0.0, -5.0);
-  return P;
-}
-
-struct Rig {
-  hal::StripeCellGeometry truth_a, truth_b;
-  Sweep a, b;
-};
-
-Rig two_sided_rig(std::uint64_t seed, const sim::RangerNoise& noise) {
-  Rig r;
-  r.truth_a = perturbed_cell(hal::StripeCellGeometry{}, seed);
-  r.truth_b = other_side_camera(r.truth_a, b_in_a());
-  r.a = stripe_cube_sweep(r.truth_a, noise, 2.0, cube_between_cameras());
-  sim::RangerNoise other = noise;
-  other.seed += 1000;
-  r.b = other_side_sweep(r.truth_a, b_in_a(), other, 2.0, cube_between_cameras());
-  return r;
-}
-
-// Both cameras start from the configured layout: b the same pose as a, on the other side.
-calib::StripeRigResult calibrate_rig(const Sweep& a, const Sweep& b) {
-  const hal::StripeCellGeometry nominal;
-  calib::StripeRigInput in;
-  in.cameras.push_back({a.profiles, a.axis, nominal});
-  in.cameras.push_back(
-      {b.profiles, b.axis, other_side_camera(nominal, Eigen::Isometry3d::Identity())});
-  in.T_table_cube = cube_between_cameras();
-  return calib::calibrate_stripe_rig(in);
-}
-
 double position_error(const calib::StripeCalibrationResult& r, const hal::StripeCellGeometry& t) {
   return (r.geometry.ranger_position_cell_mm - t.ranger_position_cell_mm).norm();
 }
