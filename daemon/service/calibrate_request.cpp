@@ -144,7 +144,7 @@ std::string check_rig(const std::vector<StripeCalibrationSweep>& all) {
   for (std::size_t i = 0; i < all.size(); ++i) {
     const CalibrationTarget& t = all[i].target;
     if (t.edge_mm != own.edge_mm || t.bar_mm != own.bar_mm ||
-        !t.T_table_target.isApprox(own.T_table_target, 1e-12)) {
+        !t.T_table_target.isApprox(own.T_table_target, 1e-9)) {
       return "request " + std::to_string(i + 1) + " of " + std::to_string(all.size()) + " on " +
              all[i].sensor + " names another cube or cube pose than this one";
     }

@@ -129,13 +129,14 @@ inline Eigen::Isometry3d cube_between_cameras() {
   return T;
 }
 
-// A second camera of camera a's laser plane, on the other side of it (baseline negated), that
-// reports its points in its own frame of the plane: T_cell_ranger = a's T_cell_ranger P, P a
-// turn about the plane's normal y and a shift along x and z.
+// A second camera of camera a's laser plane, on the other side of it, that reports its points
+// in its own frame of the plane: T_cell_ranger = a's T_cell_ranger P, P a turn about the plane's
+// normal y and a shift along x and z, or that after turning the frame over (y reversed: the
+// camera is then on its own +y side).
 inline hal::StripeCellGeometry other_side_camera(const hal::StripeCellGeometry& a,
                                                  const Eigen::Isometry3d& P) {
   hal::StripeCellGeometry b = a;
-  b.ranger.baseline_mm = -a.ranger.baseline_mm;
+  b.ranger.baseline_mm = P.linear()(1, 1) < 0.0 ? a.ranger.baseline_mm : -a.ranger.baseline_mm;
   const Eigen::Isometry3d T = a.T_cell_ranger() * P;
   b.ranger_position_cell_mm = T.translation();
   b.ranger_rpy_cell_rad = calib::rpy_of(T.linear(), a.ranger_rpy_cell_rad);

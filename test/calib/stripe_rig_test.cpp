@@ -2,6 +2,8 @@
 // calibrated together from their sweeps of the hollow cube.
 #include <gtest/gtest.h>
 
+#include <numbers>
+
 #include "calib/stripe_calibration.hpp"
 #include "calib_fixtures.hpp"
 
@@ -61,6 +63,32 @@ TEST(StripeRig, ReportsPerCameraCovariancesThatMatchTheNoise) {
   // A factor of 1.5 in sigma is 2.25 in the mean squared normalised error.
   EXPECT_GT(e.mean(), 1.0 / 2.25);
   EXPECT_LT(e.mean(), 2.25);
+}
+
+// The far camera's frame turned over (its x and y reversed, as a camera mounted facing the
+// other way reports): the in-plane map of the refinement flips, and both come back.
+TEST(StripeRig, AFarCameraWithItsFrameTurnedOverIsRecovered) {
+  const hal::StripeCellGeometry nominal;
+  const hal::StripeCellGeometry truth_a = perturbed_cell(nominal, 4);
+  Eigen::Isometry3d flip = Eigen::Isometry3d::Identity();
+  flip.linear() = Eigen::AngleAxisd(std::numbers::pi, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Isometry3d P = flip * b_in_a();
+  const hal::StripeCellGeometry truth_b = other_side_camera(truth_a, P);
+  EXPECT_GT(truth_b.ranger.baseline_mm, 0.0);  // its +y: the other side of the plane
+  const Sweep a = stripe_cube_sweep(truth_a, {}, 2.0, cube_between_cameras());
+  const Sweep b = other_side_sweep(truth_a, P, {}, 2.0, cube_between_cameras());
+  calib::StripeRigInput in;
+  in.cameras.push_back({a.profiles, a.axis, nominal});
+  in.cameras.push_back({b.profiles, b.axis, other_side_camera(nominal, flip)});
+  in.T_table_cube = cube_between_cameras();
+  const calib::StripeRigResult r = calib::calibrate_stripe_rig(in);
+  ASSERT_TRUE(r.ok) << r.reason;
+  for (std::size_t k = 0; k < 2; ++k) {
+    const hal::StripeCellGeometry& truth = k == 0 ? truth_a : truth_b;
+    SCOPED_TRACE("camera " + std::to_string(k + 1));
+    EXPECT_LT(position_error(r.cameras[k], truth), 0.05);
+    EXPECT_LT(rotation_error(r.cameras[k], truth), 0.01 * kDeg);
+  }
 }
 
 TEST(StripeRig, ACameraThatMissesTheCubeIsNamed) {
