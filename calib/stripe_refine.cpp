@@ -67,7 +67,11 @@ LmLinearisation<Eigen::Dynamic> linearise(const StripeRig& s,
       j[10] = mk.dot(Vector3d(p.q.z(), 0.0, -p.q.x()));
     }
     lin.cost += 0.5 * r * r;
-    jtj[k].noalias() += j * j.transpose();
+    if (k == 0) {  // camera 0 has no in-plane parameters: its 8 x 8 block only
+      jtj[k].topLeftCorner<8, 8>().noalias() += j.head<8>() * j.head<8>().transpose();
+    } else {
+      jtj[k].noalias() += j * j.transpose();
+    }
     g[k].noalias() += j * r;
   }
   for (std::size_t k = 0; k < cameras; ++k) {

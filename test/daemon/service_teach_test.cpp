@@ -261,6 +261,7 @@ TEST(ServiceTeach, CalibrateRequestRecoversTheStripeCellAndAppliesNothing) {
   test::write_cube_scene(dir / "cube.toml", 120.0, 12.0, T_cube, true);
   DaemonConfig config = stripe_cell(dir, dir / "cube.toml");
   config.sim.noise = false;
+  config.detection.timeout_s = 300.0;  // the sanitizer build takes 12-19 s on two shared cores
   hal::MonotonicClock clock;
   Service service(config, clock);
   auto loop = std::make_unique<test::ServiceLoop>(service);
@@ -309,6 +310,7 @@ TEST(ServiceTeach, TwoCamerasOfOneLaserPlaneCalibrateTogether) {
   test::write_cube_scene(dir / "cube.toml", 120.0, 12.0, T_cube, true);
   DaemonConfig config = stripe_cell(dir, dir / "cube.toml");
   config.sim.noise = false;
+  config.detection.timeout_s = 300.0;  // the sanitizer build solves the rig in about a minute
   DeviceConfig b = config.devices.front();
   b.name = "stripe_b";
   config.devices.push_back(b);
