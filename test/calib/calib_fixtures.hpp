@@ -17,16 +17,22 @@
 
 namespace rangefit::test {
 
-// Cube body diagonal between the laser (down the fan) and the camera (baseline along -y of the
-// cell), turned a little about it so no edge lies in the laser plane.
-inline Eigen::Isometry3d cube_on_table() {
-  const Eigen::Vector3d b(0.0, -std::sin(18.0 * kDeg), std::cos(18.0 * kDeg));
+// The cube held on a corner with its centre at `centre`: its body diagonal along the unit
+// vector b, turned 20 deg about it so that no edge lies in the laser plane.
+inline Eigen::Isometry3d cube_on_corner(const Eigen::Vector3d& b, const Eigen::Vector3d& centre) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = (Eigen::AngleAxisd(20.0 * kDeg, b) *
                 Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::Ones().normalized(), b))
                    .toRotationMatrix();
-  T.translation() = Eigen::Vector3d(5.0, 3.0, 130.0);
+  T.translation() = centre;
   return T;
+}
+
+// Cube body diagonal between the laser (down the fan) and the camera (baseline along -y of the
+// cell).
+inline Eigen::Isometry3d cube_on_table() {
+  return cube_on_corner(Eigen::Vector3d(0.0, -std::sin(18.0 * kDeg), std::cos(18.0 * kDeg)),
+                        Eigen::Vector3d(5.0, 3.0, 130.0));
 }
 
 // Uniform in [-1, 1].
@@ -71,15 +77,10 @@ inline hal::PanTiltGeometry perturbed_head(const hal::PanTiltGeometry& nominal, 
 }
 
 // The cube 750 mm in front of the head (its world z), body diagonal between the laser (at the
-// head) and the camera (baseline along +y), turned about it so no edge lies in the laser plane.
+// head) and the camera (baseline along +y).
 inline Eigen::Isometry3d cube_before_head() {
-  const Eigen::Vector3d b(0.0, std::sin(15.0 * kDeg), -std::cos(15.0 * kDeg));
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = (Eigen::AngleAxisd(20.0 * kDeg, b) *
-                Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::Ones().normalized(), b))
-                   .toRotationMatrix();
-  T.translation() = Eigen::Vector3d(4.0, -6.0, 750.0);
-  return T;
+  return cube_on_corner(Eigen::Vector3d(0.0, std::sin(15.0 * kDeg), -std::cos(15.0 * kDeg)),
+                        Eigen::Vector3d(4.0, -6.0, 750.0));
 }
 
 // Reported angles of one sweep: pan -12..12 deg in `step_deg` at a held tilt.
@@ -117,16 +118,10 @@ inline Sweep stripe_cube_sweep(const hal::StripeCellGeometry& truth, const sim::
   return s;
 }
 
-// Cube body diagonal straight up towards the laser, turned 20 deg about it: cameras on both
-// sides of the laser plane see its three outer faces.
+// Cube body diagonal straight up towards the laser: cameras on both sides of the laser plane
+// see its three outer faces.
 inline Eigen::Isometry3d cube_between_cameras() {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = (Eigen::AngleAxisd(20.0 * kDeg, Eigen::Vector3d::UnitZ()) *
-                Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::Ones().normalized(),
-                                                   Eigen::Vector3d::UnitZ()))
-                   .toRotationMatrix();
-  T.translation() = Eigen::Vector3d(5.0, 3.0, 130.0);
-  return T;
+  return cube_on_corner(Eigen::Vector3d::UnitZ(), Eigen::Vector3d(5.0, 3.0, 130.0));
 }
 
 // A second camera of camera a's laser plane, on the other side of it, that reports its points

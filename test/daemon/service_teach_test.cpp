@@ -20,6 +20,7 @@
 #include "detect/learn/model_learning.hpp"
 #include "io/object_model_file.hpp"
 #include "sim/scene_objects.hpp"
+#include "test/calib/calib_fixtures.hpp"
 #include "test/daemon/cube_scene.hpp"
 #include "test/daemon/replay_service.hpp"
 #include "test/detect/learn_scenes.hpp"
@@ -43,15 +44,24 @@ DaemonConfig stripe_cell(const fs::path& dir, const fs::path& scene) {
   return config;
 }
 
-// The calibration cube held on a corner in the table frame: its body diagonal along b, turned
-// 20 deg about it so that no edge lies in the laser plane.
-Eigen::Isometry3d cube_on_corner(const Eigen::Vector3d& b) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = (Eigen::AngleAxisd(20.0 * kDeg, b) *
-                Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::Ones().normalized(), b))
-                   .toRotationMatrix();
-  T.translation() = Eigen::Vector3d(5.0, 3.0, 130.0);
-  return T;
+// The noise-free stripe cell with the hollow cube at T_cube on its table. The sanitizer build
+// takes 12-19 s for one camera's solve and about a minute for two: detection may take 300 s.
+DaemonConfig cube_cell(const fs::path& dir, const Eigen::Isometry3d& T_cube) {
+  test::write_cube_scene(dir / "cube.toml", 120.0, 12.0, T_cube, true);
+  DaemonConfig config = stripe_cell(dir, dir / "cube.toml");
+  config.sim.noise = false;
+  config.detection.timeout_s = 300.0;
+  return config;
+}
+
+// A stripe calibrate request over the hollow cube at T_cube on the table.
+ScanRequest stripe_calibrate(const std::string& id, const Eigen::Isometry3d& T_cube) {
+  ScanRequest req;
+  req.id = id;
+  req.kind = DetectKind::kCalibrate;
+  req.target.kind = "stripe";
+  req.target.T_table_target = T_cube;
+  return req;
 }
 
 std::optional<DetectionResult> run(Service& service, const ScanRequest& req) {
@@ -255,22 +265,13 @@ TEST(ServiceTeach, LearnOnAnEmptyTableIsNotFound) {
 
 TEST(ServiceTeach, CalibrateRequestRecoversTheStripeCellAndAppliesNothing) {
   const fs::path dir = test::fresh_test_dir("rangefit_service_calibrate");
-  // Held on a corner, a body diagonal tilted toward the ranger (as test/calib's fixture).
-  const Eigen::Isometry3d T_cube =
-      cube_on_corner(Eigen::Vector3d(0.0, -std::sin(18.0 * kDeg), std::cos(18.0 * kDeg)));
-  test::write_cube_scene(dir / "cube.toml", 120.0, 12.0, T_cube, true);
-  DaemonConfig config = stripe_cell(dir, dir / "cube.toml");
-  config.sim.noise = false;
-  config.detection.timeout_s = 300.0;  // the sanitizer build takes 12-19 s on two shared cores
+  // Held on a corner, a body diagonal tilted toward the ranger.
+  const Eigen::Isometry3d T_cube = test::cube_on_table();
+  DaemonConfig config = cube_cell(dir, T_cube);
   hal::MonotonicClock clock;
   Service service(config, clock);
   auto loop = std::make_unique<test::ServiceLoop>(service);
-  ScanRequest req;
-  req.id = "calibrate-stripe";
-  req.kind = DetectKind::kCalibrate;
-  req.target.kind = "stripe";
-  req.target.T_table_target = T_cube;
-  const auto result = run(service, req);
+  const auto result = run(service, stripe_calibrate("calibrate-stripe", T_cube));
   loop.reset();
   ASSERT_TRUE(result);
   ASSERT_TRUE(result->found) << result->reason << " " << result->details.dump();
@@ -306,11 +307,8 @@ TEST(ServiceTeach, CalibrateRequestRecoversTheStripeCellAndAppliesNothing) {
 TEST(ServiceTeach, TwoCamerasOfOneLaserPlaneCalibrateTogether) {
   const fs::path dir = test::fresh_test_dir("rangefit_service_calibrate_rig");
   // Body diagonal straight up towards the laser: both sides see the three outer faces.
-  const Eigen::Isometry3d T_cube = cube_on_corner(Eigen::Vector3d::UnitZ());
-  test::write_cube_scene(dir / "cube.toml", 120.0, 12.0, T_cube, true);
-  DaemonConfig config = stripe_cell(dir, dir / "cube.toml");
-  config.sim.noise = false;
-  config.detection.timeout_s = 300.0;  // the sanitizer build solves the rig in about a minute
+  const Eigen::Isometry3d T_cube = test::cube_between_cameras();
+  DaemonConfig config = cube_cell(dir, T_cube);
   DeviceConfig b = config.devices.front();
   b.name = "stripe_b";
   config.devices.push_back(b);
@@ -326,12 +324,8 @@ TEST(ServiceTeach, TwoCamerasOfOneLaserPlaneCalibrateTogether) {
   hal::MonotonicClock clock;
   Service service(config, clock);
   auto loop = std::make_unique<test::ServiceLoop>(service);
-  ScanRequest req;
-  req.id = "calibrate-a";
-  req.kind = DetectKind::kCalibrate;
+  ScanRequest req = stripe_calibrate("calibrate-a", T_cube);
   req.sensor = "stripe";
-  req.target.kind = "stripe";
-  req.target.T_table_target = T_cube;
   const auto first = run(service, req);
   req.id = "calibrate-b";
   req.sensor = "stripe_b";
