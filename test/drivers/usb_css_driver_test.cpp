@@ -21,7 +21,7 @@ bool wait_for(const std::function<bool()>& done) {
 
 struct Rig {
   explicit Rig(double drift_ppm = 50.0) {
-    auto transport = std::make_unique<FakeCssDevice>(-3.0e9, drift_ppm, milliseconds(4));
+    auto transport = std::make_unique<FakeCssDevice>(7.2e9, drift_ppm, milliseconds(4));
     device = transport.get();
     CssUsbOptions options;
     options.sync_interval = milliseconds(50);

@@ -4,6 +4,7 @@
 // (faster than real time). Faults are injected on request: unplug/replug, stall, corrupt CRC,
 // skipped sequence numbers, frames split over short transfers.
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <mutex>
@@ -17,14 +18,21 @@ namespace rangefit::drivers::css_usb::test {
 
 class FakeCssDevice final : public UsbTransport {
  public:
-  FakeCssDevice(double offset_us, double drift_ppm, hal::Duration period)
-      : offset_us_(offset_us), rate_(1.0 + drift_ppm * 1e-6), period_(period) {}
+  // The device's us counter reads `count_at_start_us` when the fake is made and runs
+  // `drift_ppm` fast from there: its offset to the host clock is whatever the host's uptime
+  // makes it, and the counter never runs below zero however recently the host booted.
+  FakeCssDevice(double count_at_start_us, double drift_ppm, hal::Duration period)
+      : count_at_start_us_(count_at_start_us),
+        rate_(1.0 + drift_ppm * 1e-6),
+        period_(period),
+        started_(hal::monotonic_now()) {}
   ~FakeCssDevice() override { close(); }
 
   // Device counter at a host time, and the range pattern of sample i of revolution `seq`.
   std::uint64_t counter_at(hal::Timestamp host) const {
-    return static_cast<std::uint64_t>(
-        std::floor(offset_us_ + static_cast<double>(host.count()) / 1e3 * rate_));
+    const double us =
+        count_at_start_us_ + static_cast<double>((host - started_).count()) / 1e3 * rate_;
+    return static_cast<std::uint64_t>(std::floor(std::max(us, 0.0)));
   }
   static std::uint16_t pattern(std::uint32_t seq, std::size_t i) {
     return static_cast<std::uint16_t>((seq * 7 + i * 13) % 60000);
@@ -145,9 +153,10 @@ class FakeCssDevice final : public UsbTransport {
     }
   }
 
-  double offset_us_;
+  double count_at_start_us_;
   double rate_;
   hal::Duration period_;
+  hal::Timestamp started_;
   EventHandler events_;
   DataHandler handler_;
   std::thread thread_;
