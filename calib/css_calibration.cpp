@@ -18,10 +18,12 @@ struct CssState {
   Vector3d centre = Vector3d::Zero();
 };
 
+// A sample with its robot pose and axis angle: the joint turns the sensor by R_y(omega -
+// omega_zero) = R_y(omega) R_y(-omega_zero), so the part that depends on the sample alone,
+// R_base_joint R_y(omega), is taken once and each state adds its R_y(-omega_zero).
 struct Prepared {
-  Matrix3d R_base_joint;
+  Matrix3d B;  // R_base_joint R_y(omega)
   Vector3d t_base_joint;
-  double omega;
   Vector3d s;      // sensor-frame point
   Vector3d beam;   // sensor-frame unit beam direction
   double c = 1.0;  // share of the range noise normal to the surface (see set_weights)
@@ -29,8 +31,10 @@ struct Prepared {
 
 LmLinearisation<9> linearise(const CssState& st, const std::vector<Prepared>& pts, double radius) {
   LmLinearisation<9> lin;
+  LmRowSum<9> sum(lin);
+  const Matrix3d Rz = rot_y(-st.omega_zero);
   for (const Prepared& p : pts) {
-    const Matrix3d A = p.R_base_joint * rot_y(p.omega - st.omega_zero);
+    const Matrix3d A = p.B * Rz;
     const Vector3d m = st.R_m * p.s + st.t_m;
     const Vector3d x = A * m + p.t_base_joint;
     const Vector3d d = x - st.centre;
@@ -47,10 +51,9 @@ LmLinearisation<9> linearise(const CssState& st, const std::vector<Prepared>& pt
     j.segment<3>(3) = p.s.cross(st.R_m.transpose() * Atu);  // R_m exp([w]x)
     j.tail<3>() = -u;
     j /= c;
-    lin.cost += 0.5 * r * r;
-    lin.jtj.noalias() += j * j.transpose();
-    lin.g.noalias() += j * r;
+    sum.add(j, r);
   }
+  sum.finish();
   return lin;
 }
 
@@ -59,8 +62,9 @@ LmLinearisation<9> linearise(const CssState& st, const std::vector<Prepared>& pt
 // range noise, with a sigma estimate that holds for every parameter. The shares are taken at a
 // fixed state, so the cost the loop minimises is a plain sum of squares.
 void set_weights(const CssState& st, std::vector<Prepared>& pts) {
+  const Matrix3d Rz = rot_y(-st.omega_zero);
   for (Prepared& p : pts) {
-    const Matrix3d A = p.R_base_joint * rot_y(p.omega - st.omega_zero);
+    const Matrix3d A = p.B * Rz;
     const Vector3d x = A * (st.R_m * p.s + st.t_m) + p.t_base_joint;
     const Vector3d u = (x - st.centre).normalized();
     p.c = std::max(0.2, std::abs(u.dot(A * (st.R_m * p.beam))));
@@ -72,9 +76,10 @@ void set_weights(const CssState& st, std::vector<Prepared>& pts) {
 // how many. A floor of 1 um keeps noise-free scans whole.
 std::size_t trim_off_sphere(const CssState& st, std::vector<Prepared>& pts, double radius) {
   std::vector<double> r(pts.size());
+  const Matrix3d Rz = rot_y(-st.omega_zero);
   for (std::size_t i = 0; i < pts.size(); ++i) {
     const Prepared& p = pts[i];
-    const Matrix3d A = p.R_base_joint * rot_y(p.omega - st.omega_zero);
+    const Matrix3d A = p.B * Rz;
     r[i] = std::abs((A * (st.R_m * p.s + st.t_m) + p.t_base_joint - st.centre).norm() - radius);
   }
   std::vector<double> sorted = r;
@@ -119,9 +124,9 @@ CssCalibrationResult calibrate_css_mount(std::span<const CssSphereScan> scans,
       if (!std::isfinite(s.omega_rad) || !std::isfinite(s.beam_rad) || !std::isfinite(s.range_mm)) {
         continue;
       }
-      pts.push_back({scan.T_base_joint.linear(), scan.T_base_joint.translation(), s.omega_rad,
-                     start.sensor_point(s.beam_rad, s.range_mm), start.beam_direction(s.beam_rad),
-                     1.0});
+      pts.push_back({scan.T_base_joint.linear() * rot_y(s.omega_rad),
+                     scan.T_base_joint.translation(), start.sensor_point(s.beam_rad, s.range_mm),
+                     start.beam_direction(s.beam_rad), 1.0});
     }
   }
   if (scans.size() < 3 || pts.size() < 50) {
@@ -139,8 +144,9 @@ CssCalibrationResult calibrate_css_mount(std::span<const CssSphereScan> scans,
   // Start centre: the mean of every sample under the start mount, pushed back by the radius
   // along the mean viewing direction (the samples lie on the near cap).
   Vector3d mean = Vector3d::Zero(), view = Vector3d::Zero();
+  const Matrix3d Rz0 = rot_y(-st.omega_zero);
   for (const Prepared& p : pts) {
-    const Matrix3d A = p.R_base_joint * rot_y(p.omega - st.omega_zero);
+    const Matrix3d A = p.B * Rz0;
     mean += A * (st.R_m * p.s + st.t_m) + p.t_base_joint;
     view += A * st.R_m.col(2);
   }

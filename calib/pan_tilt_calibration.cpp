@@ -68,6 +68,7 @@ Vector3d to_world(const HeadState& s, const RawPoint& p) {
 LmLinearisation<8> linearise(const HeadState& s, const std::vector<PlanePoint>& pts,
                              const std::array<CubePlane, 6>& planes) {
   LmLinearisation<8> lin;
+  LmRowSum<8> sum(lin);
   for (const PlanePoint& p : pts) {
     const CubePlane& pl = planes[static_cast<std::size_t>(p.plane)];
     const Vector3d& n = pl.normal;
@@ -82,10 +83,9 @@ LmLinearisation<8> linearise(const HeadState& s, const std::vector<PlanePoint>& 
     // d R_x(a) / da = [e_x]x R_x(a), and a = pan - pan_zero; the same for the tilt inside.
     j[6] = -n.dot(Vector3d::UnitX().cross(v));
     j[7] = -n.dot(Rx * Vector3d::UnitY().cross(u));
-    lin.cost += 0.5 * r * r;
-    lin.jtj.noalias() += j * j.transpose();
-    lin.g.noalias() += j * r;
+    sum.add(j, r);
   }
+  sum.finish();
   return lin;
 }
 

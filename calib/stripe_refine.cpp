@@ -1,6 +1,7 @@
 #include "calib/stripe_refine.hpp"
 
 #include <cmath>
+#include <memory>
 
 namespace rangefit::calib {
 
@@ -30,7 +31,6 @@ namespace {
 
 // Camera 0's 8 parameters and one further camera's 3: the parameters a point depends on.
 using Local = Eigen::Matrix<double, 11, 1>;
-using LocalMatrix = Eigen::Matrix<double, 11, 11>;
 
 Eigen::Index first_in_plane(std::size_t camera) {
   return 8 + 3 * (static_cast<Eigen::Index>(camera) - 1);
@@ -40,8 +40,11 @@ LmLinearisation<Eigen::Dynamic> linearise(const StripeRig& s,
                                           const std::vector<StripePlanePoint>& pts,
                                           std::span<const std::array<CubePlane, 6>> planes) {
   const std::size_t cameras = s.in_plane.size();
-  std::vector<LocalMatrix> jtj(cameras, LocalMatrix::Zero());
-  std::vector<Local> g(cameras, Local::Zero());
+  // Each camera's rows sum into its own 11 x 11 system (camera 0's further 3 stay zero), which
+  // is then spread into the rig's.
+  std::vector<LmLinearisation<11>> local(cameras);
+  std::vector<std::unique_ptr<LmRowSum<11>>> sums;
+  for (LmLinearisation<11>& l : local) sums.push_back(std::make_unique<LmRowSum<11>>(l));
   LmLinearisation<Eigen::Dynamic> lin(s.parameters());
   const Matrix3d R = s.T_cell_ranger0.linear();
   const Vector3d t = s.T_cell_ranger0.translation();
@@ -66,23 +69,20 @@ LmLinearisation<Eigen::Dynamic> linearise(const StripeRig& s,
       j[9] = mk.z();
       j[10] = mk.dot(Vector3d(p.q.z(), 0.0, -p.q.x()));
     }
-    lin.cost += 0.5 * r * r;
-    if (k == 0) {  // camera 0 has no in-plane parameters: its 8 x 8 block only
-      jtj[k].topLeftCorner<8, 8>().noalias() += j.head<8>() * j.head<8>().transpose();
-    } else {
-      jtj[k].noalias() += j * j.transpose();
-    }
-    g[k].noalias() += j * r;
+    sums[k]->add(j, r);
   }
   for (std::size_t k = 0; k < cameras; ++k) {
-    lin.jtj.topLeftCorner<8, 8>() += jtj[k].topLeftCorner<8, 8>();
-    lin.g.head<8>() += g[k].head<8>();
+    sums[k]->finish();
+    const LmLinearisation<11>& l = local[k];
+    lin.cost += l.cost;
+    lin.jtj.topLeftCorner<8, 8>() += l.jtj.topLeftCorner<8, 8>();
+    lin.g.head<8>() += l.g.head<8>();
     if (k == 0) continue;
     const Eigen::Index o = first_in_plane(k);
-    lin.jtj.block<8, 3>(0, o) += jtj[k].topRightCorner<8, 3>();
-    lin.jtj.block<3, 8>(o, 0) += jtj[k].bottomLeftCorner<3, 8>();
-    lin.jtj.block<3, 3>(o, o) += jtj[k].bottomRightCorner<3, 3>();
-    lin.g.segment<3>(o) += g[k].tail<3>();
+    lin.jtj.block<8, 3>(0, o) += l.jtj.topRightCorner<8, 3>();
+    lin.jtj.block<3, 8>(o, 0) += l.jtj.bottomLeftCorner<3, 8>();
+    lin.jtj.block<3, 3>(o, o) += l.jtj.bottomRightCorner<3, 3>();
+    lin.g.segment<3>(o) += l.g.tail<3>();
   }
   return lin;
 }
