@@ -153,13 +153,24 @@ CssCalibrationResult calibrate_css_mount(std::span<const CssSphereScan> scans,
   mean /= static_cast<double>(pts.size());
   st.centre = mean - options.sphere_radius_mm * view.normalized();
   // First unweighted from the start, then weighted at that fit (calib: set_weights).
-  auto solve = [&](const CssState& from) {
+  // A fit from a state that is already the optimum of a nearby problem (fewer samples, other
+  // weights) starts almost undamped: with the start's damping it would creep there in ~18 steps.
+  LmOptions near = options.lm;
+  near.tau = std::min(near.tau, 1e-9);
+  auto solve = [&](const std::vector<Prepared>& set, const CssState& from, const LmOptions& lm) {
     return levenberg_marquardt<9>(
-        from, options.lm,
-        [&](const CssState& s) { return linearise(s, pts, options.sphere_radius_mm); }, css_step,
-        [](const CssState& s) { return s.t_m.norm() + s.centre.norm(); });
+        from, lm, [&](const CssState& s) { return linearise(s, set, options.sphere_radius_mm); },
+        css_step, [](const CssState& s) { return s.t_m.norm() + s.centre.norm(); });
   };
-  auto first = solve(st);
+  // The far start is brought in on an even spread of ~4,000 samples, whose optimum lies within
+  // the noise of the whole set's; the whole set then takes a few undamped steps from there.
+  const double start_cost = linearise(st, pts, options.sphere_radius_mm).cost;
+  std::vector<Prepared> spread;
+  const std::size_t stride = std::max<std::size_t>(1, pts.size() / 4000);
+  for (std::size_t i = 0; i < pts.size(); i += stride) spread.push_back(pts[i]);
+  const auto coarse = solve(spread, st, options.lm);
+  auto first = solve(pts, coarse.x, near);
+  first.iterations += coarse.iterations;
   // Samples that are not on the sphere (its stand, the table, a stray reflection) would pull the
   // fit: up to three times, the samples beyond 4 robust sigma (1.4826 MAD) of the fit are left
   // out and, when they were more than the noise's own tail (0.1 %), the fit is redone from
@@ -174,11 +185,11 @@ CssCalibrationResult calibrate_css_mount(std::span<const CssSphereScan> scans,
       return result;
     }
     if ((before - kept) * 1000 <= before) break;
-    first = solve(first.x);
+    first = solve(pts, first.x, near);
   }
   set_weights(first.x, pts);
-  auto fit = solve(first.x);
-  fit.initial_cost = first.initial_cost;
+  auto fit = solve(pts, first.x, near);
+  fit.initial_cost = start_cost;
   fit.iterations += first.iterations;
   const double n = static_cast<double>(pts.size());
   result.samples = pts.size();
