@@ -30,8 +30,7 @@ struct Prepared {
 };
 
 LmLinearisation<9> linearise(const CssState& st, const std::vector<Prepared>& pts, double radius) {
-  LmLinearisation<9> lin;
-  LmRowSum<9> sum(lin);
+  LmRowSum<9> sum;
   const Matrix3d Rz = rot_y(-st.omega_zero);
   for (const Prepared& p : pts) {
     const Matrix3d A = p.B * Rz;
@@ -53,8 +52,7 @@ LmLinearisation<9> linearise(const CssState& st, const std::vector<Prepared>& pt
     j /= c;
     sum.add(j, r);
   }
-  sum.finish();
-  return lin;
+  return sum.take();
 }
 
 // The noise is along the beam; its share normal to the surface is |u . beam|, so each residual

@@ -67,8 +67,7 @@ Vector3d to_world(const HeadState& s, const RawPoint& p) {
 
 LmLinearisation<8> linearise(const HeadState& s, const std::vector<PlanePoint>& pts,
                              const std::array<CubePlane, 6>& planes) {
-  LmLinearisation<8> lin;
-  LmRowSum<8> sum(lin);
+  LmRowSum<8> sum;
   for (const PlanePoint& p : pts) {
     const CubePlane& pl = planes[static_cast<std::size_t>(p.plane)];
     const Vector3d& n = pl.normal;
@@ -85,8 +84,7 @@ LmLinearisation<8> linearise(const HeadState& s, const std::vector<PlanePoint>& 
     j[7] = -n.dot(Rx * Vector3d::UnitY().cross(u));
     sum.add(j, r);
   }
-  sum.finish();
-  return lin;
+  return sum.take();
 }
 
 HeadState head_step(const HeadState& s, const LmVector<8>& h) {

@@ -1,7 +1,7 @@
 #include "calib/stripe_refine.hpp"
 
 #include <cmath>
-#include <memory>
+#include <vector>
 
 namespace rangefit::calib {
 
@@ -42,9 +42,7 @@ LmLinearisation<Eigen::Dynamic> linearise(const StripeRig& s,
   const std::size_t cameras = s.in_plane.size();
   // Each camera's rows sum into its own 11 x 11 system (camera 0's further 3 stay zero), which
   // is then spread into the rig's.
-  std::vector<LmLinearisation<11>> local(cameras);
-  std::vector<std::unique_ptr<LmRowSum<11>>> sums;
-  for (LmLinearisation<11>& l : local) sums.push_back(std::make_unique<LmRowSum<11>>(l));
+  std::vector<LmRowSum<11>> sums(cameras);
   LmLinearisation<Eigen::Dynamic> lin(s.parameters());
   const Matrix3d R = s.T_cell_ranger0.linear();
   const Vector3d t = s.T_cell_ranger0.translation();
@@ -69,11 +67,10 @@ LmLinearisation<Eigen::Dynamic> linearise(const StripeRig& s,
       j[9] = mk.z();
       j[10] = mk.dot(Vector3d(p.q.z(), 0.0, -p.q.x()));
     }
-    sums[k]->add(j, r);
+    sums[k].add(j, r);
   }
   for (std::size_t k = 0; k < cameras; ++k) {
-    sums[k]->finish();
-    const LmLinearisation<11>& l = local[k];
+    const LmLinearisation<11> l = sums[k].take();
     lin.cost += l.cost;
     lin.jtj.topLeftCorner<8, 8>() += l.jtj.topLeftCorner<8, 8>();
     lin.g.head<8>() += l.g.head<8>();

@@ -40,23 +40,25 @@ struct LmLinearisation {
 // Sums many residuals' rows into a linearisation: rows are kept in a block of kRows and added
 // to J^T J and J^T r as one matrix product per block, which costs a fraction of one outer
 // product per row (and far less again in a build without inlining, e.g. under sanitizers).
-// Fixed N only. Call finish() before reading `lin`.
+// Fixed N only; take() adds the last block and gives the sum.
 template <int N>
 class LmRowSum {
  public:
   static constexpr int kRows = 64;
-  explicit LmRowSum(LmLinearisation<N>& lin) : lin_(lin) {}
-  LmRowSum(const LmRowSum&) = delete;
-  LmRowSum& operator=(const LmRowSum&) = delete;
-  ~LmRowSum() { finish(); }
 
   void add(const LmVector<N>& j, double r) {
     rows_.col(used_) = j;
     r_[used_] = r;
     lin_.cost += 0.5 * r * r;
-    if (++used_ == kRows) finish();
+    if (++used_ == kRows) flush();
   }
-  void finish() {
+  LmLinearisation<N> take() {
+    flush();
+    return lin_;
+  }
+
+ private:
+  void flush() {
     if (used_ == 0) return;
     const auto J = rows_.leftCols(used_);
     lin_.jtj.noalias() += J * J.transpose();
@@ -64,8 +66,7 @@ class LmRowSum {
     used_ = 0;
   }
 
- private:
-  LmLinearisation<N>& lin_;
+  LmLinearisation<N> lin_;
   Eigen::Matrix<double, N, kRows> rows_;
   Eigen::Matrix<double, kRows, 1> r_;
   int used_ = 0;

@@ -141,10 +141,9 @@ NormalEstimate estimate_normals_organised(const PointCloud& cloud,
     if (ci < 0) continue;
     const Eigen::Vector3d& p = cloud.points[queries[i]];
     const int row = ci / g.cols, col = ci % g.cols;
-    // The window's moments in plain sums (six of the symmetric nine): this loop visits up to
-    // (2w+1)^2 cells per query.
-    double n = 0.0, sx = 0.0, sy = 0.0, sz = 0.0;
-    double xx = 0.0, xy = 0.0, xz = 0.0, yy = 0.0, yz = 0.0, zz = 0.0;
+    // The window's moments in plain sums (n, x, y, z and six of the symmetric nine products,
+    // as pca::Moments::from_sums takes them): this loop visits up to (2w+1)^2 cells per query.
+    double s[10] = {};
     for (int r = std::max(0, row - w); r <= std::min(g.rows - 1, row + w); ++r) {
       for (int c = std::max(0, col - w); c <= std::min(g.cols - 1, col + w); ++c) {
         const std::int32_t k = g.at(r, c);
@@ -152,22 +151,19 @@ NormalEstimate estimate_normals_organised(const PointCloud& cloud,
         const double* q = cloud.points[static_cast<std::size_t>(k)].data();
         const double x = q[0] - p.x(), y = q[1] - p.y(), z = q[2] - p.z();
         if (x * x + y * y + z * z > r2) continue;
-        n += 1.0;
-        sx += x;
-        sy += y;
-        sz += z;
-        xx += x * x;
-        xy += x * y;
-        xz += x * z;
-        yy += y * y;
-        yz += y * z;
-        zz += z * z;
+        s[0] += 1.0;
+        s[1] += x;
+        s[2] += y;
+        s[3] += z;
+        s[4] += x * x;
+        s[5] += x * y;
+        s[6] += x * z;
+        s[7] += y * y;
+        s[8] += y * z;
+        s[9] += z * z;
       }
     }
-    pca::Moments m;
-    m.count = n;
-    m.sum = Eigen::Vector3d(sx, sy, sz);
-    m.sum_outer << xx, xy, xz, xy, yy, yz, xz, yz, zz;
+    const pca::Moments m = pca::Moments::from_sums(s);
     out.normals[i] = patch_normal(m, toward_sensor(p, options), options);
     if (!out.normals[i].isZero()) ++out.kept;
   }

@@ -190,11 +190,9 @@ pca::Moments NeighbourGrid::ball(const Eigen::Vector3d& p, double radius) const 
   if (wide) ball8(g, q.data(), radius, s);
 #endif
   if (!wide) ball4(g, q.data(), radius, s);
-  Eigen::Matrix3d outer;
-  outer << s[4], s[5], s[6], s[5], s[7], s[8], s[6], s[8], s[9];
-  m.count = s[0];
-  m.sum = basis_ * Eigen::Vector3d(s[1], s[2], s[3]);
-  m.sum_outer = basis_ * outer * basis_.transpose();
+  m = pca::Moments::from_sums(s);  // in the grid's basis: back to the cloud's axes
+  m.sum = basis_ * m.sum;
+  m.sum_outer = basis_ * m.sum_outer * basis_.transpose();
   return m;
 }
 

@@ -19,6 +19,14 @@ struct Moments {
     sum += p;
     sum_outer.noalias() += p * p.transpose();
   }
+  // From ten plain sums over the points: n, x, y, z, xx, xy, xz, yy, yz, zz.
+  static Moments from_sums(const double (&s)[10]) {
+    Moments m;
+    m.count = s[0];
+    m.sum = Eigen::Vector3d(s[1], s[2], s[3]);
+    m.sum_outer << s[4], s[5], s[6], s[5], s[7], s[8], s[6], s[8], s[9];
+    return m;
+  }
   Eigen::Vector3d mean() const { return sum / count; }
   // Sample covariance with the 1/(n-1) normalisation of eq. 4.2; zero for fewer than two points.
   Eigen::Matrix3d covariance() const;
