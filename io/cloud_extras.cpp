@@ -38,19 +38,26 @@ std::string format_sensor(const SensorView& v) {
     std::snprintf(b, sizeof b, " %.17g", x);
     out += b;
   }
+  // A second camera follows, so that a file of a one-camera scan reads as it always did.
+  if (v.second_camera_offset.squaredNorm() > 0.0) {
+    for (int i = 0; i < 3; ++i) {
+      std::snprintf(b, sizeof b, " %.17g", v.second_camera_offset[i]);
+      out += b;
+    }
+  }
   return out;
 }
 
 std::optional<SensorView> parse_sensor(std::span<const std::string_view> w) {
-  if (w.size() != 18) return std::nullopt;
+  if (w.size() != 18 && w.size() != 21) return std::nullopt;
   SensorView v;
   bool known = false;
   for (const auto& [kind, name] : kSensorKinds) {
     if (w[0] == name) v.kind = kind, known = true;
   }
   if (!known) return std::nullopt;
-  double x[17];
-  for (std::size_t i = 0; i < 17; ++i) {
+  double x[20];
+  for (std::size_t i = 0; i + 1 < w.size(); ++i) {
     if (!parse_double(w[i + 1], x[i]) || !std::isfinite(x[i])) return std::nullopt;
   }
   v.origin = {x[0], x[1], x[2]};
@@ -60,6 +67,7 @@ std::optional<SensorView> parse_sensor(std::span<const std::string_view> w) {
   v.pivot = {x[12], x[13], x[14]};
   v.sweep_min = x[15];
   v.sweep_max = x[16];
+  if (w.size() == 21) v.second_camera_offset = {x[17], x[18], x[19]};
   if (!valid(v)) return std::nullopt;
   return v;
 }

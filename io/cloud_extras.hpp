@@ -44,7 +44,8 @@ std::size_t max_grid_cells(std::size_t file_bytes);
 
 // The scan's SensorView as the words of a header comment after "rangefit sensor": the kind
 // (point, linear_sweep, rotary_sweep) and 17 numbers (origin, plane normal, camera offset,
-// direction, pivot, sweep min and max). Empty for an unknown sensor.
+// direction, pivot, sweep min and max), then 3 more with a second camera (its offset). Empty for
+// an unknown sensor.
 std::string format_sensor(const SensorView& view);
 // From the words after "sensor"; nullopt when they are not a valid SensorView.
 std::optional<SensorView> parse_sensor(std::span<const std::string_view> words);

@@ -176,13 +176,26 @@ std::optional<Measurement> measure_ray(const PartCaster& caster, const ProfilePo
   const auto hit = caster.first_hit(pose.apex, dir, max_range_mm, candidates);
   if (!hit) return std::nullopt;
   const Eigen::Vector3d p = pose.apex + hit->t * dir;
-  const Eigen::Vector3d to_camera = pose.camera - p;
-  if (caster.normal(hit->label, p).dot(to_camera) <= kMinFacing * to_camera.norm()) {
-    return std::nullopt;  // the camera sees the surface's back or its edge
+  const SeenBy seen = cameras_seeing(caster, pose, p, hit->label);
+  if (seen.count == 0) return std::nullopt;
+  return Measurement{hit->label, hit->t, p, seen};
+}
+
+SeenBy cameras_seeing(const PartCaster& caster, const ProfilePose& pose, const Eigen::Vector3d& p,
+                      std::int32_t label) {
+  SeenBy seen;
+  const Eigen::Vector3d n = caster.normal(label, p);
+  for (const std::optional<Eigen::Vector3d>& camera :
+       {std::optional<Eigen::Vector3d>(pose.camera), pose.second_camera}) {
+    if (!camera) continue;
+    const Eigen::Vector3d to_camera = *camera - p;
+    // The surface's back or its edge; a convex part cannot hide its own front face, so only the
+    // others are tested for the camera's shadow.
+    if (n.dot(to_camera) <= kMinFacing * to_camera.norm()) continue;
+    if (caster.blocked(p, *camera, label)) continue;
+    seen.camera[static_cast<std::size_t>(seen.count++)] = *camera;
   }
-  // A convex part cannot hide its own front face: only the others are tested.
-  if (caster.blocked(p, pose.camera, hit->label)) return std::nullopt;  // camera shadow
-  return Measurement{hit->label, hit->t, p};
+  return seen;
 }
 
 StripeScan scan_stripe(const PartCaster& caster, const StripeSweep& sweep, const ScanNoise& noise,

@@ -8,6 +8,7 @@
 // stays in the laser plane of the profile that measured it.
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -53,12 +54,21 @@ class PartCaster {
   Eigen::AlignedBox2d table_;
 };
 
-// What fan ray `dir` of the profile at `pose` measures before noise: the lit surface, if the camera
+// The cameras of a profile that see a lit point: it faces them and no other part is between.
+struct SeenBy {
+  std::array<Eigen::Vector3d, 2> camera{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  int count = 0;
+};
+SeenBy cameras_seeing(const PartCaster& caster, const ProfilePose& pose, const Eigen::Vector3d& p,
+                      std::int32_t label);
+
+// What fan ray `dir` of the profile at `pose` measures before noise: the lit surface, if a camera
 // sees it. range_mm is along the unit ray from the apex.
 struct Measurement {
   std::int32_t label = kTableLabel;
   double range_mm = 0.0;
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  SeenBy seen_by;
 };
 std::optional<Measurement> measure_ray(const PartCaster& caster, const ProfilePose& pose,
                                        const Eigen::Vector3d& dir, double max_range_mm = 1e5,

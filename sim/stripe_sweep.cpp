@@ -27,11 +27,14 @@ ProfilePose StripeSweep::pose(double s) const {
     p.centre = R * centre0;
     p.line = R * line0;
     p.camera = p.apex + R * camera_offset0;
+    if (second_camera_offset0.squaredNorm() > 0.0)
+      p.second_camera = p.apex + R * second_camera_offset0;
   } else {
     p.apex = apex0 + s * direction;
     p.centre = centre0;
     p.line = line0;
     p.camera = p.apex + camera_offset0;
+    if (second_camera_offset0.squaredNorm() > 0.0) p.second_camera = p.apex + second_camera_offset0;
   }
   p.normal = normal_of(p.line, p.centre);
   return p;
@@ -65,6 +68,7 @@ SensorView StripeSweep::view() const {
   v.origin = apex0;
   v.plane_normal = normal_of(line0, centre0);
   v.camera_offset = camera_offset0;
+  v.second_camera_offset = second_camera_offset0;
   v.direction = direction;
   v.pivot = pivot;
   const double pad = 1e-9 * std::abs(sweep_step);
@@ -91,14 +95,18 @@ StripeSweep make_sweep(const ScanSetup& setup, const Eigen::AlignedBox3d& cover)
     w.pivot = w.apex0 - kHeadArmMm * w.centre0;
     w.direction = Eigen::Vector3d::UnitX();
     w.camera_offset0 = side * range_mm * std::tan(tri) * normal_of(w.line0, w.centre0);
+    if (setup.two_cameras) w.second_camera_offset0 = -w.camera_offset0;
     w.sweep_step = setup.step_mm / range_mm;
   } else {
     // The camera at the apex's height, its ray to the scene centre at `tri` from the laser's.
     w.kind = SensorView::Kind::kLinearSweep;
     w.apex0 = aim + Eigen::Vector3d(0.0, -H * std::tan(tilt), H);
     w.direction = Eigen::Vector3d::UnitY();
-    w.camera_offset0 =
-        Eigen::Vector3d(0.0, H * (std::tan(side * tri - tilt) + std::tan(tilt)), 0.0);
+    const auto camera_at = [&](double on_side) {
+      return Eigen::Vector3d(0.0, H * (std::tan(on_side * tri - tilt) + std::tan(tilt)), 0.0);
+    };
+    w.camera_offset0 = camera_at(side);
+    if (setup.two_cameras) w.second_camera_offset0 = camera_at(-side);
     w.sweep_step = setup.step_mm;
   }
   // Sweep across the box: its extreme positions are at corners (planes of a linear sweep are

@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <optional>
 
 #include "detect/common/sensor_view.hpp"
 
@@ -19,6 +20,8 @@ struct ScanSetup {
   bool pan_tilt = false;            // false: stripe cell (linear sweep); true: pan-tilt head
   double triangulation_deg = 45.0;  // camera ray vs laser ray at the scene centre
   int camera_side = +1;             // side of the laser plane the camera is on (+1: +y, -1: -y)
+  bool two_cameras = false;  // and a second camera on the other side at the same angle, either
+                             // seeing a point enough to measure it
   double laser_height_mm = 600.0;   // fan apex above the table at sweep 0
   // The fan's centre ray at sweep 0, off vertical toward +y (cell: a tilted laser plane; pan-tilt:
   // the head looks at the scene from -y at this angle).
@@ -31,9 +34,11 @@ struct ScanSetup {
 };
 
 // One profile's rays: fan ray k of n leaves `apex` at angle -fan/2 + fan k / (n - 1) from
-// `centre` toward `line`; the camera's projection centre is `camera`.
+// `centre` toward `line`; the camera's projection centre is `camera` (and a second camera's,
+// if the ranger has one, `second_camera`).
 struct ProfilePose {
   Eigen::Vector3d apex, centre, line, normal, camera;
+  std::optional<Eigen::Vector3d> second_camera;
   Eigen::Vector3d ray(double angle) const {
     return std::cos(angle) * centre + std::sin(angle) * line;
   }
@@ -47,6 +52,7 @@ struct StripeSweep {
   Eigen::Vector3d centre0{0.0, 0.0, -1.0};
   Eigen::Vector3d line0{1.0, 0.0, 0.0};
   Eigen::Vector3d camera_offset0{0.0, 600.0, 0.0};
+  Eigen::Vector3d second_camera_offset0 = Eigen::Vector3d::Zero();  // zero: one camera
   // Linear: unit motion of the apex per mm of sweep. Rotary: unit axis of the turn through pivot.
   Eigen::Vector3d direction{0.0, 1.0, 0.0};
   Eigen::Vector3d pivot = Eigen::Vector3d::Zero();

@@ -40,6 +40,8 @@ struct VariedSceneOptions {
   bool pan_tilt = false;  // false: stripe cell (linear sweep); true: pan-tilt head (rotary)
   double triangulation_min_deg = 15.0, triangulation_max_deg = 50.0;  // camera ray vs laser ray
   int camera_side = 0;  // 0: drawn; +1 / -1: that side of the laser plane
+  // Chance of a second camera on the other side of the laser plane (ScanSetup::two_cameras).
+  double two_camera_probability = 0.0;
   double laser_height_min_mm = 300.0, laser_height_max_mm = 900.0;
   double laser_tilt_max_deg = 10.0;  // stripe cell: laser plane off vertical, drawn in +-max
   double pan_tilt_view_min_deg = 15.0, pan_tilt_view_max_deg = 45.0;  // head: view off vertical

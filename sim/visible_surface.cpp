@@ -53,7 +53,7 @@ void sample_part(const PartCaster& caster, int part, const StripeSweep& sweep, b
       if (std::abs(a) > fan_half) continue;
       const auto m = measure_ray(caster, pose, pose.ray(a));
       if (!m || m->label != part) continue;
-      out.push_back({m->point, pose.apex, pose.camera, ds * da});
+      out.push_back({m->point, pose.apex, m->seen_by, ds * da});
     }
   }
 }
@@ -73,7 +73,11 @@ std::vector<bool> hidden_by(const std::vector<SurfaceSample>& samples, const Par
   std::vector<bool> hidden(samples.size(), false);
   for (std::size_t i = 0; i < samples.size(); ++i) {
     const SurfaceSample& s = samples[i];
-    hidden[i] = others.blocked(s.apex, s.point) || others.blocked(s.point, s.camera);
+    bool camera_blocked = true;
+    for (int k = 0; k < s.cameras.count && camera_blocked; ++k) {
+      camera_blocked = others.blocked(s.point, s.cameras.camera[static_cast<std::size_t>(k)]);
+    }
+    hidden[i] = others.blocked(s.apex, s.point) || camera_blocked;
   }
   return hidden;
 }

@@ -10,7 +10,8 @@
 namespace rangefit::sim {
 
 struct SurfaceSample {
-  Eigen::Vector3d point, apex, camera;  // the lit surface point and the two eyes that saw it
+  Eigen::Vector3d point, apex;  // the lit surface point and the laser's apex
+  SeenBy cameras;               // the cameras that saw it (of the parts sampled alone)
   // The ray cell (sweep step x fan angle) the sample stands for: a scan has the same number of
   // rays in every such cell, so weighted shares are shares of the scan's points.
   double weight = 1.0;
@@ -25,7 +26,8 @@ std::vector<SurfaceSample> visible_samples(const PartCaster& caster, const std::
                                            const StripeSweep& sweep, bool within_scan,
                                            double spacing_ratio = 1.0 / 24.0);
 
-// Per sample: is its laser segment (apex -> point) or camera segment crossed by a part of `others`.
+// Per sample: is its laser segment (apex -> point), or the segment to every camera that saw it,
+// crossed by a part of `others`.
 std::vector<bool> hidden_by(const std::vector<SurfaceSample>& samples, const PartCaster& others);
 
 // Weighted share of `samples` where `mask` is set (0 for no samples).

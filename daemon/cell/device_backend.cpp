@@ -11,29 +11,6 @@
 #include "io/ply.hpp"
 
 namespace rangefit::daemon {
-namespace {
-
-// Appends `view` to `fused`: points, and normals and stamps while every view has them.
-void append_view(PointCloud& fused, const PointCloud& view) {
-  const bool first = fused.points.empty();
-  const bool normals = view.has_normals() && (first || fused.has_normals());
-  const bool stamps = view.has_stamps() && (first || fused.has_stamps());
-  fused.points.insert(fused.points.end(), view.points.begin(), view.points.end());
-  if (normals) {
-    fused.normals.insert(fused.normals.end(), view.normals.begin(), view.normals.end());
-  } else {
-    fused.normals.clear();
-  }
-  if (stamps) {
-    fused.stamps.insert(fused.stamps.end(), view.stamps.begin(), view.stamps.end());
-  } else {
-    fused.stamps.clear();
-  }
-  fused.grid = {};
-  fused.sensor = {};
-}
-
-}  // namespace
 
 DeviceBackend::DeviceBackend(CellConfig config) : config_(std::move(config)) {
   for (const auto& d : config_.devices) {
@@ -83,8 +60,11 @@ ScanOutcome DeviceBackend::scan(const ScanRequest& request, const std::atomic<bo
 
 // One scan per sensor, in order, each over its configured sweep (validation refuses a sweep
 // override with several sensors), fused into one cloud: the views are already in one world
-// frame. The fused cloud has no grid and no single sensor view; the first sensor's description
-// goes with it. The request's scan timeout covers all the scans.
+// frame. The fused cloud has no grid; the first sensor's description goes with it. For object
+// detection the sensors are two cameras of one laser plane, and the view is the first's with the
+// second's camera (with_second_camera): a point either camera saw is in the cloud, and the
+// detector must know that either could have seen it. The request's scan timeout covers all the
+// scans.
 ScanOutcome DeviceBackend::scan_views(const ScanRequest& request, const std::atomic<bool>& cancel,
                                       const std::function<void()>& progress) {
   // A view that fails fails the request; the views scanned so far go with the error, so the
@@ -117,9 +97,22 @@ ScanOutcome DeviceBackend::scan_views(const ScanRequest& request, const std::ato
                              "\", the first sensor into \"" + fused.cloud.frame_id + "\"");
       return fused;
     }
+    if (k > 0 && request.kind == DetectKind::kObject) {
+      const std::optional<SensorView> both =
+          with_second_camera(fused.sensor.view, view.sensor.view);
+      if (!both) {
+        fused.status =
+            hal::Status::Error(name + ": not a second camera of " + request.sensors.front() +
+                               "'s laser sweep (the same plane, axis and configured sweep range)");
+        return fused;
+      }
+      fused.sensor.view = *both;
+    }
     append_view(fused.cloud, view.cloud);
     fused.acquired_wall_ns = std::max(fused.acquired_wall_ns, view.acquired_wall_ns);
   }
+  // Spooled and replayed with the cloud: the two cameras' view describes every point of it.
+  if (request.kind == DetectKind::kObject) fused.cloud.sensor = fused.sensor.view;
   fused.status = hal::Status::Ok();
   return fused;
 }

@@ -4,6 +4,8 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -21,7 +23,7 @@ namespace rangefit::cli {
 namespace {
 
 struct ObjectArgs {
-  std::string cloud;
+  std::vector<std::string> clouds;  // one scan, or the two cameras' of one laser plane
   std::string model;
   int hypotheses = 0;  // 0: the detector's defaults (32 with early stop, 12 per compound part)
   int trials = 10;
@@ -121,7 +123,22 @@ int run(const ObjectArgs& a) {
   PointCloud cloud;
   try {
     model = io::read_object_model(a.model);
-    cloud = io::read_cloud(a.cloud);
+    cloud = io::read_cloud(a.clouds.at(0));
+    if (a.clouds.size() > 2)
+      throw std::invalid_argument("--cloud: one scan, or two cameras' scans");
+    if (a.clouds.size() == 2) {
+      // The second camera's sweep of the same laser plane: its points join the first's, and the
+      // view gets its camera, so either camera's sight counts (rangefitd's `sensors`).
+      const PointCloud second = io::read_cloud(a.clouds[1]);
+      const std::optional<SensorView> both = with_second_camera(cloud.sensor, second.sensor);
+      if (!both) {
+        throw std::invalid_argument(a.clouds[1] + ": not a second camera of " + a.clouds[0] +
+                                    "'s laser sweep (each scan's rangefit sensor line: the same "
+                                    "plane, axis and sweep range, one camera each)");
+      }
+      append_view(cloud, second);
+      cloud.sensor = *both;
+    }
   } catch (const std::exception& e) {
     std::cerr << "rangefit object: " << e.what() << "\n";
     return kExitBadInput;
@@ -156,9 +173,12 @@ void add_object_command(CLI::App& app, int* exit_code) {
   auto args = std::make_shared<ObjectArgs>();
   CLI::App* cmd = app.add_subcommand(
       "object", "Find a superquadric object model in a single-view scan (thesis ch. 5).");
-  cmd->add_option("--cloud", args->cloud, "scene point cloud (PLY or PCD), mm; - reads stdin")
+  cmd->add_option("--cloud", args->clouds,
+                  "scene point cloud (PLY or PCD), mm; - reads stdin. Given twice: the sweeps of "
+                  "the two cameras of one laser plane (as saved by rangefit), fused")
       ->required()
-      ->check(cloud_input());
+      ->check(cloud_input())
+      ->take_all();
   cmd->add_option("--model", args->model, "object model file (TOML, see data/models)")
       ->required()
       ->check(CLI::ExistingFile);

@@ -141,12 +141,25 @@ std::string check_target(CalibrationTarget& t, const std::string& own_id) {
   return check_cube_target(t, t.kind == "pantilt");
 }
 
-// Several sensors' scans fused (kind = learn): each a configured device, named once, scanning
-// its configured sweep (a request's sweep is in one device's units). The first is the sensor.
+// Several sensors' scans fused: each a configured device, named once, scanning its configured
+// sweep (a request's sweep is in one device's units). The first is the sensor. Learn fuses any
+// views; object detection two stripe cameras of one laser plane (the scan merges their views,
+// DeviceBackend::scan_views).
 std::string check_views(ScanRequest& request, const DaemonConfig& config) {
   if (request.sensors.empty()) return "";
-  if (request.kind != DetectKind::kLearn) {
-    return "sensors (several scans fused) is for learn requests; give one sensor";
+  if (request.kind == DetectKind::kObject) {
+    if (request.sensors.size() != 2) {
+      return "sensors: an object request fuses the two cameras of one laser plane; name two";
+    }
+    for (const std::string& name : request.sensors) {
+      const DeviceConfig* d = config.device(name);
+      if (d != nullptr && d->kind != DeviceKind("stripe")) {
+        return "sensors: \"" + name + "\" is a " + std::string(d->kind.name()) +
+               "; an object request fuses stripe cameras";
+      }
+    }
+  } else if (request.kind != DetectKind::kLearn) {
+    return "sensors (several scans fused) is for learn and object requests; give one sensor";
   }
   if (request.sensors.size() > kMaxViews) {
     return "sensors: at most " + std::to_string(kMaxViews) + " scans are fused";

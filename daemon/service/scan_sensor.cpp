@@ -54,6 +54,7 @@ ScanSensor transformed(const ScanSensor& s, const Eigen::Isometry3d& T) {
   v.origin = T * s.view.origin;
   v.plane_normal = R * s.view.plane_normal;
   v.camera_offset = R * s.view.camera_offset;
+  v.second_camera_offset = R * s.view.second_camera_offset;
   v.direction = R * s.view.direction;
   v.pivot = T * s.view.pivot;
   out.T_scan_fusion = T * s.T_scan_fusion;

@@ -40,4 +40,26 @@ struct PointCloud {
   bool organised() const { return !grid.empty(); }
 };
 
+// Appends `view`'s points to `fused` (views in one frame): normals and stamps while every view
+// has them. The result is unorganised, and its sensor is unknown until the caller says (the
+// views' own sensors may differ).
+inline void append_view(PointCloud& fused, const PointCloud& view) {
+  const bool first = fused.points.empty();
+  const bool normals = view.has_normals() && (first || fused.has_normals());
+  const bool stamps = view.has_stamps() && (first || fused.has_stamps());
+  fused.points.insert(fused.points.end(), view.points.begin(), view.points.end());
+  if (normals) {
+    fused.normals.insert(fused.normals.end(), view.normals.begin(), view.normals.end());
+  } else {
+    fused.normals.clear();
+  }
+  if (stamps) {
+    fused.stamps.insert(fused.stamps.end(), view.stamps.begin(), view.stamps.end());
+  } else {
+    fused.stamps.clear();
+  }
+  fused.grid = {};
+  fused.sensor = {};
+}
+
 }  // namespace rangefit

@@ -10,19 +10,12 @@ namespace {
 
 bool unit(const Eigen::Vector3d& v) { return v.allFinite() && std::abs(v.norm() - 1.0) < 1e-6; }
 
-Eyes two_eyes(const Eigen::Vector3d& apex, const Eigen::Vector3d& camera_offset) {
-  Eyes e;
-  e.at[0] = apex;
-  e.count = 1;
-  if (camera_offset.squaredNorm() > 0.0) e.at[e.count++] = apex + camera_offset;
-  return e;
-}
-
 }  // namespace
 
 bool valid(const SensorView& v) {
-  if (!v.origin.allFinite() || !v.camera_offset.allFinite() || !v.pivot.allFinite() ||
-      !std::isfinite(v.sweep_min) || !std::isfinite(v.sweep_max)) {
+  if (!v.origin.allFinite() || !v.camera_offset.allFinite() ||
+      !v.second_camera_offset.allFinite() || !v.pivot.allFinite() || !std::isfinite(v.sweep_min) ||
+      !std::isfinite(v.sweep_max)) {
     return false;
   }
   switch (v.kind) {
@@ -85,17 +78,62 @@ std::optional<double> sweep_position(const SensorView& v, const Eigen::Vector3d&
 SweepPose sweep_pose(const SensorView& v, double s) {
   if (v.kind == SensorView::Kind::kRotarySweep) {
     const Eigen::AngleAxisd R(s, v.direction);
-    return {v.pivot + R * (v.origin - v.pivot), R * v.plane_normal, R * v.camera_offset};
+    return {v.pivot + R * (v.origin - v.pivot), R * v.plane_normal, R * v.camera_offset,
+            R * v.second_camera_offset};
   }
-  return {v.origin + s * v.direction, v.plane_normal, v.camera_offset};
+  return {v.origin + s * v.direction, v.plane_normal, v.camera_offset, v.second_camera_offset};
+}
+
+Eyes sweep_eyes(const SweepPose& pose) {
+  Eyes e;
+  e.at[0] = pose.apex;
+  e.count = 1;
+  for (const Eigen::Vector3d& offset : {pose.camera_offset, pose.second_camera_offset}) {
+    if (offset.squaredNorm() > 0.0) e.at[static_cast<std::size_t>(e.count++)] = pose.apex + offset;
+  }
+  return e;
+}
+
+std::optional<SensorView> with_second_camera(const SensorView& a, const SensorView& b,
+                                             double tolerance_mm, double tolerance_rad) {
+  const bool sweep =
+      a.kind == SensorView::Kind::kLinearSweep || a.kind == SensorView::Kind::kRotarySweep;
+  if (!sweep || b.kind != a.kind || !valid(a) || !valid(b)) return std::nullopt;
+  const auto parallel = [&](const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+    return u.cross(v).norm() <= tolerance_rad && u.dot(v) > 0.0;
+  };
+  const double range_tolerance =
+      a.kind == SensorView::Kind::kLinearSweep ? tolerance_mm : tolerance_rad;
+  const bool one_camera_each =
+      a.camera_offset.squaredNorm() > 0.0 && b.camera_offset.squaredNorm() > 0.0 &&
+      a.second_camera_offset.squaredNorm() == 0.0 && b.second_camera_offset.squaredNorm() == 0.0;
+  if (!one_camera_each || !parallel(a.plane_normal, b.plane_normal) ||
+      !parallel(a.direction, b.direction) ||
+      std::abs(a.plane_normal.dot(b.origin - a.origin)) > tolerance_mm ||
+      std::abs(a.sweep_min - b.sweep_min) > range_tolerance ||
+      std::abs(a.sweep_max - b.sweep_max) > range_tolerance) {
+    return std::nullopt;
+  }
+  if (a.kind == SensorView::Kind::kRotarySweep && (a.pivot - b.pivot).norm() > tolerance_mm) {
+    return std::nullopt;
+  }
+  SensorView out = a;
+  out.second_camera_offset = b.origin + b.camera_offset - a.origin;
+  // The same camera twice (one device's two sweeps) is not a second camera.
+  if ((out.second_camera_offset - a.camera_offset).norm() <= tolerance_mm) return std::nullopt;
+  return out;
 }
 
 Eyes sensor_eyes(const SensorView& v, const Eigen::Vector3d& p) {
-  if (v.kind == SensorView::Kind::kPoint) return {1, {v.origin, Eigen::Vector3d::Zero()}};
+  if (v.kind == SensorView::Kind::kPoint) {
+    Eyes e;
+    e.count = 1;
+    e.at[0] = v.origin;
+    return e;
+  }
   const std::optional<double> s = sweep_position(v, p);
   if (!s) return {};
-  const SweepPose pose = sweep_pose(v, *s);
-  return two_eyes(pose.apex, pose.camera_offset);
+  return sweep_eyes(sweep_pose(v, *s));
 }
 
 }  // namespace rangefit

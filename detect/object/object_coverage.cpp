@@ -282,24 +282,37 @@ class SampleJudge {
     }
     if (eyes.count == 0) return Sample::kNoEvidence;  // outside the sweep
     const Eigen::Vector3d un = (T_.linear() * grad).normalized();
-    std::array<double, 2> skip{clearance_, clearance_};
+    // The first eye (the laser, or the only one) must see the sample, and of the cameras any
+    // one: those facing it, seen not too obliquely, are the ones that could have.
+    std::array<double, 3> skip{};
+    std::array<int, 3> eye{};
+    int eyes_facing = 0;
     for (int k = 0; k < eyes.count; ++k) {
       const double incidence = un.dot((eyes.at[k] - p).normalized());
       // In the part's own shadow, or seen too obliquely to judge.
-      if (incidence <= kMinIncidenceCosine) return Sample::kNoEvidence;
-      skip[k] = clearance_ / incidence;
-    }
-    // The camera's line of sight (the second eye) may also pass where the laser never reached (a
-    // wall's grazed face, laser_shadow.hpp): the sample may be hidden there, unless what cast the
-    // shadow is the part's own surface.
-    for (int k = 0; k < eyes.count && o_.occupancy; ++k) {
-      if (o_.occupancy->first_hit(p, eyes.at[k], skip[k]) >= 0.0) return Sample::kHidden;
-      if (k > 0 && o_.laser_shadow &&
-          o_.laser_shadow->first_shadowed(p, eyes.at[k], skip[k],
-                                          kShadowStepCells * o_.occupancy->cell_mm(), tol_,
-                                          casts_) >= 0.0) {
-        return Sample::kHidden;
+      if (incidence <= kMinIncidenceCosine) {
+        if (k == 0) return Sample::kNoEvidence;
+        continue;
       }
+      skip[eyes_facing] = clearance_ / incidence;
+      eye[eyes_facing++] = k;
+    }
+    if (eyes.count > 1 && eyes_facing == 1) return Sample::kNoEvidence;  // no camera faces it
+    // A camera's line of sight may also pass where the laser never reached (a wall's grazed
+    // face, laser_shadow.hpp): the sample may be hidden there, unless what cast the shadow is the
+    // part's own surface.
+    if (o_.occupancy) {
+      if (o_.occupancy->first_hit(p, eyes.at[0], skip[0]) >= 0.0) return Sample::kHidden;
+      bool camera_clear = eyes_facing == 1;  // a single eye has no camera to clear
+      for (int i = 1; i < eyes_facing && !camera_clear; ++i) {
+        const Eigen::Vector3d& at = eyes.at[static_cast<std::size_t>(eye[i])];
+        camera_clear =
+            o_.occupancy->first_hit(p, at, skip[i]) < 0.0 &&
+            (!o_.laser_shadow ||
+             o_.laser_shadow->first_shadowed(
+                 p, at, skip[i], kShadowStepCells * o_.occupancy->cell_mm(), tol_, casts_) < 0.0);
+      }
+      if (!camera_clear) return Sample::kHidden;
     }
     tree_.knn_search(p, 1, nbr_);
     const double nearest = nbr_.empty() ? INFINITY : (points_[nbr_[0]] - p).norm();

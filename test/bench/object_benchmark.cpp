@@ -7,16 +7,20 @@
 //   object_benchmark --tp [--seeds N]     true-positive rates over N seeds (default 100)
 //   object_benchmark --methods [--seeds N] thesis methods A-D vs ours, like table 5.5
 //   object_benchmark --noise [--seeds N]  TP rate vs noise on the three-sphere scene (fig. 5.29)
-//   object_benchmark --varied [--seeds N] [--per-factor] [--pan-tilt] [--no-sensor] [--held-out]
-//                    [--target TARGET] [--failures] [--first N] [--detector-seeds K]
+//   object_benchmark --varied [--seeds N] [--per-factor] [--pan-tilt] [--two-cameras]
+//                    [--no-sensor] [--held-out] [--target TARGET] [--failures] [--first N]
+//                    [--detector-seeds K]
 //                                         TP, wrong, missed and false positives on seeded varied
 //                                         stripe scans (object_varied_report.hpp), per target
 //                                         (or one) and per factor; tuning seeds (from the N-th,
 //                                         default 1), or the held-out ones; --failures lists
 //                                         the failing seeds; --detector-seeds K detects each
 //                                         scene with K detector seeds and prints the rate
-//                                         per detector seed beside the pooled one
-//   object_benchmark --varied-case TARGET SEED [--pan-tilt] [--no-sensor] [--detector-seed K]
+//                                         per detector seed beside the pooled one;
+//                                         --two-cameras: a second camera across the laser
+//                                         plane in every scene
+//   object_benchmark --varied-case TARGET SEED [--pan-tilt] [--two-cameras] [--no-sensor]
+//                    [--detector-seed K]
 //                                         one varied scene in detail: drawn parts, result,
 //                                         rejections and the scene part each place is on
 #include <benchmark/benchmark.h>
@@ -440,6 +444,8 @@ int main(int argc, char** argv) {
       run.per_factor = true;
     } else if (!std::strcmp(argv[i], "--pan-tilt")) {
       run.pan_tilt = true;
+    } else if (!std::strcmp(argv[i], "--two-cameras")) {
+      run.two_cameras = true;
     } else if (!std::strcmp(argv[i], "--no-sensor")) {
       run.sensor_known = false;
     } else if (!std::strcmp(argv[i], "--failures")) {
@@ -491,8 +497,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "unknown target %s\n", case_target.c_str());
       return 2;
     }
-    rangefit::bench::print_varied_case(*target, run.pan_tilt, case_seed, run.sensor_known,
-                                       case_repetition);
+    rangefit::bench::print_varied_case(run, *target, case_seed, case_repetition);
     return 0;
   }
   if (tp || methods || noise || varied) return 0;

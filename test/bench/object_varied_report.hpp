@@ -49,15 +49,38 @@ inline std::uint64_t detector_seed(std::uint64_t scene_seed, int k) {
   return scene_seed + (static_cast<std::uint64_t>(k) << 32);
 }
 
-inline VariedCase run_varied_case(sim::VariedTarget target, bool pan_tilt, std::uint64_t seed,
-                                  bool sensor_known, int repetition = 0) {
+// What one --varied report runs: the seeds, the sensor, the targets and how each is printed.
+struct VariedRun {
+  int seeds = 100;
+  std::uint64_t first = 1;  // 1-based within the tuning set
+  bool held_out = false;
+  bool pan_tilt = false;
+  bool two_cameras = false;  // stripe cell or head: a second camera across the laser plane
+  bool sensor_known = true;
+  bool per_factor = false;
+  bool list_failures = false;
+  // Each scene detected with this many detector seeds (detector_seed): one run's rate carries
+  // the detector's own luck, about +-4 points on ~100 scenes; the rows then count every
+  // (scene, detector seed) and the per-seed rates are printed beside them.
+  int detector_seeds = 1;
+  std::optional<sim::VariedTarget> only;
+};
+
+// The scene options of `target` under `run`.
+inline sim::VariedSceneOptions scene_options(sim::VariedTarget target, const VariedRun& run) {
   sim::VariedSceneOptions so;
   so.target = target;
-  so.pan_tilt = pan_tilt;
-  const sim::VariedScene s = sim::make_varied_scene(so, seed);
+  so.pan_tilt = run.pan_tilt;
+  if (run.two_cameras) so.two_camera_probability = 1.0;
+  return so;
+}
+
+inline VariedCase run_varied_case(const VariedRun& run, sim::VariedTarget target,
+                                  std::uint64_t seed, int repetition = 0) {
+  const sim::VariedScene s = sim::make_varied_scene(scene_options(target, run), seed);
   ObjectDetectOptions o;
   o.seed = detector_seed(seed, repetition);
-  if (sensor_known) o.sensor = s.view;
+  if (run.sensor_known) o.sensor = s.view;
   const auto t0 = std::chrono::steady_clock::now();
   const ObjectDetectResult r = detect_object(s.model, s.cloud.points, o);
   VariedCase c;
@@ -123,7 +146,9 @@ inline std::vector<Factor> varied_factors() {
          return range(f.scan.triangulation_deg, {15, 25, 35, 50}, "deg");
        }},
       {"camera side",
-       [](const auto& f) { return std::string(f.scan.camera_side > 0 ? "+y" : "-y"); }},
+       [](const auto& f) {
+         return std::string(f.scan.two_cameras ? "both" : f.scan.camera_side > 0 ? "+y" : "-y");
+       }},
       {"laser height",
        [=](const auto& f) {
          return range(f.scan.laser_height_mm, {300, 500, 700, 900}, "mm");
@@ -151,22 +176,6 @@ inline std::vector<Factor> varied_factors() {
   };
 }
 
-// What one --varied report runs: the seeds, the sensor, the targets and how each is printed.
-struct VariedRun {
-  int seeds = 100;
-  std::uint64_t first = 1;  // 1-based within the tuning set
-  bool held_out = false;
-  bool pan_tilt = false;
-  bool sensor_known = true;
-  bool per_factor = false;
-  bool list_failures = false;
-  // Each scene detected with this many detector seeds (detector_seed): one run's rate carries
-  // the detector's own luck, about +-4 points on ~100 scenes; the rows then count every
-  // (scene, detector seed) and the per-seed rates are printed beside them.
-  int detector_seeds = 1;
-  std::optional<sim::VariedTarget> only;
-};
-
 // The rate of a row per detector seed ("93.5 / 96.3 / 95.3"), or "" with one detector seed.
 inline std::string per_repetition(const std::vector<VariedCase>& cases, int repetitions,
                                   bool absent, const std::function<bool(const VariedCase&)>& in) {
@@ -192,7 +201,9 @@ inline void print_varied_block(const char* title, std::uint64_t first, const Var
   std::printf("\n%s: seeds %llu..%llu, %s, sensor %s, %d detector seed%s per scene\n", title,
               static_cast<unsigned long long>(first),
               static_cast<unsigned long long>(first + static_cast<std::uint64_t>(seeds) - 1),
-              run.pan_tilt ? "pan-tilt head" : "stripe cell",
+              run.pan_tilt      ? (run.two_cameras ? "pan-tilt head, two cameras" : "pan-tilt head")
+              : run.two_cameras ? "stripe cell, two cameras"
+                                : "stripe cell",
               run.sensor_known ? "known" : "unknown", run.detector_seeds,
               run.detector_seeds == 1 ? "" : "s");
   const sim::VariedTarget targets[] = {sim::VariedTarget::kSphere, sim::VariedTarget::kCylinder,
@@ -204,8 +215,7 @@ inline void print_varied_block(const char* title, std::uint64_t first, const Var
     std::vector<VariedCase> cases;
     for (int k = 0; k < run.detector_seeds; ++k) {
       for (int i = 0; i < seeds; ++i) {
-        cases.push_back(run_varied_case(target, run.pan_tilt, first + static_cast<std::uint64_t>(i),
-                                        run.sensor_known, k));
+        cases.push_back(run_varied_case(run, target, first + static_cast<std::uint64_t>(i), k));
       }
     }
     const bool absent = target == sim::VariedTarget::kNone;
@@ -261,15 +271,12 @@ inline void print_varied_block(const char* title, std::uint64_t first, const Var
 // One varied case in detail (object_benchmark --varied-case TARGET SEED): what was drawn, what
 // came back, the checks the rejected candidates failed, and which scene part each reported or
 // rejected place is on (the nearest part centre), to see what a false positive was made of.
-inline void print_varied_case(sim::VariedTarget target, bool pan_tilt, std::uint64_t seed,
-                              bool sensor_known, int repetition = 0) {
-  sim::VariedSceneOptions so;
-  so.target = target;
-  so.pan_tilt = pan_tilt;
-  const sim::VariedScene s = sim::make_varied_scene(so, seed);
+inline void print_varied_case(const VariedRun& run, sim::VariedTarget target, std::uint64_t seed,
+                              int repetition = 0) {
+  const sim::VariedScene s = sim::make_varied_scene(scene_options(target, run), seed);
   ObjectDetectOptions o;
   o.seed = detector_seed(seed, repetition);
-  if (sensor_known) o.sensor = s.view;
+  if (run.sensor_known) o.sensor = s.view;
   const ObjectDetectResult r = detect_object(s.model, s.cloud.points, o);
   const auto& f = s.factors;
   std::printf(
@@ -278,9 +285,11 @@ inline void print_varied_case(sim::VariedTarget target, bool pan_tilt, std::uint
       "clutter %d, %zu points\n",
       sim::to_string(target), static_cast<unsigned long long>(seed),
       f.scan.pan_tilt ? "pan-tilt" : "stripe", f.scan.triangulation_deg,
-      f.scan.camera_side > 0 ? "+y" : "-y", f.scan.laser_height_mm, f.scan.step_mm, f.scan.noise_mm,
-      f.occlusion, f.occluder.c_str(), f.outside, f.lookalikes, f.lookalike_ratio, f.clutter,
-      s.cloud.points.size());
+      f.scan.two_cameras       ? "both sides"
+      : f.scan.camera_side > 0 ? "+y"
+                               : "-y",
+      f.scan.laser_height_mm, f.scan.step_mm, f.scan.noise_mm, f.occlusion, f.occluder.c_str(),
+      f.outside, f.lookalikes, f.lookalike_ratio, f.clutter, s.cloud.points.size());
   for (std::size_t i = 0; i < s.parts.size(); ++i) {
     const sim::ScenePart& p = s.parts[i];
     const Eigen::Vector3d c = p.T_world_part.translation();

@@ -317,7 +317,16 @@ TEST(RequestKinds, ValidationNamesWhatIsWrong) {
   EXPECT_EQ(views({"stripe", "css"}, [](ScanRequest& r) { r.sweep_end = 100.0; }),
             "with sensors each scans its configured sweep: leave sweep out");
   EXPECT_EQ(views({"stripe", "css"}, [](ScanRequest& r) { r.kind = DetectKind::kBore; }),
-            "sensors (several scans fused) is for learn requests; give one sensor");
+            "sensors (several scans fused) is for learn and object requests; give one sensor");
+  // An object request fuses the two cameras of one laser plane: two stripe devices.
+  const auto object = [](ScanRequest& r) {
+    r.kind = DetectKind::kObject;
+    r.model = "mallet";
+  };
+  EXPECT_EQ(views({"stripe", "css"}, object),
+            "sensors: \"css\" is a css; an object request fuses stripe cameras");
+  EXPECT_EQ(views({"stripe", "stripe2", "css"}, object),
+            "sensors: an object request fuses the two cameras of one laser plane; name two");
   ScanRequest fused;
   fused.id = "f";
   fused.kind = DetectKind::kLearn;

@@ -75,6 +75,16 @@ TEST(CloudIo, SensorViewRoundTripsThroughBothFormats) {
     EXPECT_EQ(back.direction, cloud.sensor.direction) << name;
     EXPECT_EQ(back.sweep_min, cloud.sensor.sweep_min) << name;
     EXPECT_EQ(back.sweep_max, cloud.sensor.sweep_max) << name;
+    EXPECT_EQ(back.second_camera_offset, Eigen::Vector3d::Zero()) << name;
+  }
+  // A second camera across the laser plane comes back too.
+  cloud.sensor.second_camera_offset = {0.0, -400.0, 2e-3};
+  for (const char* name : {"s2.ply", "s2.pcd"}) {
+    write_cloud(dir.path(name), cloud);
+    const SensorView back = read_cloud(dir.path(name)).sensor;
+    EXPECT_EQ(back.camera_offset, cloud.sensor.camera_offset) << name;
+    EXPECT_EQ(back.second_camera_offset, cloud.sensor.second_camera_offset) << name;
+    EXPECT_EQ(back.sweep_max, cloud.sensor.sweep_max) << name;
   }
   // Without one the sensor stays unknown; a broken one is an error naming the line.
   write_cloud(dir.path("u.ply"), test::organised_cloud());

@@ -137,6 +137,40 @@ TEST(VariedScene, NoPointLiesInALaserOrCameraShadow) {
   }
 }
 
+// With a second camera across the laser plane, every point was lit by the laser and seen by at
+// least one camera; some were seen by only one, and the sensor view names all three eyes.
+TEST(VariedScene, WithTwoCamerasEveryPointWasSeenByTheLaserAndOneCamera) {
+  for (bool pan_tilt : {false, true}) {
+    VariedSceneOptions o = exact(VariedTarget::kBox, pan_tilt);
+    o.two_camera_probability = 1.0;
+    const VariedScene s = make_varied_scene(o, 11);
+    ASSERT_TRUE(s.factors.scan.two_cameras);
+    const PartCaster caster(s.parts);
+    int only_first = 0, only_second = 0;
+    for (std::size_t i = 0; i < s.cloud.size(); ++i) {
+      const Eigen::Vector3d& p = s.cloud.points[i];
+      const ProfilePose pose = pose_of(s, i);
+      ASSERT_TRUE(pose.second_camera);
+      ASSERT_FALSE(caster.blocked(pose.apex, p, s.label[i])) << "laser shadow on point " << i;
+      const Eigen::Vector3d n = caster.normal(s.label[i], p);
+      const bool first =
+          n.dot(pose.camera - p) > 0.0 && !caster.blocked(p, pose.camera, s.label[i]);
+      const bool second = n.dot(*pose.second_camera - p) > 0.0 &&
+                          !caster.blocked(p, *pose.second_camera, s.label[i]);
+      ASSERT_TRUE(first || second) << "point " << i << " in both cameras' shadows";
+      only_first += first && !second;
+      only_second += second && !first;
+      const Eyes eyes = sensor_eyes(s.view, p);
+      ASSERT_EQ(eyes.count, 3) << "point " << i;
+      const double tolerance = 0.05 * s.factors.scan.step_mm;
+      ASSERT_LT((eyes.at[1] - pose.camera).norm(), tolerance) << "point " << i;
+      ASSERT_LT((eyes.at[2] - *pose.second_camera).norm(), tolerance) << "point " << i;
+    }
+    EXPECT_GT(only_first, 0);
+    EXPECT_GT(only_second, 0);
+  }
+}
+
 TEST(VariedScene, FactorsLieInTheirRangesAndVaryOverSeeds) {
   for (bool pan_tilt : {false, true}) {
     const VariedSceneOptions o = tiny(VariedTarget::kSphere, pan_tilt);

@@ -47,7 +47,7 @@ struct RequestArgs {
   int trials = 0;
   std::uint64_t seed = 0;
   int parts = 0;                                     // learn
-  std::vector<std::string> sensors;                  // learn: scans fused
+  std::vector<std::string> sensors;                  // learn, object: scans fused
   std::vector<double> cube{120.0, 12.0}, cube_pose;  // calibrate stripe, pantilt
   std::string target = "stripe";                     // calibrate: stripe | pantilt | css
   std::optional<double> tilt_rad;                    // calibrate pantilt: the held tilt
@@ -214,6 +214,14 @@ void add_object_request(CLI::App* cmd, int* exit_code) {
   add_vector_option(object, "--viewpoint", object_args.sensor_position,
                     "sensor position x y z, mm (default: what the sensor reports)")
       ->check(finite_range(-kMaxCoordinateMm, kMaxCoordinateMm));
+  object
+      ->add_option("--sensors", object_args.sensors,
+                   "the two cameras of one laser plane (A,B: stripe devices, each its configured "
+                   "sweep): each sweeps in turn, and the object is found in both clouds fused, "
+                   "a point either camera saw counting")
+      ->delimiter(',')
+      ->excludes("--sensor")
+      ->excludes("--sweep");
   object->callback([exit_code] { *exit_code = run(object_args, daemon::DetectKind::kObject); });
 }
 
