@@ -45,19 +45,22 @@ Cell two_camera_cell(const char* name) {
   Cell c;
   c.dir = test::fresh_test_dir(name);
   const fs::path scene = write_scene(c.dir);
+  // Both sweep table y from +60 to -80 mm only (the laser plane is at cell y = 200 mm).
+  const std::string sweep = "sweep_start = 140\nsweep_end = 280\n";
   const std::string extra =
-      "[[devices]]\nname = \"stripe_b\"\nkind = \"stripe\"\nscene = \"" + scene.string() +
-      "\"\n[fusion.stripe_cell]\n[[fusion.stripe_cell.cameras]]\nname = \"stripe_b\"\n"
+      "[[devices]]\nname = \"stripe_b\"\nkind = \"stripe\"\nscene = \"" + scene.string() + "\"\n" +
+      sweep +
+      "[fusion.stripe_cell]\n[[fusion.stripe_cell.cameras]]\nname = \"stripe_b\"\n"
       "ranger_position_cell_mm = [0, 200, 600]\nranger_rpy_cell_rad = [3.141592653589793, 0, 0]\n"
       "baseline_mm = -300\n";
   const fs::path path =
       test::write_stripe_cell_config(c.dir, "table_top_fig5_18.toml", "box.toml", false, extra);
-  // The first device scans the walled box too.
+  // The first device scans the walled box too, over the same sweep.
   std::ifstream in(path);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::string fig =
       (fs::path(RANGEFIT_SOURCE_DIR) / "data/scenes/table_top_fig5_18.toml").string();
-  text.replace(text.find(fig), fig.size(), scene.string());
+  text.replace(text.find(fig) - 1, fig.size() + 3, "\"" + scene.string() + "\"\n" + sweep);
   std::ofstream(path) << text;
   ConfigResult r = load_config(path);
   EXPECT_TRUE(r.config) << r.error;
