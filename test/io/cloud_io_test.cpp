@@ -65,26 +65,22 @@ TEST(CloudIo, SensorViewRoundTripsThroughBothFormats) {
   cloud.sensor.direction = Eigen::Vector3d::UnitY();
   cloud.sensor.sweep_min = -1.0 / 3.0;
   cloud.sensor.sweep_max = 420.0;
-  for (const char* name : {"s.ply", "s.pcd"}) {
-    write_cloud(dir.path(name), cloud);
-    const SensorView back = read_cloud(dir.path(name)).sensor;
-    EXPECT_EQ(back.kind, cloud.sensor.kind) << name;
-    EXPECT_EQ(back.origin, cloud.sensor.origin) << name;
-    EXPECT_EQ(back.plane_normal, cloud.sensor.plane_normal) << name;
-    EXPECT_EQ(back.camera_offset, cloud.sensor.camera_offset) << name;
-    EXPECT_EQ(back.direction, cloud.sensor.direction) << name;
-    EXPECT_EQ(back.sweep_min, cloud.sensor.sweep_min) << name;
-    EXPECT_EQ(back.sweep_max, cloud.sensor.sweep_max) << name;
-    EXPECT_EQ(back.second_camera_offset, Eigen::Vector3d::Zero()) << name;
-  }
-  // A second camera across the laser plane comes back too.
-  cloud.sensor.second_camera_offset = {0.0, -400.0, 2e-3};
-  for (const char* name : {"s2.ply", "s2.pcd"}) {
-    write_cloud(dir.path(name), cloud);
-    const SensorView back = read_cloud(dir.path(name)).sensor;
-    EXPECT_EQ(back.camera_offset, cloud.sensor.camera_offset) << name;
-    EXPECT_EQ(back.second_camera_offset, cloud.sensor.second_camera_offset) << name;
-    EXPECT_EQ(back.sweep_max, cloud.sensor.sweep_max) << name;
+  // With one camera, and with a second across the laser plane.
+  for (const Eigen::Vector3d& second :
+       {Eigen::Vector3d::Zero().eval(), Eigen::Vector3d(0.0, -400.0, 2e-3)}) {
+    cloud.sensor.second_camera_offset = second;
+    for (const char* name : {"s.ply", "s.pcd"}) {
+      write_cloud(dir.path(name), cloud);
+      const SensorView back = read_cloud(dir.path(name)).sensor;
+      EXPECT_EQ(back.kind, cloud.sensor.kind) << name;
+      EXPECT_EQ(back.origin, cloud.sensor.origin) << name;
+      EXPECT_EQ(back.plane_normal, cloud.sensor.plane_normal) << name;
+      EXPECT_EQ(back.camera_offset, cloud.sensor.camera_offset) << name;
+      EXPECT_EQ(back.second_camera_offset, second) << name;
+      EXPECT_EQ(back.direction, cloud.sensor.direction) << name;
+      EXPECT_EQ(back.sweep_min, cloud.sensor.sweep_min) << name;
+      EXPECT_EQ(back.sweep_max, cloud.sensor.sweep_max) << name;
+    }
   }
   // Without one the sensor stays unknown; a broken one is an error naming the line.
   write_cloud(dir.path("u.ply"), test::organised_cloud());
