@@ -384,7 +384,9 @@ std::optional<Rejection> judge_part(const HypothesisContext& ctx, const Superqua
       judge_at(ctx, part, T, others, cover, noise_mm, alone, scores, seen);
   if (!why || !alone || !pose_may_fail(*why, part)) return why;
   const Eigen::Isometry3d polished = polish_pose(ctx, part, T, others);
-  PartScores polished_scores;
+  // Its own fit scores (M, I, S): the verdict below adds the coverage's.
+  PartScores polished_scores = verify_pose(ctx, part, polished);
+  if (scores) polished_scores.rank_sum = scores->rank_sum;
   SurfaceCoverage polished_seen;
   if (judge_at(ctx, part, polished, others, cover, noise_mm, alone, &polished_scores,
                &polished_seen)) {
