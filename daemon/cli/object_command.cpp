@@ -172,7 +172,9 @@ int run(const ObjectArgs& a) {
 void add_object_command(CLI::App& app, int* exit_code) {
   auto args = std::make_shared<ObjectArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "object", "Find a superquadric object model in a single-view scan (thesis ch. 5).");
+      "object",
+      "Find a superquadric object model in a scan, or in the two sweeps of a stripe cell's "
+      "cameras on either side of its laser plane (thesis ch. 5).");
   cmd->add_option("--cloud", args->clouds,
                   "scene point cloud (PLY or PCD), mm; - reads stdin. Given twice: the sweeps of "
                   "the two cameras of one laser plane (as saved by rangefit), fused")
