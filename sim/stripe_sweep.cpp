@@ -21,21 +21,19 @@ Eigen::Vector3d normal_of(const Eigen::Vector3d& line, const Eigen::Vector3d& ce
 
 ProfilePose StripeSweep::pose(double s) const {
   ProfilePose p;
+  // The head turns the whole ranger; the cell's table moves it without turning.
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
   if (kind == SensorView::Kind::kRotarySweep) {
-    const Eigen::AngleAxisd R(s, direction);
+    R = Eigen::AngleAxisd(s, direction).toRotationMatrix();
     p.apex = pivot + R * (apex0 - pivot);
-    p.centre = R * centre0;
-    p.line = R * line0;
-    p.camera = p.apex + R * camera_offset0;
-    if (second_camera_offset0.squaredNorm() > 0.0)
-      p.second_camera = p.apex + R * second_camera_offset0;
   } else {
     p.apex = apex0 + s * direction;
-    p.centre = centre0;
-    p.line = line0;
-    p.camera = p.apex + camera_offset0;
-    if (second_camera_offset0.squaredNorm() > 0.0) p.second_camera = p.apex + second_camera_offset0;
   }
+  p.centre = R * centre0;
+  p.line = R * line0;
+  p.camera = p.apex + R * camera_offset0;
+  if (second_camera_offset0.squaredNorm() > 0.0)
+    p.second_camera = p.apex + R * second_camera_offset0;
   p.normal = normal_of(p.line, p.centre);
   return p;
 }

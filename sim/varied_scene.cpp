@@ -119,7 +119,7 @@ ScanSetup draw_setup(const VariedSceneOptions& o, Draw& d) {
   s.max_points = o.max_points;
   s.noise_mm = d.uniform(o.noise_min_mm, o.noise_max_mm);
   s.outlier_share = d.uniform(0.0, o.outlier_share_max);
-  // Drawn last, and only when asked for, so that one-camera scenes stay as they were drawn.
+  // Drawn only when asked for, so that one-camera scenes stay as they were drawn.
   if (o.two_camera_probability > 0.0) s.two_cameras = d.chance(o.two_camera_probability);
   return s;
 }

@@ -123,9 +123,9 @@ int run(const ObjectArgs& a) {
   PointCloud cloud;
   try {
     model = io::read_object_model(a.model);
-    cloud = io::read_cloud(a.clouds.at(0));
     if (a.clouds.size() > 2)
       throw std::invalid_argument("--cloud: one scan, or two cameras' scans");
+    cloud = io::read_cloud(a.clouds.at(0));
     if (a.clouds.size() == 2) {
       // The second camera's sweep of the same laser plane: its points join the first's, and the
       // view gets its camera, so either camera's sight counts (rangefitd's `sensors`).

@@ -384,16 +384,23 @@ std::optional<Rejection> judge_part(const HypothesisContext& ctx, const Superqua
       judge_at(ctx, part, T, others, cover, noise_mm, alone, scores, seen);
   if (!why || !alone || !pose_may_fail(*why, part)) return why;
   const Eigen::Isometry3d polished = polish_pose(ctx, part, T, others);
-  // Its own fit scores (M, I, S): the verdict below adds the coverage's.
-  PartScores polished_scores = verify_pose(ctx, part, polished);
-  if (scores) polished_scores.rank_sum = scores->rank_sum;
+  PartScores polished_scores;
   SurfaceCoverage polished_seen;
   if (judge_at(ctx, part, polished, others, cover, noise_mm, alone, &polished_scores,
                &polished_seen)) {
     return why;
   }
   T = polished;
-  if (scores) *scores = polished_scores;
+  if (scores) {
+    // The verdict measured the coverage there; the fit scores (M, I, S) are that pose's own
+    // too, and the vote's rank stays.
+    const PartScores fit = verify_pose(ctx, part, polished);
+    polished_scores.measure = fit.measure;
+    polished_scores.interior = fit.interior;
+    polished_scores.surface = fit.surface;
+    polished_scores.rank_sum = scores->rank_sum;
+    *scores = polished_scores;
+  }
   if (seen) *seen = polished_seen;
   return std::nullopt;
 }
