@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <numbers>
 #include <optional>
 
@@ -12,6 +13,7 @@
 #include "detect/object/object_continuation.hpp"
 #include "detect/object/object_coverage.hpp"
 #include "detect/object/object_hypotheses.hpp"
+#include "detect/object/object_link_region.hpp"
 #include "detect/object/object_vote.hpp"
 
 namespace rangefit {
@@ -53,8 +55,9 @@ bool options_ok(const ObjectDetectOptions& o) {
   return o.hypotheses >= 1 && o.compound_hypotheses >= 1 && o.trials >= 1 && o.sample_points >= 6 &&
          o.iterations >= 1 && o.init_iterations >= 1 && o.refine_rounds >= 0 && o.gamma > 0.0 &&
          o.gamma < 1.0 && o.neighbourhood_factor > 0.0 && o.instances >= 1 && o.batch >= 1 &&
-         o.compound_batch >= 1 && o.confirmations >= 1 && o.refine_trim >= 0.0 &&
-         o.max_measure > 0.0 && o.max_interior_ratio >= 0.0 && o.min_coverage >= 0.0 &&
+         o.compound_batch >= 1 && o.linked_places >= 0 && o.linked_hypotheses >= 0 &&
+         o.confirmations >= 1 && o.refine_trim >= 0.0 && o.max_measure > 0.0 &&
+         o.max_interior_ratio >= 0.0 && o.min_coverage >= 0.0 &&
          o.min_coverage_unknown_sensor >= 0.0 && o.min_coverage_compound_part >= 0.0 &&
          o.max_seen_through >= 0.0 && o.max_open_end >= 0.0 && o.max_open_end_compound >= 0.0 &&
          o.max_open_rim >= 0.0 && o.min_measurable_share_covered >= 0.0 && o.full_coverage >= 0.0 &&
@@ -589,6 +592,12 @@ LinkErrors link_errors(const PartLink& l, const Eigen::Isometry3d& ti,
   return e;
 }
 
+// The vote's link gate (ObjectDetectOptions::link_angle_tolerance_rad, link_distance_tolerance).
+bool within_gate(const ObjectDetectOptions& o, const PartLink& l, const LinkErrors& e) {
+  return e.angle_rad <= o.link_angle_tolerance_rad && e.bearing_rad <= o.link_angle_tolerance_rad &&
+         e.distance_mm <= o.link_distance_tolerance * l.distance_mm + 5.0;
+}
+
 // The shift along a part's own z-axis that the link asks for, given its sibling's centre `q`.
 // With bearings, the one that puts `q` at the axial height the bearing gives (d cos bearing
 // either way along the axis, the nearer): a mallet's head centred on its shaft's line, a shaft
@@ -651,9 +660,7 @@ std::vector<Combination> vote(const ObjectModel& model,
   for (const Combination& c : combos) {
     bool ok = true;
     for (std::size_t l = 0; l < model.links.size(); ++l) {
-      ok = ok && c.a[l] <= options.link_angle_tolerance_rad &&
-           c.b[l] <= options.link_angle_tolerance_rad &&
-           c.d[l] <= options.link_distance_tolerance * model.links[l].distance_mm + 5.0;
+      ok = ok && within_gate(options, model.links[l], {c.a[l], c.d[l], c.b[l]});
     }
     if (ok) linked.push_back(c);
   }
@@ -856,6 +863,83 @@ struct Hypotheses {
   bool any_valid = false, all_confirmed = true;
 };
 
+// The distinct places among a part's hypotheses, best rank sum first, at most `n`.
+std::vector<Eigen::Isometry3d> best_places(const std::vector<PartHypothesis>& hyps,
+                                           const Superquadric& part, Selection selection,
+                                           std::size_t n) {
+  const std::vector<int> sums = part_rank_sums(hyps, selection);
+  std::vector<std::size_t> order(hyps.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return sums[a] < sums[b]; });
+  std::vector<Eigen::Isometry3d> places;
+  for (const std::size_t i : order) {
+    if (places.size() >= n) break;
+    const Eigen::Isometry3d& T = hyps[i].T_world_part;
+    if (std::none_of(places.begin(), places.end(),
+                     [&](const Eigen::Isometry3d& P) { return same_place(P, T, part); })) {
+      places.push_back(T);
+    }
+  }
+  return places;
+}
+
+// Beyond 5.1.2: more hypotheses of each part of a compound model, seeded where a link puts it
+// from one of its sibling's best places (object_link_region.hpp), at each such place that none of
+// its hypotheses is linked to yet (the vote's gate). The places are those the search over the
+// whole scan found, before any of these is added. Deterministic: the seeds continue the part's
+// own after its compound_hypotheses.
+void add_linked_hypotheses(const HypothesisContext& base, const ObjectModel& model,
+                           const CoverageOptions& cover, double noise_mm, Hypotheses& out) {
+  const ObjectDetectOptions& o = *base.options;
+  const std::vector<std::vector<PartHypothesis>> found = out.plausible;
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    const Superquadric& part = model.parts[p].shape;
+    std::vector<PartHypothesis> extra;
+    std::size_t next = static_cast<std::size_t>(o.compound_hypotheses);
+    for (const PartLink& link : model.links) {
+      if (link.first != p && link.second != p) continue;
+      const bool first = link.first == p;
+      const std::size_t q = first ? link.second : link.first;
+      const auto linked_to = [&](const Eigen::Isometry3d& Tq) {
+        return std::any_of(found[p].begin(), found[p].end(), [&](const PartHypothesis& h) {
+          return within_gate(o, link,
+                             first ? link_errors(link, h.T_world_part, Tq)
+                                   : link_errors(link, Tq, h.T_world_part));
+        });
+      };
+      for (const Eigen::Isometry3d& Tq : best_places(found[q], model.parts[q].shape, o.selection,
+                                                     static_cast<std::size_t>(o.linked_places))) {
+        if (linked_to(Tq)) continue;
+        const double margin = kRefinedLinkShare * link.distance_mm + 3.0 * noise_mm + 1.0;
+        const std::vector<std::uint32_t> pool =
+            link_region(link, first, part, Tq, margin, base.points, *base.tree);
+        if (pool.empty()) continue;
+        HypothesisContext ctx = base;
+        ctx.seed_pool = pool;
+        std::vector<PartHypothesis> hyps(static_cast<std::size_t>(o.linked_hypotheses));
+        parallel_for(hyps.size(), o.threads, [&](std::size_t i) {
+          hyps[i] = generate_hypothesis(ctx, part, mix_seed(o.seed, p, next + i));
+        });
+        next += hyps.size();
+        out.evaluated += static_cast<int>(hyps.size());
+        for (PartHypothesis& h : hyps) {
+          if (plausible(h, o)) {
+            extra.push_back(std::move(h));
+          } else if (h.valid) {
+            out.unfit[p].push_back(std::move(h));
+          }
+        }
+      }
+    }
+    if (extra.empty()) continue;
+    extra = seen_as_claimed(base, part, p, std::move(extra), cover, noise_mm, out.prefiltered);
+    std::move(extra.begin(), extra.end(), std::back_inserter(out.plausible[p]));
+  }
+  out.all_confirmed = std::none_of(out.plausible.begin(), out.plausible.end(),
+                                   [](const auto& h) { return h.empty(); });
+}
+
 Hypotheses search_parts(const HypothesisContext& ctx, const ObjectModel& model,
                         const CoverageOptions& cover, double noise_mm) {
   const ObjectDetectOptions& options = *ctx.options;
@@ -885,6 +969,8 @@ Hypotheses search_parts(const HypothesisContext& ctx, const ObjectModel& model,
     }
     out.all_confirmed = out.all_confirmed && !kept.empty();
   }
+  if (!single && options.linked_hypotheses > 0)
+    add_linked_hypotheses(ctx, model, cover, noise_mm, out);
   return out;
 }
 
@@ -1256,7 +1342,7 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
   const double noise_mm = result.plane.removed() ? result.plane.plane.rms : 0.0;
 
   t0 = Clock::now();
-  HypothesisContext ctx{scan.cloud, &tree, &options, {}, std::nullopt, 0.0};
+  HypothesisContext ctx{scan.cloud, &tree, &options, {}, {}, std::nullopt, 0.0};
   if (options.rest_on_plane && cover.removed_plane) {
     ctx.table = cover.removed_plane;
     ctx.table_noise_mm = noise_mm;

@@ -33,7 +33,13 @@ enum class Selection {
 
 struct ObjectDetectOptions {
   int hypotheses = 32;           // m, at most: single-part models stop early once confirmed
-  int compound_hypotheses = 24;  // m per part of compound models (always all of them)
+  int compound_hypotheses = 18;  // m per part of compound models (always all of them)
+  // ... and then, for each of a part's `linked_places` best places (distinct, seen as claimed)
+  // with no hypothesis of a sibling where their link puts it, this many more of that sibling,
+  // seeded there (object_link_region.hpp): in clutter a head whose seeds all fell on a wall is
+  // found again from its shaft.
+  int linked_places = 3;
+  int linked_hypotheses = 4;
   int trials = 10;               // n RANSAC trials per hypothesis
   int sample_points = 30;        // points of each RANSAC sample (thesis: 20-50)
   int iterations = 20;           // LM iterations of each fit

@@ -497,9 +497,13 @@ PartHypothesis generate_hypothesis(const HypothesisContext& ctx, const Superquad
   for (int trial = 0; trial < o.trials; ++trial) {
     // A random seed point and a random patch within the smallest size parameter (5.1.2); seeds
     // on candidates already set aside are drawn again (a few times: they may be most points).
-    std::size_t pick = uniform_index(state, ctx.points.size());
+    const auto draw = [&] {
+      return ctx.seed_pool.empty() ? uniform_index(state, ctx.points.size())
+                                   : ctx.seed_pool[uniform_index(state, ctx.seed_pool.size())];
+    };
+    std::size_t pick = draw();
     for (int redraw = 0; redraw < kSeedRedraws && set_aside(ctx.points[pick]); ++redraw) {
-      pick = uniform_index(state, ctx.points.size());
+      pick = draw();
     }
     const Eigen::Vector3d& c = ctx.points[pick];
     ctx.tree->radius_search(c, patch_radius(part), nbr);

@@ -31,6 +31,8 @@ struct HypothesisContext {
   // Candidates already judged and set aside: RANSAC seeds are not drawn among the points they
   // explain (G < 1 + refine_trim), so new hypotheses go elsewhere.
   std::span<const PlacedPart> seed_excluded;
+  // RANSAC seeds are drawn among these points (indices into `points`) only; empty: all of them.
+  std::span<const std::uint32_t> seed_pool;
   // The removed table plane, its normal towards the objects (rest_on_plane): RANSAC trials whose
   // part sinks into it by more than table_margin_mm() are not taken.
   std::optional<pca::Plane> table;

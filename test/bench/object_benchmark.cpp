@@ -161,11 +161,14 @@ BENCHMARK(BM_PoseFit50PointsEigenLM);
 
 // Detects `model` in the scene once per iteration (seeds 1, 2, ...) and reports per call the
 // hypotheses evaluated and the wall time of their search and of the vote (where the time goes).
-void detect_each_iteration(benchmark::State& state, const ObjectModel& model, const Scene& s) {
+void detect_each_iteration(benchmark::State& state, const ObjectModel& model, const Scene& s,
+                           void (*adjust)(ObjectDetectOptions&) = nullptr) {
   std::uint64_t seed = 1;
   double hypotheses = 0.0, search_ms = 0.0, vote_ms = 0.0, runs = 0.0;
   for (auto _ : state) {
-    const ObjectDetectResult r = detect_object(model, s.rendered.cloud.points, ours(s, seed++));
+    ObjectDetectOptions o = ours(s, seed++);
+    if (adjust) adjust(o);
+    const ObjectDetectResult r = detect_object(model, s.rendered.cloud.points, o);
     hypotheses += r.hypotheses_evaluated;
     search_ms += r.time.hypotheses_ms;
     vote_ms += r.time.vote_ms;
@@ -211,6 +214,21 @@ void BM_DetectMallet(benchmark::State& state) {
   state.SetLabel(std::to_string(s.rendered.cloud.size()) + " points");
 }
 BENCHMARK(BM_DetectMallet)
+    ->Unit(benchmark::kMillisecond)
+    ->Repetitions(5)
+    ->ReportAggregatesOnly(true);
+
+// In-run baseline: 24 hypotheses per part over the whole scan and none seeded by the links (the
+// defaults before the linked search; 18 + the linked ones now).
+void BM_DetectMalletWithoutLinkedSearch(benchmark::State& state) {
+  const Scene& s = mallet_scene();
+  detect_each_iteration(state, test::mallet_model(), s, [](ObjectDetectOptions& o) {
+    o.compound_hypotheses = 24;
+    o.linked_hypotheses = 0;
+  });
+  state.SetLabel("24 per part, no linked search");
+}
+BENCHMARK(BM_DetectMalletWithoutLinkedSearch)
     ->Unit(benchmark::kMillisecond)
     ->Repetitions(5)
     ->ReportAggregatesOnly(true);
