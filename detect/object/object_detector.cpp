@@ -14,6 +14,7 @@
 #include "detect/object/object_coverage.hpp"
 #include "detect/object/object_hypotheses.hpp"
 #include "detect/object/object_link_region.hpp"
+#include "detect/object/object_stability.hpp"
 #include "detect/object/object_vote.hpp"
 
 namespace rangefit {
@@ -56,8 +57,8 @@ bool options_ok(const ObjectDetectOptions& o) {
          o.iterations >= 1 && o.init_iterations >= 1 && o.refine_rounds >= 0 && o.gamma > 0.0 &&
          o.gamma < 1.0 && o.neighbourhood_factor > 0.0 && o.instances >= 1 && o.batch >= 1 &&
          o.compound_batch >= 1 && o.linked_places >= 0 && o.linked_hypotheses >= 0 &&
-         o.confirmations >= 1 && o.refine_trim >= 0.0 && o.max_measure > 0.0 &&
-         o.max_interior_ratio >= 0.0 && o.min_coverage >= 0.0 &&
+         o.max_settle_rad >= 0.0 && o.confirmations >= 1 && o.refine_trim >= 0.0 &&
+         o.max_measure > 0.0 && o.max_interior_ratio >= 0.0 && o.min_coverage >= 0.0 &&
          o.min_coverage_unknown_sensor >= 0.0 && o.min_coverage_compound_part >= 0.0 &&
          o.max_seen_through >= 0.0 && o.max_open_end >= 0.0 && o.max_open_end_compound >= 0.0 &&
          o.max_open_rim >= 0.0 && o.min_measurable_share_covered >= 0.0 && o.full_coverage >= 0.0 &&
@@ -293,6 +294,13 @@ std::optional<Rejection> open_end_of_compound_part(const SurfaceCoverage& c,
   return std::nullopt;
 }
 
+// A part the stability check asks (object_stability.hpp): visibly tapered, not a box or can
+// whose learnt model has a taper of a few thousandths.
+bool tapered(const Superquadric& part) {
+  constexpr double kMinTaper = 0.2;
+  return std::max(std::abs(part.kx), std::abs(part.ky)) >= kMinTaper;
+}
+
 // Every check a posed part must pass beyond eq. 5.2-5.4, at one pose (judge_part). `alone`: a
 // part of a single-part model, whose measurable share and rest on the table are judged here; a
 // part of a compound object is judged on those together with its siblings (detect_object). The
@@ -333,6 +341,13 @@ std::optional<Rejection> judge_at(const HypothesisContext& ctx, const Superquadr
   if (!why && alone) {
     why = floating(c.lowest_mm, part.max_size(), cover.removed_plane.has_value(), noise_mm, o);
   }
+  if (!why && alone && ctx.table && tapered(part)) {
+    const double turn =
+        settle_angle_rad(part, T.linear(), ctx.table->normal, 2.0 * o.max_settle_rad);
+    if (turn > o.max_settle_rad) {
+      why = Rejection{0, Check::kTopples, turn, o.max_settle_rad, T.translation()};
+    }
+  }
   if (!why && !alone && !others.empty()) why = open_end_of_compound_part(c, T, others, o);
   if (!why) {
     if (!size) size = size_evidence(ctx, part, T, others);
@@ -360,7 +375,7 @@ bool pose_may_fail(const Rejection& why, const Superquadric& part) {
   constexpr double kNearMiss = 2.0;
   const bool pose_dependent = why.check == Check::kFloating || why.check == Check::kResidual ||
                               why.check == Check::kBelowPlane || why.check == Check::kSize ||
-                              why.check == Check::kOpenEnd;
+                              why.check == Check::kOpenEnd || why.check == Check::kTopples;
   return pose_dependent && !part.ball() && std::abs(why.value) <= kNearMiss * why.limit;
 }
 
@@ -372,7 +387,8 @@ bool near_miss(const Rejection& why) {
   const bool posing = why.check == Check::kMeasure || why.check == Check::kSize ||
                       why.check == Check::kResidual || why.check == Check::kFloating ||
                       why.check == Check::kBelowPlane || why.check == Check::kOpenEnd ||
-                      why.check == Check::kOpenRim || why.check == Check::kContinues;
+                      why.check == Check::kOpenRim || why.check == Check::kContinues ||
+                      why.check == Check::kTopples;
   return posing && std::abs(why.value) <= (1.0 + kNearMissShare) * why.limit;
 }
 
@@ -1281,6 +1297,8 @@ const char* to_string(Check check) {
       return "below plane";
     case Check::kFloating:
       return "floating";
+    case Check::kTopples:
+      return "topples";
     case Check::kContinues:
       return "continues";
     case Check::kLink:

@@ -150,6 +150,10 @@ struct ObjectDetectOptions {
   // longer look-alikes).
   // Rejects a part posed on one end of a longer or wider look-alike.
   double max_continuation = 0.01;
+  // And a tapered single part rests on the table as posed (object_stability.hpp): settling onto
+  // it turns it by at most this much (its fit's tilt; a cone fitted onto a box's top face,
+  // apex down, or lying with its axis level topples).
+  double max_settle_rad = 0.15;
   int max_candidates = 20;            // candidates checked for coverage before giving up
   double neighbourhood_factor = 1.2;  // r = factor * max(a) for refinement and verification
   Selection selection = Selection::kRankedVote;
@@ -208,6 +212,8 @@ enum class Check {
   kFloating,       // rest_on_plane: its lowest point is higher above the plane than the rest
                    // tolerance (mm)
   kContinues,      // the scan carries on past its flat faces (share of its surface points)
+  kTopples,        // a tapered single part would not rest as posed: settling onto the table
+                   // turns it by more than max_settle_rad (rad; object_stability.hpp)
   kLink,           // compound: after the joint refinement a link's A (rad), D (mm) or bearing
                    // (mm: the sibling's centre from where the bearings put it) is off
 };

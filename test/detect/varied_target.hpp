@@ -23,9 +23,11 @@ inline std::string describe_rejections(const ObjectDetectResult& r) {
   return out;
 }
 
-inline void expect_varied_target_found(sim::VariedTarget target, std::uint64_t seed) {
+inline void expect_varied_target_found(sim::VariedTarget target, std::uint64_t seed,
+                                       bool pan_tilt = false) {
   sim::VariedSceneOptions so;
   so.target = target;
+  so.pan_tilt = pan_tilt;
   const sim::VariedScene s = sim::make_varied_scene(so, seed);
   const ObjectDetectResult r = detect_in(s, seed);
   ASSERT_TRUE(r.found()) << "seed " << seed << ": " << describe_rejections(r);
