@@ -34,6 +34,13 @@ constexpr double kCleanInteriorRatio = 0.02;
 constexpr double kRefinedLinkAngleRad = 0.1;
 constexpr double kRefinedLinkShare = 0.04;
 
+// How far a link's D (and its bearings, as the sibling's centre's offset) may be off once the
+// parts are refined (kRefinedLinkShare), in mm; also how far from the link's places the linked
+// search looks for a part.
+double refined_link_limit_mm(const PartLink& link, double noise_mm) {
+  return kRefinedLinkShare * link.distance_mm + 3.0 * noise_mm + 1.0;
+}
+
 double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
@@ -903,15 +910,16 @@ std::vector<Eigen::Isometry3d> best_places(const std::vector<PartHypothesis>& hy
 // Beyond 5.1.2: more hypotheses of each part of a compound model, seeded where a link puts it
 // from one of its sibling's best places (object_link_region.hpp), at each such place that none of
 // its hypotheses is linked to yet (the vote's gate). The places are those the search over the
-// whole scan found, before any of these is added. Deterministic: the seeds continue the part's
-// own after its compound_hypotheses.
+// whole scan found: these are added only once every part's are drawn. Deterministic: the seeds
+// continue the part's own after its compound_hypotheses.
 void add_linked_hypotheses(const HypothesisContext& base, const ObjectModel& model,
                            const CoverageOptions& cover, double noise_mm, Hypotheses& out) {
   const ObjectDetectOptions& o = *base.options;
-  const std::vector<std::vector<PartHypothesis>> found = out.plausible;
+  const std::vector<std::vector<PartHypothesis>>& found = out.plausible;
+  std::vector<std::vector<PartHypothesis>> extras(model.parts.size());
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
     const Superquadric& part = model.parts[p].shape;
-    std::vector<PartHypothesis> extra;
+    std::vector<PartHypothesis>& extra = extras[p];
     std::size_t next = static_cast<std::size_t>(o.compound_hypotheses);
     for (const PartLink& link : model.links) {
       if (link.first != p && link.second != p) continue;
@@ -927,9 +935,8 @@ void add_linked_hypotheses(const HypothesisContext& base, const ObjectModel& mod
       for (const Eigen::Isometry3d& Tq : best_places(found[q], model.parts[q].shape, o.selection,
                                                      static_cast<std::size_t>(o.linked_places))) {
         if (linked_to(Tq)) continue;
-        const double margin = kRefinedLinkShare * link.distance_mm + 3.0 * noise_mm + 1.0;
-        const std::vector<std::uint32_t> pool =
-            link_region(link, first, part, Tq, margin, base.points, *base.tree);
+        const std::vector<std::uint32_t> pool = link_region(
+            link, first, part, Tq, refined_link_limit_mm(link, noise_mm), base.points, *base.tree);
         if (pool.empty()) continue;
         HypothesisContext ctx = base;
         ctx.seed_pool = pool;
@@ -948,9 +955,12 @@ void add_linked_hypotheses(const HypothesisContext& base, const ObjectModel& mod
         }
       }
     }
-    if (extra.empty()) continue;
-    extra = seen_as_claimed(base, part, p, std::move(extra), cover, noise_mm, out.prefiltered);
-    std::move(extra.begin(), extra.end(), std::back_inserter(out.plausible[p]));
+    if (!extra.empty()) {
+      extra = seen_as_claimed(base, part, p, std::move(extra), cover, noise_mm, out.prefiltered);
+    }
+  }
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    std::move(extras[p].begin(), extras[p].end(), std::back_inserter(out.plausible[p]));
   }
   out.all_confirmed = std::none_of(out.plausible.begin(), out.plausible.end(),
                                    [](const auto& h) { return h.empty(); });
@@ -1016,7 +1026,7 @@ DetectedInstance instance_of(const ObjectModel& model, const Hypotheses& hyps,
 std::optional<Rejection> refined_links(const ObjectModel& model, const DetectedInstance& inst,
                                        double noise_mm) {
   for (std::size_t l = 0; l < model.links.size(); ++l) {
-    const double limit = kRefinedLinkShare * model.links[l].distance_mm + 3.0 * noise_mm + 1.0;
+    const double limit = refined_link_limit_mm(model.links[l], noise_mm);
     const double a = inst.link_angle_error_rad[l], d = inst.link_distance_error_mm[l];
     const Eigen::Vector3d centre = inst.parts[model.links[l].first].center();
     if (a > kRefinedLinkAngleRad) {

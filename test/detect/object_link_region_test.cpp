@@ -54,16 +54,12 @@ Probes probes() {
   return p;
 }
 
-bool has_all(const std::vector<std::uint32_t>& region, const std::vector<std::uint32_t>& which) {
-  return std::all_of(which.begin(), which.end(), [&](std::uint32_t i) {
+// How many of the points `which` the region (ascending indices) holds.
+std::size_t held(const std::vector<std::uint32_t>& region,
+                 const std::vector<std::uint32_t>& which) {
+  return static_cast<std::size_t>(std::count_if(which.begin(), which.end(), [&](std::uint32_t i) {
     return std::binary_search(region.begin(), region.end(), i);
-  });
-}
-
-bool has_none(const std::vector<std::uint32_t>& region, const std::vector<std::uint32_t>& which) {
-  return std::none_of(which.begin(), which.end(), [&](std::uint32_t i) {
-    return std::binary_search(region.begin(), region.end(), i);
-  });
+  }));
 }
 
 TEST(LinkRegion, TheShaftLiesInItsHeadsMiddlePlanePointingAtIt) {
@@ -74,9 +70,9 @@ TEST(LinkRegion, TheShaftLiesInItsHeadsMiddlePlanePointingAtIt) {
   const std::vector<std::uint32_t> r =
       link_region(m.links[0], false, m.parts[1].shape, head_pose(), 5.0, p.points, tree);
   ASSERT_TRUE(std::is_sorted(r.begin(), r.end()));
-  EXPECT_TRUE(has_all(r, p.shaft));
-  EXPECT_TRUE(has_none(r, p.beside_head));
-  EXPECT_TRUE(has_none(r, p.across));
+  EXPECT_EQ(held(r, p.shaft), p.shaft.size());
+  EXPECT_EQ(held(r, p.beside_head), 0u);
+  EXPECT_EQ(held(r, p.across), 0u);
 }
 
 TEST(LinkRegion, TheHeadLiesOnItsShaftsLine) {
@@ -85,7 +81,7 @@ TEST(LinkRegion, TheHeadLiesOnItsShaftsLine) {
   const KdTree tree(p.points);
   const std::vector<std::uint32_t> r =
       link_region(m.links[0], true, m.parts[0].shape, shaft_pose(), 5.0, p.points, tree);
-  EXPECT_TRUE(has_all(r, p.head));
+  EXPECT_EQ(held(r, p.head), p.head.size());
   // Around the shaft's far end as well (the link does not say which end the head is on), not
   // along the middle of the shaft.
   EXPECT_TRUE(std::binary_search(r.begin(), r.end(), p.shaft.back()));
@@ -101,8 +97,8 @@ TEST(LinkRegion, WithoutBearingsAShellAroundTheSibling) {
   const std::vector<std::uint32_t> r =
       link_region(m.links[0], false, m.parts[1].shape, head_pose(), 5.0, p.points, tree);
   // Everything within the shaft's reach of the 170 mm sphere: the rod beside the head too.
-  EXPECT_TRUE(has_all(r, p.shaft));
-  EXPECT_TRUE(has_all(r, p.beside_head));
+  EXPECT_EQ(held(r, p.shaft), p.shaft.size());
+  EXPECT_EQ(held(r, p.beside_head), p.beside_head.size());
 }
 
 }  // namespace
