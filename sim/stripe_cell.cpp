@@ -107,24 +107,35 @@ StripeCell::StripeCell(const Scene& scene, const RayCaster& caster, StripeCellOp
       T_scene_world_(scene.mounts.T_scene_stripe),
       motion_(options_.geometry.max_speed_mm_s, options_.geometry.axis_travel_mm) {
   const hal::Timestamp start = clock.now();
-  ranger_ = make_simulated_ranger(
-      "sim-stripe-ranger", caster,
-      {.ranger = options_.geometry.ranger,
-       .profile_rate_hz = options_.profile_rate_hz,
-       .quantise = options_.quantise,
-       .faults = options_.ranger_faults,
-       .seed = options_.seed},
-      [this](hal::Timestamp t) { return T_scene_ranger(t); }, clock, start);
+  const auto add_ranger = [&](const hal::StripeCellGeometry& g, const FaultOptions& faults,
+                              std::uint64_t seed) {
+    rangers_.push_back(make_simulated_ranger(
+        "sim-stripe-ranger", caster,
+        {.ranger = g.ranger,
+         .profile_rate_hz = options_.profile_rate_hz,
+         .quantise = options_.quantise,
+         .faults = faults,
+         .seed = seed},
+        [this, &g](hal::Timestamp t) { return T_scene_ranger(g, t); }, clock, start));
+  };
+  add_ranger(options_.geometry, options_.ranger_faults, options_.seed);
+  for (const StripeCellCamera& c : options_.cameras) add_ranger(c.geometry, c.faults, c.seed);
   axis_ = std::make_unique<AxisDevice>(*this, clock, start);
 }
 
 StripeCell::~StripeCell() = default;
 
-hal::RangerSource& StripeCell::ranger() { return *ranger_; }
+hal::RangerSource& StripeCell::ranger() { return *rangers_.front(); }
+hal::RangerSource& StripeCell::ranger(std::size_t k) { return *rangers_.at(k); }
 hal::LinearAxis& StripeCell::axis() { return *axis_; }
 
 Eigen::Isometry3d StripeCell::T_scene_ranger(hal::Timestamp t) const {
-  return T_scene_world_ * options_.geometry.T_world_ranger(motion_.position(t));
+  return T_scene_ranger(options_.geometry, t);
+}
+
+Eigen::Isometry3d StripeCell::T_scene_ranger(const hal::StripeCellGeometry& camera,
+                                             hal::Timestamp t) const {
+  return T_scene_world_ * camera.T_world_ranger(motion_.position(t));
 }
 
 }  // namespace rangefit::sim

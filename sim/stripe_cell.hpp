@@ -7,14 +7,24 @@
 
 #include <memory>
 #include <mutex>
+#include <vector>
 
 #include "hal/stripe_geometry.hpp"
 #include "sim/ranger_simulator.hpp"
 
 namespace rangefit::sim {
 
+// A further camera of the cell's laser plane (thesis fig. 3.6b) with a ranger stream of its own:
+// its geometry places its ranger frame and camera; the axis it rides is the cell's.
+struct StripeCellCamera {
+  hal::StripeCellGeometry geometry;
+  FaultOptions faults;
+  std::uint64_t seed = 2;
+};
+
 struct StripeCellOptions {
   hal::StripeCellGeometry geometry;
+  std::vector<StripeCellCamera> cameras;  // further cameras; all sweep with the one axis
   double profile_rate_hz = 12.6;  // 0.5 mm profile spacing at 6.3 mm/s (thesis resolution)
   bool quantise = true;
   double axis_poll_hz = 50.0;        // position requests per second
@@ -53,10 +63,13 @@ class StripeCell {
   ~StripeCell();
 
   hal::RangerSource& ranger();
+  // Camera k's ranger: 0 is ranger(), k >= 1 options().cameras[k - 1]'s.
+  hal::RangerSource& ranger(std::size_t k);
   hal::LinearAxis& axis();
   // Exact axis position at t (what the axis samples quantise).
   double axis_position(hal::Timestamp t) const { return motion_.position(t); }
   Eigen::Isometry3d T_scene_ranger(hal::Timestamp t) const;
+  Eigen::Isometry3d T_scene_ranger(const hal::StripeCellGeometry& camera, hal::Timestamp t) const;
   const StripeCellOptions& options() const { return options_; }
 
  private:
@@ -64,7 +77,7 @@ class StripeCell {
   const StripeCellOptions options_;
   const Eigen::Isometry3d T_scene_world_;
   AxisMotion motion_;
-  std::unique_ptr<hal::RangerSource> ranger_;
+  std::vector<std::unique_ptr<hal::RangerSource>> rangers_;  // the first camera's, then the others'
   std::unique_ptr<AxisDevice> axis_;
 };
 

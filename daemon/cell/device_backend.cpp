@@ -58,34 +58,57 @@ ScanOutcome DeviceBackend::scan(const ScanRequest& request, const std::atomic<bo
   return real_->scan(*device, request, cancel, progress);
 }
 
-// One scan per sensor, in order, each over its configured sweep (validation refuses a sweep
-// override with several sensors), fused into one cloud: the views are already in one world
-// frame. The fused cloud has no grid; the first sensor's description goes with it. For object
-// detection the sensors are two cameras of one laser plane, and the view is the first's with the
-// second's camera (with_second_camera): a point either camera saw is in the cloud, and the
-// detector must know that either could have seen it. The request's scan timeout covers all the
-// scans.
+// One scan per sensor, each over its configured sweep (validation refuses a sweep override with
+// several sensors), fused into one cloud: the views are already in one world frame. Devices that
+// can scan together do (the cameras of one laser plane on one axis: one sweep for all); others
+// scan in turn, in order. The fused cloud has no grid; the first sensor's description goes with
+// it. For object detection the sensors are two cameras of one laser plane, and the view is the
+// first's with the second's camera (with_second_camera): a point either camera saw is in the
+// cloud, and the detector must know that either could have seen it. The request's scan timeout
+// covers all the scans.
 ScanOutcome DeviceBackend::scan_views(const ScanRequest& request, const std::atomic<bool>& cancel,
                                       const std::function<void()>& progress) {
   // A view that fails fails the request; the views scanned so far go with the error, so the
   // spool keeps them.
   ScanOutcome fused;
-  for (std::size_t k = 0; k < request.sensors.size(); ++k) {
-    const std::string& name = request.sensors[k];
-    ScanRequest one = request;
-    one.sensors.clear();
-    one.sensor = name;
+  std::vector<const DeviceConfig*> devices;
+  for (const std::string& name : request.sensors) {
     const DeviceConfig* device = config_.device(name);
     if (device == nullptr) {
       fused.status = hal::Status::Error("unknown sensor " + name);
       return fused;
     }
-    one.sweep_start = device->sweep_start;
-    one.sweep_end = device->sweep_end;
-    one.sweep_speed = device->sweep_speed;
-    ScanOutcome view = scan(one, cancel, progress);
-    if (!view.status) {
-      fused.status = hal::Status::Error(name + ": " + view.status.message);
+    devices.push_back(device);
+  }
+  const auto one_request = [&](const DeviceConfig& device) {
+    ScanRequest one = request;
+    one.sensors.clear();
+    one.sensor = device.name;
+    one.sweep_start = device.sweep_start;
+    one.sweep_end = device.sweep_end;
+    one.sweep_speed = device.sweep_speed;
+    return one;
+  };
+  std::vector<ScanOutcome> together;
+  if (cancel) return {hal::Status::Error("cancelled"), {}};
+  CellDevices* cell = nullptr;
+  const bool one_driver = std::all_of(devices.begin(), devices.end(), [&](const DeviceConfig* d) {
+    return d->driver == devices.front()->driver;
+  });
+#ifdef RANGEFIT_WITH_SIM
+  if (one_driver && devices.front()->driver == DriverKind::kSim) cell = sim_.get();
+#endif
+  if (one_driver && devices.front()->driver == DriverKind::kReal) cell = real_.get();
+  if (cell != nullptr) {
+    together = cell->scan_together(devices, one_request(*devices.front()), cancel, progress);
+  }
+  for (std::size_t k = 0; k < devices.size(); ++k) {
+    const std::string& name = devices[k]->name;
+    ScanOutcome view = together.empty() ? scan(one_request(*devices[k]), cancel, progress)
+                                        : std::move(together[k]);
+    if (!view.status) {  // a shared sweep's error names the devices already
+      fused.status =
+          together.empty() ? hal::Status::Error(name + ": " + view.status.message) : view.status;
       return fused;
     }
     if (k == 0) {

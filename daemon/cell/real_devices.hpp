@@ -18,7 +18,8 @@
 // it is answered with an error naming the device and its state.
 //
 // Scans: a stripe device sweeps with its `motion` axis (or the only axis) exactly like the
-// simulated cell; a css device records while the robot program pivots the last joint through
+// simulated cell, and several stripe devices on one axis (the cameras of one laser plane) sweep
+// together; a css device records while the robot program pivots the last joint through
 // -delta .. +delta (the daemon does not command the robot) and is bounded by
 // service.scan_timeout_s; a pan_tilt device likewise records while the cell program pans the
 // head through the sweep (the daemon does not command the pan-tilt unit).
@@ -49,6 +50,11 @@ class RealDevices final : public CellDevices {
 
   ScanOutcome scan(const DeviceConfig& device, const ScanRequest& request,
                    const std::atomic<bool>& cancel, const std::function<void()>& progress) override;
+  // Devices of one kind that their kind scans together (stripe: one axis, one configured sweep).
+  std::vector<ScanOutcome> scan_together(std::span<const DeviceConfig* const> devices,
+                                         const ScanRequest& request,
+                                         const std::atomic<bool>& cancel,
+                                         const std::function<void()>& progress) override;
   std::vector<NamedHealth> health() const override;
 
   // What the kinds' scans (daemon/cell/sensors/) reach: the configuration, the drivers' clock,

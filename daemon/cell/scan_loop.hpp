@@ -8,6 +8,7 @@
 #include <atomic>
 #include <chrono>
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -32,51 +33,83 @@ struct ScanControl {
   const std::function<void()>& progress;
 };
 
-// Until done() holds: reads `paced` for up to one slice and takes what `drained` has queued,
-// hands both batches to fuse(paced_batch, drained_batch), reports progress when anything
-// arrived, then healthy(&why) checks the devices. kCancelled (*why = "cancelled") and kFailed
-// (healthy() said why) leave stopping any motion to the caller.
+// Until done() holds: reads `paced` for up to one slice and takes what each of `drained` has
+// queued, hands the batches to fuse(paced_batch, drained_batches) (one batch per drained source,
+// in order), reports progress when anything arrived, then healthy(&why) checks the devices.
+// kCancelled (*why = "cancelled") and kFailed (healthy() said why) leave stopping any motion to
+// the caller.
 template <class Paced, class Drained, class Done, class Fuse, class Healthy>
-ScanLoopEnd run_scan_loop(hal::SampleSource<Paced>& paced, hal::SampleSource<Drained>& drained,
+ScanLoopEnd run_scan_loop(hal::SampleSource<Paced>& paced,
+                          std::span<hal::SampleSource<Drained>* const> drained,
                           const ScanControl& control, Done&& done, Fuse&& fuse, Healthy&& healthy,
                           std::string* why) {
   std::vector<Paced> paced_batch;
-  std::vector<Drained> drained_batch;
+  std::vector<std::vector<Drained>> drained_batches(drained.size());
   while (!done()) {
     if (control.cancel) {
       *why = "cancelled";
       return ScanLoopEnd::kCancelled;
     }
     paced_batch.clear();
-    drained_batch.clear();
     paced.read(paced_batch, kScanReadSlice);
-    drained.read(drained_batch, hal::Duration::zero());
-    fuse(paced_batch, drained_batch);
-    if (!paced_batch.empty() || !drained_batch.empty()) control.progress();
+    bool arrived = !paced_batch.empty();
+    for (std::size_t k = 0; k < drained.size(); ++k) {
+      drained_batches[k].clear();
+      drained[k]->read(drained_batches[k], hal::Duration::zero());
+      arrived = arrived || !drained_batches[k].empty();
+    }
+    fuse(paced_batch, std::span<const std::vector<Drained>>(drained_batches));
+    if (arrived) control.progress();
     if (!healthy(why)) return ScanLoopEnd::kFailed;
   }
   return ScanLoopEnd::kDone;
 }
 
+// The same loop over one drained stream: fuse(paced_batch, drained_batch).
+template <class Paced, class Drained, class Done, class Fuse, class Healthy>
+ScanLoopEnd run_scan_loop(hal::SampleSource<Paced>& paced, hal::SampleSource<Drained>& drained,
+                          const ScanControl& control, Done&& done, Fuse&& fuse, Healthy&& healthy,
+                          std::string* why) {
+  hal::SampleSource<Drained>* const one[] = {&drained};
+  return run_scan_loop(
+      paced, std::span<hal::SampleSource<Drained>* const>(one), control, done,
+      [&fuse](const std::vector<Paced>& p, std::span<const std::vector<Drained>> d) {
+        fuse(p, d[0]);
+      },
+      healthy, why);
+}
+
+// One camera of a stripe sweep: its ranger's profiles and the assembler that fuses them with the
+// axis samples. Several cameras of one laser plane sweep together: the axis moves once.
+struct StripeCamera {
+  hal::RangerSource* ranger;
+  fusion::StripeCellAssembler* assembler;
+};
+
 // The stripe cell's sweep (thesis 5.2.1) once the axis is on its way to the sweep's start: that
-// approach is watched but not fused; then start_sweep() (begin the assembler, start the ranger,
-// command the sweep; a refusal is kFailed with *why set) and every axis sample and profile is
-// fused until the axis reports the motion complete.
+// approach is watched but not fused; then start_sweep() (begin the assemblers, start the rangers,
+// command the sweep; a refusal is kFailed with *why set) and every axis sample goes to every
+// camera's assembler, with that camera's profiles, until the axis reports the motion complete.
 template <class StartSweep, class Healthy>
-ScanLoopEnd sweep_stripe(hal::LinearAxis& axis, hal::RangerSource& ranger,
-                         fusion::StripeCellAssembler& assembler, const ScanControl& control,
-                         StartSweep&& start_sweep, Healthy&& healthy, std::string* why) {
+ScanLoopEnd sweep_stripe(hal::LinearAxis& axis, std::span<const StripeCamera> cameras,
+                         const ScanControl& control, StartSweep&& start_sweep, Healthy&& healthy,
+                         std::string* why) {
+  std::vector<hal::RangerSource*> rangers;
+  for (const StripeCamera& c : cameras) rangers.push_back(c.ranger);
+  const std::span<hal::RangerSource* const> drained(rangers);
   const auto done = [&axis] { return axis.motion_complete(); };
   ScanLoopEnd end = run_scan_loop(
-      axis, ranger, control, done, [](const auto&, const auto&) {}, healthy, why);
+      axis, drained, control, done, [](const auto&, const auto&) {}, healthy, why);
   if (end != ScanLoopEnd::kDone) return end;
   if (!start_sweep(why)) return ScanLoopEnd::kFailed;
-  const auto fuse = [&assembler](const std::vector<hal::AxisSample>& samples,
-                                 const std::vector<hal::RangerProfile>& profiles) {
-    for (const auto& s : samples) assembler.add_axis(s);
-    for (const auto& p : profiles) assembler.add_profile(p);
+  const auto fuse = [&cameras](const std::vector<hal::AxisSample>& samples,
+                               std::span<const std::vector<hal::RangerProfile>> profiles) {
+    for (std::size_t k = 0; k < cameras.size(); ++k) {
+      for (const auto& s : samples) cameras[k].assembler->add_axis(s);
+      for (const auto& p : profiles[k]) cameras[k].assembler->add_profile(p);
+    }
   };
-  return run_scan_loop(axis, ranger, control, done, fuse, healthy, why);
+  return run_scan_loop(axis, drained, control, done, fuse, healthy, why);
 }
 
 // A sweep -half .. +half (rad, about its zero) that another program drives (the robot pivoting

@@ -54,20 +54,23 @@ SimCell::LoadedScene::LoadedScene(const std::string& path)
     : scene(sim::load_scene(path)), caster(scene) {}
 
 bool SimCell::Run::watch(const hal::Device& sensor, const hal::Device& motion, std::string* why) {
-  const hal::DeviceHealth hs = sensor.health();
-  const hal::DeviceHealth hm = motion.health();
+  std::vector<std::pair<std::string, hal::DeviceHealth>> seen = {{device.name, sensor.health()},
+                                                                 {motion_name, motion.health()}};
+  for (const auto& [name, d] : also) seen.emplace_back(name, d->health());
   {
     std::lock_guard lock(cell.mutex_);
-    for (const auto& [name, h] : {std::pair{device.name, &hs}, {motion_name, &hm}}) {
+    for (const auto& [name, h] : seen) {
       hal::DeviceHealth& out = cell.health_[name];
-      out.state = h->state;
-      out.counters = base[name] + h->counters;
-      out.message = h->message;
+      out.state = h.state;
+      out.counters = base[name] + h.counters;
+      out.message = h.message;
     }
   }
-  for (const auto* h : {&hs, &hm}) {
-    if (h->state == hal::DeviceState::kDisconnected || h->state == hal::DeviceState::kFault) {
-      *why = h->message.empty() ? std::string(hal::to_string(h->state)) : h->message;
+  for (const auto& [name, h] : seen) {
+    if (h.state == hal::DeviceState::kDisconnected || h.state == hal::DeviceState::kFault) {
+      const std::string what = h.message.empty() ? std::string(hal::to_string(h.state)) : h.message;
+      // The run's own sensor and motion are named by the caller's error; a further camera here.
+      *why = name == device.name || name == motion_name ? what : name + ": " + what;
       return false;
     }
   }
@@ -79,8 +82,13 @@ void SimCell::Run::end(hal::Device& sensor, hal::Device& motion, bool ok) {
   watch(sensor, motion, &ignored);
   sensor.stop();
   motion.stop();
+  std::vector<std::string> names = {device.name, motion_name};
+  for (const auto& [name, d] : also) {
+    d->stop();
+    names.push_back(name);
+  }
   std::lock_guard lock(cell.mutex_);
-  for (const auto& name : {device.name, motion_name}) {
+  for (const auto& name : names) {
     if (ok) {
       cell.health_[name].state = hal::DeviceState::kReady;
       cell.health_[name].message.clear();
@@ -120,6 +128,17 @@ std::vector<NamedHealth> SimCell::health() const {
   return out;
 }
 
+std::pair<std::uint64_t, sim::FaultOptions> SimCell::next_scan(const DeviceConfig& device) {
+  const int n = ++scans_[device.name];
+  sim::FaultOptions faults;
+  const SimFaultConfig& f = device.sim_fault;
+  if (f.disconnect_after_s >= 0.0 && (f.on_scan == 0 || f.on_scan == n)) {
+    faults.disconnect_after = seconds(f.disconnect_after_s);
+    faults.disconnect_for = seconds(f.disconnect_for_s);
+  }
+  return {config_.sim.seed + static_cast<std::uint64_t>(n), faults};
+}
+
 ScanOutcome SimCell::scan(const DeviceConfig& device, const ScanRequest& request,
                           const std::atomic<bool>& cancel, const std::function<void()>& progress) {
   const auto it = scenes_.find(device.name);
@@ -132,19 +151,46 @@ ScanOutcome SimCell::scan(const DeviceConfig& device, const ScanRequest& request
                            ") cannot scan; name a " + sensors + " device"),
         {}};
   }
-  const int n = ++scans_[device.name];
-  Run run{*this, device, request, cancel,  progress, *it->second, config_.sim.seed + n,
-          {},    {},     {},      config_, *clock_};
-  const SimFaultConfig& f = device.sim_fault;
-  if (f.disconnect_after_s >= 0.0 && (f.on_scan == 0 || f.on_scan == n)) {
-    run.sensor_faults.disconnect_after = seconds(f.disconnect_after_s);
-    run.sensor_faults.disconnect_for = seconds(f.disconnect_for_s);
-  }
+  auto [seed, faults] = next_scan(device);
+  Run run{*this,  device, request, cancel,  progress, *it->second, seed,
+          faults, {},     {},      config_, *clock_,  {},          {}};
   {
     std::lock_guard lock(mutex_);
     for (const auto& [name, counters] : totals_) run.base[name] = counters;
   }
   return kind->scan(run);
+}
+
+std::vector<ScanOutcome> SimCell::scan_together(std::span<const DeviceConfig* const> devices,
+                                                const ScanRequest& request,
+                                                const std::atomic<bool>& cancel,
+                                                const std::function<void()>& progress) {
+  if (devices.size() < 2) return {};
+  const DeviceConfig& first = *devices.front();
+  const SimSensor* kind = find_sim_sensor(first.kind);
+  const auto scene = scenes_.find(first.name);
+  if (kind == nullptr || kind->scan_together == nullptr || scene == scenes_.end()) return {};
+  for (const DeviceConfig* d : devices.subspan(1)) {
+    // One simulated cell: the same kind, scene and configured motion.
+    const auto other = scenes_.find(d->name);
+    if (d->driver != DriverKind::kSim || d->kind != first.kind || other == scenes_.end() ||
+        other->second != scene->second || d->sweep_start != first.sweep_start ||
+        d->sweep_end != first.sweep_end || d->sweep_speed != first.sweep_speed) {
+      return {};
+    }
+  }
+  auto [seed, faults] = next_scan(first);
+  Run run{*this, first,   request, cancel, progress, *scene->second, seed, faults, {},
+          {},    config_, *clock_, {},     {}};
+  for (const DeviceConfig* d : devices.subspan(1)) {
+    auto [s, f] = next_scan(*d);
+    run.cameras.push_back({d, s, f});
+  }
+  {
+    std::lock_guard lock(mutex_);
+    for (const auto& [name, counters] : totals_) run.base[name] = counters;
+  }
+  return kind->scan_together(run);
 }
 
 }  // namespace rangefit::daemon

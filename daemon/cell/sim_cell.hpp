@@ -26,6 +26,8 @@
 #include "daemon/service/config.hpp"
 #include "daemon/service/pipeline.hpp"
 
+#include "sim/fault_options.hpp"
+
 namespace rangefit::sim {
 class SimClock;
 }  // namespace rangefit::sim
@@ -46,6 +48,11 @@ class SimCell final : public CellDevices {
   // device.driver must be kSim. request.sweep_* are in internal units (mm or rad).
   ScanOutcome scan(const DeviceConfig& device, const ScanRequest& request,
                    const std::atomic<bool>& cancel, const std::function<void()>& progress) override;
+  // Stripe devices over one scene and one configured sweep: one StripeCell with every camera.
+  std::vector<ScanOutcome> scan_together(std::span<const DeviceConfig* const> devices,
+                                         const ScanRequest& request,
+                                         const std::atomic<bool>& cancel,
+                                         const std::function<void()>& progress) override;
   // One entry per simulated HAL device: "<name>" (the sensor) and "<name>/joint", "/axis" or
   // "/angles" (the stream that moves it).
   std::vector<NamedHealth> health() const override;
@@ -61,6 +68,9 @@ class SimCell final : public CellDevices {
   mutable std::mutex mutex_;
   std::map<std::string, hal::DeviceHealth> health_;
   std::map<std::string, hal::StreamCounters> totals_;  // of finished scans, by health name
+
+  // Counts a scan of the device: its noise seed and the faults [devices.sim_fault] puts on it.
+  std::pair<std::uint64_t, sim::FaultOptions> next_scan(const DeviceConfig& device);
 };
 
 }  // namespace rangefit::daemon

@@ -9,6 +9,8 @@
 #include <map>
 #include <span>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "daemon/cell/scan_loop.hpp"
 #include "daemon/cell/sim_cell.hpp"
@@ -39,6 +41,15 @@ struct SimCell::Run {
   std::map<std::string, hal::StreamCounters> base;
   const CellConfig& config;
   sim::SimClock& clock;
+  // Further devices scanning with this one in the same motion (scan_together): their own seeds
+  // and faults. The scan adds their HAL devices to `also` so that watch() and end() cover them.
+  struct Camera {
+    const DeviceConfig* device;
+    std::uint64_t seed;
+    sim::FaultOptions faults;
+  };
+  std::vector<Camera> cameras;
+  std::vector<std::pair<std::string, hal::Device*>> also;
 
   // Copies the devices' health for diagnostics; false (with *why) when one lost its link.
   bool watch(const hal::Device& sensor, const hal::Device& motion, std::string* why);
@@ -56,6 +67,9 @@ struct SimCell::Run {
 struct SimSensor {
   const char* kind;  // SensorKind::name of the kind it simulates
   ScanOutcome (*scan)(SimCell::Run& run);
+  // The run's device and run.cameras in one motion, one outcome each in that order; null when
+  // the kind scans one device at a time.
+  std::vector<ScanOutcome> (*scan_together)(SimCell::Run& run) = nullptr;
 };
 
 // Every registered SimSensor, in name order (generated from the files of daemon/cell/sensors/sim).

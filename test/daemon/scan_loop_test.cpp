@@ -101,6 +101,31 @@ TEST(ScanLoop, AnUnhealthyDeviceEndsTheLoopWithItsReasonAfterFusingWhatArrived) 
   EXPECT_EQ(loop.fused_paced, (std::vector<int>{1, 2}));
 }
 
+TEST(ScanLoop, EachDrainedStreamsBatchGoesToItsOwnSlotAndAnyArrivalIsProgress) {
+  ScriptedSource<int> paced{{}, {}, {7}};
+  ScriptedSource<double> a{{1.0}, {}, {}};
+  ScriptedSource<double> b{{}, {2.0, 3.0}, {}};
+  hal::SampleSource<double>* const drained[] = {&a, &b};
+  Loop loop;
+  std::vector<std::vector<double>> fused(2);
+  int pass = 0;
+  const ScanLoopEnd end = run_scan_loop(
+      paced, std::span<hal::SampleSource<double>* const>(drained), {loop.cancel, loop.progress},
+      [&] { return pass == 3; },
+      [&](const std::vector<int>&, std::span<const std::vector<double>> batches) {
+        ++pass;
+        ASSERT_EQ(batches.size(), 2u);
+        for (std::size_t k = 0; k < 2; ++k) {
+          fused[k].insert(fused[k].end(), batches[k].begin(), batches[k].end());
+        }
+      },
+      [](std::string*) { return true; }, &loop.why);
+  EXPECT_EQ(end, ScanLoopEnd::kDone);
+  EXPECT_EQ(fused[0], (std::vector<double>{1.0}));
+  EXPECT_EQ(fused[1], (std::vector<double>{2.0, 3.0}));
+  EXPECT_EQ(loop.progress_calls, 3) << "a profile of either camera or an axis sample is progress";
+}
+
 TEST(SweepEdges, EndsOnlyAtPlusHalfAfterMinusHalfWasReached) {
   SweepEdges sweep{0.1};
   for (double a : {0.0, 0.1, 0.05}) sweep.see(a);  // +half before the start: not the end
