@@ -123,6 +123,22 @@ void read_pan_tilt(Fields& f, PanTiltFusionConfig& c) {
   f.read("profile_rate_hz", g.profile_rate_hz, 1e-3, 1e6);
   read_ms(f, "profile_period_ms", c.profile_period, 0.0, 1e5);
   f.read_int("expected_profiles", c.expected_profiles, 1, 10000000);
+  if (const toml::array* cams = f.table_array("cameras")) {
+    for (std::size_t i = 0; i < cams->size(); ++i) {
+      Fields e = f.element("cameras", *cams, i);
+      PanTiltCameraConfig cam;
+      for (const char* key : {"name", "baseline_mm"}) e.require(key);
+      e.read("name", cam.name);
+      if (cam.name.empty()) e.fail("name", "must not be empty");
+      for (const PanTiltCameraConfig& other : c.cameras) {
+        if (other.name == cam.name) e.fail("name", "\"" + cam.name + "\" is given twice");
+      }
+      e.read("baseline_mm", cam.baseline_mm, -kBig, kBig);
+      if (cam.baseline_mm == 0.0) e.fail("baseline_mm", "a camera in the laser plane sees nothing");
+      e.reject_unknown();
+      c.cameras.push_back(std::move(cam));
+    }
+  }
   f.reject_unknown();
 }
 

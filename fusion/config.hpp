@@ -29,6 +29,8 @@
 //                         tilt_zero_rad = 0, sweep_angle_rad = 0.872665 (50 deg),
 //                         sweep_rate_rad_s = 0.174533 (10 deg/s), profile_rate_hz = 100,
 //                         profile_period_ms = 10, expected_profiles = 512
+//   [[fusion.pan_tilt.cameras]]  further cameras of the head's laser plane: name (the pan_tilt
+//                         device's), baseline_mm (< 0: the other side); both required
 //   [fusion.pan_tilt.ranger]  as above, defaults min_depth_mm = 344, max_depth_mm = 2685,
 //                         baseline_mm = 425 (thesis: A1, A2, B of the mobile head)
 //

@@ -65,12 +65,31 @@ inline std::string stripe_camera_of(const StripeCellFusionConfig& c, std::string
   return {};
 }
 
+// A further camera of the pan-tilt head's laser plane: a pan_tilt device of its own whose
+// profiles the head's laser and motion make, calibrated into the same laser-plane coordinates.
+// Only where it looks from differs: its offset from the plane (< 0: the other side).
+struct PanTiltCameraConfig {
+  std::string name;
+  double baseline_mm = 0.0;
+};
+
 struct PanTiltFusionConfig {
   hal::PanTiltGeometry geometry{};
+  std::vector<PanTiltCameraConfig> cameras;  // further cameras of the same laser plane
   hal::Duration profile_period = std::chrono::milliseconds(10);  // 100 profiles/s (thesis)
   std::size_t expected_profiles = 512;  // 50 deg at 10 deg/s and 100 profiles/s = 500
   TimeLimits limits{};
 };
+
+// The head as the pan_tilt device `device` sees it: the ranger with its camera's offset when
+// `cameras` names it, else unchanged.
+inline PanTiltFusionConfig pan_tilt_for(const PanTiltFusionConfig& c, std::string_view device) {
+  PanTiltFusionConfig out = c;
+  for (const PanTiltCameraConfig& cam : c.cameras) {
+    if (cam.name == device) out.geometry.ranger.baseline_mm = cam.baseline_mm;
+  }
+  return out;
+}
 
 // The part both assemblers share; the pose of the ranger comes from a derived class.
 class ProfileAssembler {

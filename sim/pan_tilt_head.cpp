@@ -30,21 +30,27 @@ PanTiltHead::PanTiltHead(const Scene& scene, const RayCaster& caster, PanTiltOpt
     : options_(std::move(options)),
       T_scene_world_(scene.mounts.T_scene_pantilt),
       start_(clock.now()) {
-  ranger_ = make_simulated_ranger(
-      "sim-pan-tilt-ranger", caster,
-      {.ranger = options_.geometry.ranger,
-       .profile_rate_hz = options_.geometry.profile_rate_hz,
-       .exposure = options_.exposure,
-       .quantise = options_.quantise,
-       .faults = options_.ranger_faults,
-       .seed = options_.seed},
-      [this](hal::Timestamp t) { return T_scene_ranger(t); }, clock, start_);
+  const auto add_ranger = [&](const hal::StripeRanger& ranger, const FaultOptions& faults,
+                              std::uint64_t seed) {
+    rangers_.push_back(make_simulated_ranger(
+        "sim-pan-tilt-ranger", caster,
+        {.ranger = ranger,
+         .profile_rate_hz = options_.geometry.profile_rate_hz,
+         .exposure = options_.exposure,
+         .quantise = options_.quantise,
+         .faults = faults,
+         .seed = seed},
+        [this](hal::Timestamp t) { return T_scene_ranger(t); }, clock, start_));
+  };
+  add_ranger(options_.geometry.ranger, options_.ranger_faults, options_.seed);
+  for (const PanTiltCamera& c : options_.cameras) add_ranger(c.ranger, c.faults, c.seed);
   angles_ = std::make_unique<AngleDevice>(*this, clock);
 }
 
 PanTiltHead::~PanTiltHead() = default;
 
-hal::RangerSource& PanTiltHead::ranger() { return *ranger_; }
+hal::RangerSource& PanTiltHead::ranger() { return *rangers_.front(); }
+hal::RangerSource& PanTiltHead::ranger(std::size_t k) { return *rangers_.at(k); }
 hal::PanTiltSource& PanTiltHead::angles() { return *angles_; }
 
 hal::Timestamp PanTiltHead::sweep_end() const {

@@ -6,14 +6,24 @@
 // sweep rate with tilt held, as in the thesis's table-top scans (50 deg at 10 deg/s).
 
 #include <memory>
+#include <vector>
 
 #include "hal/pan_tilt_geometry.hpp"
 #include "sim/ranger_simulator.hpp"
 
 namespace rangefit::sim {
 
+// A further camera of the head's laser plane with a ranger stream of its own: the same laser,
+// fan and motion; `ranger` says where its camera looks from (baseline_mm < 0: the other side).
+struct PanTiltCamera {
+  hal::StripeRanger ranger;
+  FaultOptions faults;
+  std::uint64_t seed = 2;
+};
+
 struct PanTiltOptions {
   hal::PanTiltGeometry geometry;
+  std::vector<PanTiltCamera> cameras;  // further cameras; all sweep with the one head
   double tilt_rad = 0.0;  // held during the sweep
   bool quantise = true;
   double angle_rate_hz = 100.0;  // pan/tilt position replies per second
@@ -30,6 +40,8 @@ class PanTiltHead {
   ~PanTiltHead();
 
   hal::RangerSource& ranger();
+  // Camera k's ranger: 0 is ranger(), k >= 1 options().cameras[k - 1]'s.
+  hal::RangerSource& ranger(std::size_t k);
   hal::PanTiltSource& angles();
 
   hal::Timestamp sweep_start() const { return start_; }
@@ -43,7 +55,8 @@ class PanTiltHead {
   const PanTiltOptions options_;
   const Eigen::Isometry3d T_scene_world_;
   const hal::Timestamp start_;
-  std::unique_ptr<hal::RangerSource> ranger_;
+  std::vector<std::unique_ptr<hal::RangerSource>> rangers_;  // the first camera's, then the others'
+
   std::unique_ptr<AngleDevice> angles_;
 };
 

@@ -90,11 +90,8 @@ std::vector<ScanOutcome> RealDevices::scan_together(std::span<const DeviceConfig
   const DeviceConfig& first = *devices.front();
   const RealSensor* kind = find_real_sensor(first.kind);
   if (kind == nullptr || kind->scan_together == nullptr) return {};
-  std::string why;
-  const hal::Device* motion = motion_of(first, &why);
-  if (motion == nullptr) return {};
   for (const DeviceConfig* d : devices.subspan(1)) {
-    if (d->driver != DriverKind::kReal || d->kind != first.kind || motion_of(*d, &why) != motion ||
+    if (d->driver != DriverKind::kReal || d->kind != first.kind ||
         d->sweep_start != first.sweep_start || d->sweep_end != first.sweep_end ||
         d->sweep_speed != first.sweep_speed) {
       return {};

@@ -36,8 +36,9 @@ struct RealSensor {
   // Scans with the device (its drivers are in `cell`); null: the kind takes no scans.
   ScanOutcome (*scan)(RealDevices& cell, const DeviceConfig& d, const ScanRequest& request,
                       ScanControl control);
-  // Scans with several devices of the kind in one motion, one outcome each in order (they share
-  // their motion device and configured sweep: RealDevices checks); null: one at a time.
+  // Scans with several devices of the kind in one motion, one outcome each in order; empty when
+  // they do not share their motion device (RealDevices checks the kind and configured sweep).
+  // Null: one at a time.
   std::vector<ScanOutcome> (*scan_together)(RealDevices& cell,
                                             std::span<const DeviceConfig* const> devices,
                                             const ScanRequest& request,

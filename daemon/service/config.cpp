@@ -373,14 +373,35 @@ void read_devices(FieldReader& r, DaemonConfig& c, std::string_view source_name,
           "devices[" + std::to_string(i) + "].motion: no device named \"" + m + "\"");
     }
   }
-  // A further camera of the stripe cell's laser plane is a stripe device of that name.
-  const auto& cameras = c.fusion.stripe_cell.cameras;
-  for (std::size_t i = 0; i < cameras.size(); ++i) {
-    const DeviceConfig* d = c.device(cameras[i].name);
-    if (d == nullptr || d->kind.name() != std::string_view("stripe")) {
+  // A further camera of the stripe cell's or the head's laser plane is a device of that kind
+  // and name.
+  const auto check_cameras = [&](const auto& cameras, const char* table, const char* kind) {
+    for (std::size_t i = 0; i < cameras.size(); ++i) {
+      const DeviceConfig* d = c.device(cameras[i].name);
+      if (d == nullptr || d->kind != DeviceKind(kind)) {
+        throw io::TomlError(source_name, 0,
+                            std::string("fusion.") + table + ".cameras[" + std::to_string(i) +
+                                "].name: no " + kind + " device named \"" + cameras[i].name + "\"");
+      }
+    }
+  };
+  check_cameras(c.fusion.stripe_cell.cameras, "stripe_cell", "stripe");
+  check_cameras(c.fusion.pan_tilt.cameras, "pan_tilt", "pan_tilt");
+  // A pan_tilt device moved by another is a further camera on that head, which moves itself.
+  for (std::size_t i = 0; i < c.devices.size(); ++i) {
+    const DeviceConfig& d = c.devices[i];
+    if (d.kind != DeviceKind("pan_tilt") || d.motion.empty()) continue;
+    const DeviceConfig* head = c.device(d.motion);
+    const std::string where = "devices[" + std::to_string(i) + "].";
+    if (head->kind != d.kind || !head->motion.empty()) {
       throw io::TomlError(source_name, 0,
-                          "fusion.stripe_cell.cameras[" + std::to_string(i) +
-                              "].name: no stripe device named \"" + cameras[i].name + "\"");
+                          where + "motion: \"" + d.motion +
+                              "\" is not a pan_tilt head (a pan_tilt device without motion)");
+    }
+    if (d.pan_node != 0 || d.tilt_node != 0) {
+      throw io::TomlError(source_name, 0,
+                          where + (d.pan_node != 0 ? "pan_node" : "tilt_node") +
+                              ": a camera on another head has no axes of its own");
     }
   }
 }

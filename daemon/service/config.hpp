@@ -46,7 +46,9 @@ struct DeviceConfig {
   double sweep_start = 0.0;           // default sweep: mm (linear) or rad (rotary)
   double sweep_end = 0.0;
   double sweep_speed = 0.0;  // per second; 0 = device default
-  std::string motion;        // real: device moving this sensor (robot, axis); empty = the only one
+  // real: device moving this sensor (robot, axis); empty = the only one. pan_tilt: the head a
+  // further camera rides on (sim and real); empty = a head of its own.
+  std::string motion;
   // Bus addresses of a real device (daemon/driver_configs.hpp); 0 = the driver's default.
   int can_node = 0;     // robot: its joint's CiA 402 node (1); stripe, pan_tilt: the ranger (32)
   int pan_node = 0;     // pan_tilt: the pan axis' CiA 402 node (1)

@@ -143,19 +143,26 @@ std::string check_target(CalibrationTarget& t, const std::string& own_id) {
 
 // Several sensors' scans fused: each a configured device, named once, scanning its configured
 // sweep (a request's sweep is in one device's units). The first is the sensor. Learn fuses any
-// views; object detection two stripe cameras of one laser plane (the scan merges their views,
-// DeviceBackend::scan_views).
+// views; object detection two cameras of one laser plane, a stripe cell's or a pan-tilt head's
+// (the scan merges their views, DeviceBackend::scan_views).
 std::string check_views(ScanRequest& request, const DaemonConfig& config) {
   if (request.sensors.empty()) return "";
   if (request.kind == DetectKind::kObject) {
     if (request.sensors.size() != 2) {
       return "sensors: an object request fuses the two cameras of one laser plane; name two";
     }
+    const DeviceConfig* first = config.device(request.sensors.front());
     for (const std::string& name : request.sensors) {
       const DeviceConfig* d = config.device(name);
-      if (d != nullptr && d->kind != DeviceKind("stripe")) {
+      if (d == nullptr) continue;  // named below
+      if (d->kind != DeviceKind("stripe") && d->kind != DeviceKind("pan_tilt")) {
         return "sensors: \"" + name + "\" is a " + std::string(d->kind.name()) +
-               "; an object request fuses stripe cameras";
+               "; an object request fuses the cameras of a stripe cell or a pan-tilt head";
+      }
+      if (first != nullptr && d->kind != first->kind) {
+        return "sensors: \"" + name + "\" is a " + std::string(d->kind.name()) + ", \"" +
+               first->name + "\" a " + std::string(first->kind.name()) +
+               "; an object request fuses two cameras of one laser plane";
       }
     }
   } else if (request.kind != DetectKind::kLearn) {

@@ -79,6 +79,15 @@ INSTANTIATE_TEST_SUITE_P(
                 "[[fusion.stripe_cell.cameras]]\nname = \"b\"\nranger_position_cell_mm = [0, 0, "
                 "0]\nranger_rpy_cell_rad = [0, 0, 0]\nbaseline_mm = 1\n",
                 "fusion.stripe_cell.cameras[0].name: no stripe device named \"b\""},
+        BadCase{"[sim]\nscene = \"s.toml\"\n[[devices]]\nname = \"b\"\nkind = \"stripe\"\n"
+                "[[fusion.pan_tilt.cameras]]\nname = \"b\"\nbaseline_mm = -425\n",
+                "fusion.pan_tilt.cameras[0].name: no pan_tilt device named \"b\""},
+        BadCase{"[sim]\nscene = \"s.toml\"\n[[devices]]\nname = \"s\"\nkind = \"stripe\"\n"
+                "[[devices]]\nname = \"b\"\nkind = \"pan_tilt\"\nmotion = \"s\"\n",
+                "devices[1].motion: \"s\" is not a pan_tilt head"},
+        BadCase{"[sim]\nscene = \"s.toml\"\n[[devices]]\nname = \"h\"\nkind = \"pan_tilt\"\n"
+                "[[devices]]\nname = \"b\"\nkind = \"pan_tilt\"\nmotion = \"h\"\npan_node = 5\n",
+                "devices[1].pan_node: a camera on another head has no axes of its own"},
         BadCase{"[sim]\ntime_scale = -1\n", "sim.time_scale"},
         BadCase{"[sim]\nnoise = 1\n", "sim.noise: must be true or false"},
         BadCase{"[fusion.css]\ndeflection_rad = \"x\"\n", "fusion.css.deflection_rad"},
@@ -189,6 +198,22 @@ TEST(DaemonConfig, RealDevicesSharingANodeOnOneInterfaceIsAnErrorNamingBoth) {
                            "device \"arm\""),
             std::string::npos)
       << set.error;
+}
+
+// A further camera on a real head has only its ranger: the head's axes are not claimed twice,
+// but its ranger must not share the head's ranger node.
+TEST(DaemonConfig, ACameraOnARealHeadClaimsOnlyItsRangersNode) {
+  const std::string head =
+      "[[devices]]\nname = \"head\"\nkind = \"pan_tilt\"\ndriver = \"real\"\n"
+      "transport = \"can0\"\n[[devices]]\nname = \"head_b\"\nkind = \"pan_tilt\"\n"
+      "driver = \"real\"\ntransport = \"can0\"\nmotion = \"head\"\n";
+  const auto r = parse_config(head + "can_node = 33\n");
+  EXPECT_TRUE(r.config) << r.error;
+  const auto clash = parse_config(head, "t.toml");
+  EXPECT_NE(clash.error.find("devices[1].can_node: CAN node 32 (the default) on can0 is also used "
+                             "by device \"head\""),
+            std::string::npos)
+      << clash.error;
 }
 
 TEST(DaemonConfig, SameNodeOnAnotherInterfaceOrOnASimulatedDeviceIsFine) {

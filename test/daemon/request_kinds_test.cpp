@@ -318,13 +318,26 @@ TEST(RequestKinds, ValidationNamesWhatIsWrong) {
             "with sensors each scans its configured sweep: leave sweep out");
   EXPECT_EQ(views({"stripe", "css"}, [](ScanRequest& r) { r.kind = DetectKind::kBore; }),
             "sensors (several scans fused) is for learn and object requests; give one sensor");
-  // An object request fuses the two cameras of one laser plane: two stripe devices.
+  // An object request fuses the two cameras of one laser plane: two stripe devices, or two
+  // pan_tilt devices.
   const auto object = [](ScanRequest& r) {
     r.kind = DetectKind::kObject;
     r.model = "mallet";
   };
   EXPECT_EQ(views({"stripe", "css"}, object),
-            "sensors: \"css\" is a css; an object request fuses stripe cameras");
+            "sensors: \"css\" is a css; an object request fuses the cameras of a stripe cell or "
+            "a pan-tilt head");
+  DaemonConfig with_head = config;
+  DeviceConfig head;
+  head.name = head.kind = "pan_tilt";
+  with_head.devices.push_back(head);
+  ScanRequest mixed;
+  mixed.id = "m";
+  mixed.sensors = {"stripe", "pan_tilt"};
+  object(mixed);
+  EXPECT_EQ(validate_request(mixed, with_head),
+            "sensors: \"pan_tilt\" is a pan_tilt, \"stripe\" a stripe; an object request fuses "
+            "two cameras of one laser plane");
   EXPECT_EQ(views({"stripe", "stripe2", "css"}, object),
             "sensors: an object request fuses the two cameras of one laser plane; name two");
   ScanRequest fused;

@@ -1,7 +1,8 @@
-// The simulated stripe cell with a camera on each side of its laser plane, and a box behind a
-// wall from the first camera: an object request that names both cameras (`sensors`) sweeps with
-// each in turn and finds the box in their fused clouds, judged with both cameras' sight; the
-// first camera alone cannot see it. `rangefit object` does the same with the two saved sweeps.
+// The simulated stripe cell, and the pan-tilt head, with a camera on each side of the laser plane
+// and a box behind a wall from the first camera: an object request that names both cameras
+// (`sensors`) sweeps once and finds the box in their fused clouds, judged with both cameras'
+// sight; the first camera alone cannot see it. `rangefit object` does the same with the two
+// saved sweeps.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -133,6 +134,47 @@ TEST(ServiceTwoCameras, BothCamerasOfOneLaserPlaneFindWhatOneCannotSee) {
   EXPECT_NE(twice.output.find("not a second camera"), std::string::npos) << twice.output;
 #endif
   fs::remove_all(cell.dir);
+}
+
+// The same box and wall under a pan-tilt head 700 mm above the box, looking down: its first
+// camera is 425 mm towards -y of the laser plane (behind the wall), the second mirrored, a
+// pan_tilt device of its own on the same head (`motion`).
+TEST(ServiceTwoCameras, BothCamerasOfAPanTiltHeadFindWhatOneCannotSee) {
+  const fs::path dir = test::fresh_test_dir("rangefit_service_two_head_cameras");
+  const fs::path scene = write_scene(dir);
+  std::ofstream(scene, std::ios::app)
+      << "\n[sensors.pantilt]\nposition = [60, 0, 700]\nrpy_deg = [180, 0, 0]\n";
+  const std::string devices =
+      "[[devices]]\nname = \"head\"\nkind = \"pan_tilt\"\nscene = \"" + scene.string() +
+      "\"\n[[devices]]\nname = \"head_b\"\nkind = \"pan_tilt\"\nmotion = \"head\"\nscene = \"" +
+      scene.string() + "\"\n[[fusion.pan_tilt.cameras]]\nname = \"head_b\"\nbaseline_mm = -425\n";
+  const fs::path path =
+      test::write_stripe_cell_config(dir, "table_top_fig5_18.toml", "box.toml", false, devices);
+  ConfigResult config = load_config(path);
+  ASSERT_TRUE(config.config) << config.error;
+  hal::MonotonicClock clock;
+  Service service(*config.config, clock);
+  auto loop = std::make_unique<test::ServiceLoop>(service);
+  ScanRequest both = box_request("head-both");
+  both.sensors = {"head", "head_b"};
+  const auto found = run(service, both);
+  ScanRequest first = box_request("head-alone");
+  first.sensor = "head";
+  const auto alone = run(service, first);
+  ScanRequest mixed = box_request("mixed");
+  mixed.sensors = {"stripe", "head_b"};
+  const auto refused = run(service, mixed);
+  loop.reset();
+  ASSERT_TRUE(found && alone && refused);
+  ASSERT_TRUE(found->found) << found->reason;
+  ASSERT_EQ(found->parts.size(), 1u);
+  EXPECT_LT((found->parts[0].T_world_part.translation() - kBoxAt).norm(), 3.0)
+      << found->parts[0].T_world_part.translation().transpose();
+  EXPECT_FALSE(alone->found) << "the first camera alone sees no box behind the wall";
+  EXPECT_FALSE(refused->found);
+  EXPECT_NE(refused->reason.find("two cameras of one laser plane"), std::string::npos)
+      << refused->reason;
+  fs::remove_all(dir);
 }
 
 }  // namespace service_two_camera_test

@@ -109,6 +109,12 @@ INSTANTIATE_TEST_SUITE_P(
                 "0]\nranger_rpy_cell_rad = [0, 0, 0]\nbaseline_mm = 1\n"
                 "[[fusion.stripe_cell.cameras]]\nname = \"b\"\nranger_position_cell_mm = [0, 0, "
                 "0]\nranger_rpy_cell_rad = [0, 0, 0]\nbaseline_mm = 1\n",
+                "\"b\" is given twice"},
+        BadCase{"[[fusion.pan_tilt.cameras]]\nname = \"b\"\n", "baseline_mm: is required"},
+        BadCase{"[[fusion.pan_tilt.cameras]]\nname = \"b\"\nbaseline_mm = 0\n",
+                "fusion.pan_tilt.cameras[0].baseline_mm: a camera in the laser plane sees nothing"},
+        BadCase{"[[fusion.pan_tilt.cameras]]\nname = \"b\"\nbaseline_mm = -425\n"
+                "[[fusion.pan_tilt.cameras]]\nname = \"b\"\nbaseline_mm = 425\n",
                 "\"b\" is given twice"}));
 
 // A further camera of the laser plane: its device sees the cell from its own pose and side; the
@@ -131,6 +137,20 @@ TEST(FusionConfig, AFurtherCameraOfTheLaserPlaneGivesItsDeviceItsOwnPoseAndSide)
   EXPECT_EQ(a.ranger_position_cell_mm, hal::StripeCellGeometry{}.ranger_position_cell_mm);
   EXPECT_EQ(a.ranger.baseline_mm, 300.0);
   EXPECT_EQ(stripe_camera_of(c, "stripe"), "");
+}
+
+// A further camera of the pan-tilt head's laser plane: the same laser, head and fan; only the
+// side its camera looks from differs.
+TEST(FusionConfig, AFurtherCameraOfTheHeadGivesItsDeviceItsOwnSide) {
+  const FusionConfigResult r = parse_fusion_config(
+      std::string_view("[fusion.pan_tilt]\nt_w_mm = [1, 2, 3]\n"
+                       "[[fusion.pan_tilt.cameras]]\nname = \"head_b\"\nbaseline_mm = -400\n"));
+  ASSERT_TRUE(r.config) << r.error;
+  const PanTiltFusionConfig& c = r.config->pan_tilt;
+  const hal::PanTiltGeometry b = pan_tilt_for(c, "head_b").geometry;
+  EXPECT_EQ(b.ranger.baseline_mm, -400.0);
+  EXPECT_EQ(b.t_w_mm, Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(pan_tilt_for(c, "head").geometry.ranger.baseline_mm, 425.0);
 }
 
 TEST(FusionConfig, ErrorsNameTheLineAndCrashInputsAreRefused) {

@@ -32,6 +32,9 @@ std::vector<ScanOutcome> stripe_sweep(RealDevices& cell,
   std::string why;
   auto* axis = cell.motion_as<hal::LinearAxis>(device, &why);
   if (axis == nullptr) return all_failed(devices, hal::Status::Error(why));
+  for (const DeviceConfig* d : devices.subspan(1)) {
+    if (cell.motion_as<hal::LinearAxis>(*d, &why) != axis) return {};  // not one axis
+  }
   const std::string axis_name = axis->name();
   std::vector<hal::RangerSource*> rangers;
   std::vector<fusion::StripeCellFusionConfig> fcs;

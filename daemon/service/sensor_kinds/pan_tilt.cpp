@@ -2,7 +2,9 @@
 // cell program pans the head: a rotary sweep, in rad. The ranger (can_node) and the head's pan
 // and tilt axes (pan_node, tilt_node) share one CAN interface. `rangefit simulate` spells it
 // "pantilt". The service calibrates it from the hollow cube swept at several tilts (calibrate
-// target "pantilt"). Its drivers and scans: daemon/cell/sensors/pan_tilt.cpp and sim/pan_tilt.cpp.
+// target "pantilt"). A further camera of the head's laser plane ([[fusion.pan_tilt.cameras]]) is
+// a pan_tilt device whose `motion` names the head: it has only its ranger (can_node). Its drivers
+// and scans: daemon/cell/sensors/pan_tilt.cpp and sim/pan_tilt.cpp.
 #include "daemon/service/bus_addresses.hpp"
 #include "daemon/service/sensor_kind.hpp"
 
@@ -10,6 +12,7 @@ namespace rangefit::daemon::sensor_kinds {
 namespace {
 
 std::vector<CanNodeUse> pan_tilt_nodes(const DeviceConfig& d) {
+  if (!d.motion.empty()) return {{"can_node", ranger_node(d), d.can_node == 0}};
   return {{"can_node", ranger_node(d), d.can_node == 0},
           {"pan_node", pan_node(d), d.pan_node == 0},
           {"tilt_node", tilt_node(d), d.tilt_node == 0}};

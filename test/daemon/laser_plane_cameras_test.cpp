@@ -1,6 +1,7 @@
-// Two cameras of one laser plane on one axis (driver = "sim"): an object request that names both
-// is one sweep, not one per camera, and each camera's profiles are fused with its own geometry.
-// A camera that loses its link mid-sweep fails the request naming it, and the service goes on.
+// Two cameras of one laser plane on one axis or one pan-tilt head (driver = "sim"): an object
+// request that names both is one sweep, not one per camera, and each camera's profiles are fused
+// with its own geometry. A camera that loses its link mid-sweep fails the request naming it, and
+// the service goes on.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,7 +10,7 @@
 #include "daemon/cell/device_backend.hpp"
 
 namespace rangefit::daemon {
-namespace stripe_cameras_test {
+namespace laser_plane_cameras_test {
 
 DaemonConfig two_camera_config() {
   DaemonConfig c;
@@ -121,5 +122,39 @@ TEST(StripeCameras, CamerasOverDifferentScenesScanInTurn) {
       << "two simulated cells: two sweeps";
 }
 
-}  // namespace stripe_cameras_test
+TEST(PanTiltCameras, BothCamerasOfOneHeadScanInOneSweep) {
+  DaemonConfig config;
+  config.sim.time_scale = 0.0;
+  config.sim.noise = false;
+  for (const char* name : {"head", "head_b"}) {
+    DeviceConfig d;
+    d.name = name;
+    d.kind = "pan_tilt";
+    d.scene = std::filesystem::path(RANGEFIT_SOURCE_DIR) / "data/scenes/table_top_fig5_18.toml";
+    config.devices.push_back(d);
+  }
+  config.devices[1].motion = "head";
+  config.fusion.pan_tilt.cameras.push_back(
+      {"head_b", -config.fusion.pan_tilt.geometry.ranger.baseline_mm});
+  DeviceBackend backend(config);
+  std::atomic<bool> cancel{false};
+  const std::function<void()> progress = [] {};
+  ScanRequest one;
+  one.kind = DetectKind::kObject;
+  one.sensor = "head";
+  const ScanOutcome first = backend.scan(one, cancel, progress);
+  one.sensor = "head_b";
+  const ScanOutcome second = backend.scan(one, cancel, progress);
+  const ScanOutcome both = backend.scan(object_request({"head", "head_b"}), cancel, progress);
+  ASSERT_TRUE(first.status && second.status && both.status)
+      << first.status.message << second.status.message << both.status.message;
+  // The mirrored camera sees what the first has in its shadow, and the other way round.
+  const auto alone = static_cast<double>(first.cloud.size() + second.cloud.size());
+  EXPECT_NEAR(static_cast<double>(both.cloud.size()), alone, 0.01 * alone);
+  EXPECT_NE(first.cloud.size(), second.cloud.size());
+  EXPECT_LT(stamp_span_s(both.cloud), 1.05 * stamp_span_s(first.cloud));
+  EXPECT_GT(both.sensor.view.second_camera_offset.norm(), 0.0) << "the view has both cameras";
+}
+
+}  // namespace laser_plane_cameras_test
 }  // namespace rangefit::daemon
