@@ -21,10 +21,11 @@ class CellDevices {
   virtual ScanOutcome scan(const DeviceConfig& device, const ScanRequest& request,
                            const std::atomic<bool>& cancel,
                            const std::function<void()>& progress) = 0;
-  // Scans with several devices of this set at once where their kind can: the cameras of one
-  // laser plane sweep together, so the axis moves once. One outcome per device, in order, each
-  // as scan() would give it. Empty when these devices cannot scan together (another kind, another
-  // scene or axis, another sweep): the caller then scans them in turn.
+  // Scans with several devices of this set, of one kind and configured sweep, at once where their
+  // kind can: the cameras of one laser plane sweep together, so the axis moves once. One outcome
+  // per device, in order, each as scan() would give it. Empty when these devices cannot scan
+  // together (a kind that scans alone, another scene, axis or head): the caller then scans them
+  // in turn.
   virtual std::vector<ScanOutcome> scan_together(std::span<const DeviceConfig* const> devices,
                                                  const ScanRequest& request,
                                                  const std::atomic<bool>& cancel,

@@ -92,15 +92,18 @@ ScanOutcome DeviceBackend::scan_views(const ScanRequest& request, const std::ato
   std::vector<ScanOutcome> together;
   if (cancel) return {hal::Status::Error("cancelled"), {}};
   CellDevices* cell = nullptr;
-  const bool one_driver = std::all_of(devices.begin(), devices.end(), [&](const DeviceConfig* d) {
-    return d->driver == devices.front()->driver;
+  const DeviceConfig& first = *devices.front();
+  const bool alike = std::all_of(devices.begin(), devices.end(), [&](const DeviceConfig* d) {
+    return d->driver == first.driver && d->kind == first.kind &&
+           d->sweep_start == first.sweep_start && d->sweep_end == first.sweep_end &&
+           d->sweep_speed == first.sweep_speed;
   });
 #ifdef RANGEFIT_WITH_SIM
-  if (one_driver && devices.front()->driver == DriverKind::kSim) cell = sim_.get();
+  if (alike && first.driver == DriverKind::kSim) cell = sim_.get();
 #endif
-  if (one_driver && devices.front()->driver == DriverKind::kReal) cell = real_.get();
+  if (alike && first.driver == DriverKind::kReal) cell = real_.get();
   if (cell != nullptr) {
-    together = cell->scan_together(devices, one_request(*devices.front()), cancel, progress);
+    together = cell->scan_together(devices, one_request(first), cancel, progress);
   }
   for (std::size_t k = 0; k < devices.size(); ++k) {
     const std::string& name = devices[k]->name;

@@ -90,13 +90,6 @@ std::vector<ScanOutcome> RealDevices::scan_together(std::span<const DeviceConfig
   const DeviceConfig& first = *devices.front();
   const RealSensor* kind = find_real_sensor(first.kind);
   if (kind == nullptr || kind->scan_together == nullptr) return {};
-  for (const DeviceConfig* d : devices.subspan(1)) {
-    if (d->driver != DriverKind::kReal || d->kind != first.kind ||
-        d->sweep_start != first.sweep_start || d->sweep_end != first.sweep_end ||
-        d->sweep_speed != first.sweep_speed) {
-      return {};
-    }
-  }
   return kind->scan_together(*this, devices, request, {cancel, progress});
 }
 

@@ -50,8 +50,7 @@ class RealDevices final : public CellDevices {
 
   ScanOutcome scan(const DeviceConfig& device, const ScanRequest& request,
                    const std::atomic<bool>& cancel, const std::function<void()>& progress) override;
-  // Devices of one kind and configured sweep that their kind scans together (stripe: one axis;
-  // pan_tilt: one head).
+  // Devices their kind scans together (stripe: one axis; pan_tilt: one head).
   std::vector<ScanOutcome> scan_together(std::span<const DeviceConfig* const> devices,
                                          const ScanRequest& request,
                                          const std::atomic<bool>& cancel,

@@ -171,13 +171,9 @@ std::vector<ScanOutcome> SimCell::scan_together(std::span<const DeviceConfig* co
   const auto scene = scenes_.find(first.name);
   if (kind == nullptr || kind->scan_together == nullptr || scene == scenes_.end()) return {};
   for (const DeviceConfig* d : devices.subspan(1)) {
-    // One simulated cell: the same kind, scene and configured motion.
+    // One simulated cell: the same scene.
     const auto other = scenes_.find(d->name);
-    if (d->driver != DriverKind::kSim || d->kind != first.kind || other == scenes_.end() ||
-        other->second != scene->second || d->sweep_start != first.sweep_start ||
-        d->sweep_end != first.sweep_end || d->sweep_speed != first.sweep_speed) {
-      return {};
-    }
+    if (other == scenes_.end() || other->second != scene->second) return {};
   }
   auto [seed, faults] = next_scan(first);
   Run run{*this, first,   request, cancel, progress, *scene->second, seed, faults, {},

@@ -48,7 +48,8 @@ class SimCell final : public CellDevices {
   // device.driver must be kSim. request.sweep_* are in internal units (mm or rad).
   ScanOutcome scan(const DeviceConfig& device, const ScanRequest& request,
                    const std::atomic<bool>& cancel, const std::function<void()>& progress) override;
-  // Stripe devices over one scene and one configured sweep: one StripeCell with every camera.
+  // Devices over one scene whose kind scans together: one StripeCell or PanTiltHead with every
+  // camera.
   std::vector<ScanOutcome> scan_together(std::span<const DeviceConfig* const> devices,
                                          const ScanRequest& request,
                                          const std::atomic<bool>& cancel,

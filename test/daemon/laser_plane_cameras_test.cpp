@@ -12,18 +12,26 @@
 namespace rangefit::daemon {
 namespace laser_plane_cameras_test {
 
-DaemonConfig two_camera_config() {
+// Two simulated devices of `kind` over the fig. 5.18 table top, without noise.
+DaemonConfig two_devices(const char* kind, const char* a, const char* b) {
   DaemonConfig c;
   c.sim.time_scale = 0.0;
   c.sim.noise = false;
-  for (const char* name : {"stripe", "stripe_b"}) {
+  for (const char* name : {a, b}) {
     DeviceConfig d;
     d.name = name;
-    d.kind = "stripe";
+    d.kind = kind;
     d.scene = std::filesystem::path(RANGEFIT_SOURCE_DIR) / "data/scenes/table_top_fig5_18.toml";
+    c.devices.push_back(d);
+  }
+  return c;
+}
+
+DaemonConfig two_camera_config() {
+  DaemonConfig c = two_devices("stripe", "stripe", "stripe_b");
+  for (DeviceConfig& d : c.devices) {
     d.sweep_start = 150.0;
     d.sweep_end = 230.0;
-    c.devices.push_back(d);
   }
   // The second camera is the first mirrored across the laser plane.
   const hal::StripeCellGeometry& g = c.fusion.stripe_cell.geometry;
@@ -123,16 +131,7 @@ TEST(StripeCameras, CamerasOverDifferentScenesScanInTurn) {
 }
 
 TEST(PanTiltCameras, BothCamerasOfOneHeadScanInOneSweep) {
-  DaemonConfig config;
-  config.sim.time_scale = 0.0;
-  config.sim.noise = false;
-  for (const char* name : {"head", "head_b"}) {
-    DeviceConfig d;
-    d.name = name;
-    d.kind = "pan_tilt";
-    d.scene = std::filesystem::path(RANGEFIT_SOURCE_DIR) / "data/scenes/table_top_fig5_18.toml";
-    config.devices.push_back(d);
-  }
+  DaemonConfig config = two_devices("pan_tilt", "head", "head_b");
   config.devices[1].motion = "head";
   config.fusion.pan_tilt.cameras.push_back(
       {"head_b", -config.fusion.pan_tilt.geometry.ranger.baseline_mm});

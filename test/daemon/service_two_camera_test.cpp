@@ -84,6 +84,20 @@ ScanRequest box_request(const std::string& id) {
   return req;
 }
 
+// Both cameras found the box where it stands, the first alone did not, and a pair that is not two
+// cameras of one laser plane was refused.
+void expect_only_both_see_the_box(const DetectionResult& found, const DetectionResult& alone,
+                                  const DetectionResult& refused) {
+  ASSERT_TRUE(found.found) << found.reason;
+  ASSERT_EQ(found.parts.size(), 1u);
+  EXPECT_LT((found.parts[0].T_world_part.translation() - kBoxAt).norm(), 3.0)
+      << found.parts[0].T_world_part.translation().transpose();
+  EXPECT_FALSE(alone.found) << "the first camera alone sees no box behind the wall";
+  EXPECT_FALSE(refused.found);
+  EXPECT_NE(refused.reason.find("two cameras of one laser plane"), std::string::npos)
+      << refused.reason;
+}
+
 TEST(ServiceTwoCameras, BothCamerasOfOneLaserPlaneFindWhatOneCannotSee) {
   Cell cell = two_camera_cell("rangefit_service_two_cameras");
   ASSERT_TRUE(cell.config);
@@ -102,14 +116,7 @@ TEST(ServiceTwoCameras, BothCamerasOfOneLaserPlaneFindWhatOneCannotSee) {
   const auto refused = run(service, three);
   loop.reset();
   ASSERT_TRUE(found && alone && other && refused);
-  ASSERT_TRUE(found->found) << found->reason;
-  ASSERT_EQ(found->parts.size(), 1u);
-  EXPECT_LT((found->parts[0].T_world_part.translation() - kBoxAt).norm(), 3.0)
-      << found->parts[0].T_world_part.translation().transpose();
-  EXPECT_FALSE(alone->found) << "the first camera alone sees no box behind the wall";
-  EXPECT_FALSE(refused->found);
-  EXPECT_NE(refused->reason.find("two cameras of one laser plane"), std::string::npos)
-      << refused->reason;
+  expect_only_both_see_the_box(*found, *alone, *refused);
 
 #ifdef RANGEFIT_CLI_PATH
   // The spooled scans, read back by the CLI: the fused one says it was taken by both cameras, and
@@ -166,14 +173,7 @@ TEST(ServiceTwoCameras, BothCamerasOfAPanTiltHeadFindWhatOneCannotSee) {
   const auto refused = run(service, mixed);
   loop.reset();
   ASSERT_TRUE(found && alone && refused);
-  ASSERT_TRUE(found->found) << found->reason;
-  ASSERT_EQ(found->parts.size(), 1u);
-  EXPECT_LT((found->parts[0].T_world_part.translation() - kBoxAt).norm(), 3.0)
-      << found->parts[0].T_world_part.translation().transpose();
-  EXPECT_FALSE(alone->found) << "the first camera alone sees no box behind the wall";
-  EXPECT_FALSE(refused->found);
-  EXPECT_NE(refused->reason.find("two cameras of one laser plane"), std::string::npos)
-      << refused->reason;
+  expect_only_both_see_the_box(*found, *alone, *refused);
   fs::remove_all(dir);
 }
 
