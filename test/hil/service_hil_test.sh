@@ -120,6 +120,22 @@ transport = "vcan0"
 can_node = 32
 motion = "axis"
 xyz_mm = [150.0, 100.0, 0.0]
+$(stripe_sweep)
+# A second camera of the laser plane, mirrored to its other side, on the same axis.
+[[devices]]
+name = "stripe_b"
+kind = "stripe"
+driver = "real"
+transport = "vcan0"
+can_node = 33
+motion = "axis"
+xyz_mm = [150.0, 100.0, 0.0]
+$(stripe_sweep)
+[[fusion.stripe_cell.cameras]]
+name = "stripe_b"
+ranger_position_cell_mm = [0, 200, 600]
+ranger_rpy_cell_rad = [3.141592653589793, 0, 0]
+baseline_mm = -300
 [[devices]]
 name = "axis"
 kind = "axis"
@@ -138,7 +154,8 @@ mkfifo "$work/peer.in"
 "$build/test/hil/cell_peer/rangefit_cell_peer" --frames "$build/test/hil/cell_peer/bore_plate_css_6s.frames" \
   --can vcan0 --node 1 --scan-s 6 \
   --stripe "$build/test/hil/cell_peer/table_top_fig5_18.profiles" --modbus-port $axis_port \
-  --ranger-node 32 \
+  --ranger-node 32 --stripe-b "$build/test/hil/cell_peer/table_top_fig5_18_b.profiles" \
+  --ranger-b-node 33 \
   --pan-tilt "$build/test/hil/cell_peer/table_top_fig5_18_pan_tilt.profiles" --head-can vcan1 \
   --pan-half-deg 10 --head-sweep-s 4 --head-rate-hz 25 < "$work/peer.in" > "$work/peer.log" 2>&1 &
 peer_pid=$!
@@ -225,6 +242,22 @@ check "cone found again within the simulated cell's accuracy" cone_accurate "$wo
 kill "$watch_pid" 2>/dev/null; wait "$watch_pid" 2>/dev/null
 check "diagnostics reported the axis at ERROR during the outage, then OK" \
   device_diagnostics "$work/watch.log" axis
+
+# 5b'. Both cameras of the laser plane: one sweep of the table, each camera's CAN FD profiles
+# fused with its own geometry.
+# The second camera is silent until now (its traffic would load the emulated CPUs): its driver
+# reported the node lost and takes it back at its boot-up heartbeat.
+echo camera-b-on >&7
+sleep 2
+log "object request (both cameras of the stripe cell)"
+ask_after_recovery two_camera_request "$work/cone-both.json" cone-both "the second camera came on"
+rc=$?
+log "after the request: $(axis_status)"
+echo camera-b-off >&7
+head -40 "$work/cone-both.json" "$work/cone-both.json.err"
+check "two-camera object request over DDS answered (exit $rc)" test $rc -eq 0
+check "cone found from both cameras' real-driver scans within the simulated cell's accuracy" \
+  cone_accurate "$work/cone-both.json"
 
 # 5c. The pan-tilt head: an object request answered from the head's CAN FD profiles and its two
 # CiA 402 axes while the cell program pans it; then the tilt axis stops answering mid-stroke.

@@ -9,6 +9,18 @@ object_request() {
     --timeout 120 > "$1" 2> "$1.err"
 }
 
+# The configured sweep of both cameras' devices: the object_request's, which a request naming
+# several sensors cannot give.
+stripe_sweep() {
+  printf 'sweep_start = 150.0\nsweep_end = 230.0\nsweep_speed = 10.0\n'
+}
+
+# The same cone from both cameras of the laser plane in one sweep: JSON to $1, request id $2.
+two_camera_request() {
+  "$rangefit" request object --id "$2" --model cone --sensors stripe,stripe_b --seed 1 \
+    --timeout 120 > "$1" 2> "$1.err"
+}
+
 # The cone in $1 stands where fig. 5.18 puts it, (213.074, 110.438, 40) mm, upright.
 # The simulated cell (driver = "sim") finds it from the same sweep within 0.021-0.025 mm and
 # 0.015-0.019 deg (seeds 1-3). Through the real drivers in the emulated VM the profile and axis

@@ -7,26 +7,32 @@
 // stripe cell too (stripe_cell.hpp): the linear axis' Festo drive as a Modbus TCP server on
 // 127.0.0.1:--modbus-port and the laser-stripe ranger on the same CAN bus (node --ranger-node),
 // its profiles those the simulated cell casts at the table's position (recorded on the host by
-// --record-stripe). With --pan-tilt, the pan-tilt head too (pan_tilt_head.hpp): its pan and
+// --record-stripe); with --stripe-b, a second camera of the laser plane on the other side (its
+// ranger node --ranger-b-node, silent until camera-b-on; recorded with --stripe-baseline -300).
+// With --pan-tilt, the pan-tilt head too (pan_tilt_head.hpp): its pan and
 // tilt axes (CiA 402 nodes --pan-node, --tilt-node) and its ranger (CAN FD, --head-ranger-node)
 // on their own bus --head-can, the head panning +-(--pan-half-deg) about zero in --head-sweep-s
 // and back, for ever; the profiles those the simulated head casts at each pan (recorded on the
 // host by --record-pan-tilt). Needs root, vcan and the gadget modules (test/hil/run_vm.sh).
 //   rangefit_cell_peer --frames FILE [--can vcan0] [--node 1] [--scan-s 6] [--vid 0x1d6b]
 //                      [--pid 0x0105] [--udc NAME]
-//                      [--stripe FILE.profiles [--modbus-port 1502] [--ranger-node 0x20]]
+//                      [--stripe FILE.profiles [--modbus-port 1502] [--ranger-node 0x20]
+//                       [--stripe-b FILE.profiles [--ranger-b-node 0x21]]]
 //                      [--pan-tilt FILE.profiles [--head-can vcan1] [--pan-node 1]
 //                       [--tilt-node 2] [--head-ranger-node 0x20] [--head-rate-hz 25]
 //                       [--pan-half-deg 10] [--head-sweep-s 4]]
 //   rangefit_cell_peer --record FILE --scene bore_plate.toml [--scan-s 6]   (host, no root)
-//   rangefit_cell_peer --record-stripe FILE.profiles --scene table_top_fig5_18.toml   (host)
+//   rangefit_cell_peer --record-stripe FILE.profiles --scene table_top_fig5_18.toml
+//                      [--stripe-baseline 300]   (host)
 //   rangefit_cell_peer --record-pan-tilt FILE.profiles --scene table_top_fig5_18.toml
 //                      [--pan-half-deg 10] [--head-points 512]   (host)
 // Then one command per line on stdin: unplug, replug (the CSS), axis-stop, axis-start,
 // axis-stop-past MM (the stripe cell's Modbus server; the last stops it once the table passes MM
 // moving up), tilt-stop, tilt-start, tilt-stop-mid-stroke (the head's tilt axis stops answering;
 // the last once the pan passes zero on a forward stroke), head-off, head-on (the whole head
-// switched off: its devices silent), status, quit (or end of input).
+// switched off: its devices silent), camera-b-on, camera-b-off (the stripe cell's second camera),
+// status, quit (or end of input).
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -53,11 +59,12 @@ int usage(const std::string& why) {
 }
 
 struct Args {
-  std::string frames, record, scene, can = "vcan0", udc, stripe, record_stripe;
+  std::string frames, record, scene, can = "vcan0", udc, stripe, stripe_b, record_stripe;
   std::string pan_tilt, record_pan_tilt, head_can = "vcan1";
   double scan_s = 6.0, head_rate_hz = 25.0, pan_half_deg = 10.0, head_sweep_s = 4.0;
   int head_points = 512;  // the head's ranger (hal::PanTiltGeometry)
-  unsigned node = 1, vid = 0x1d6b, pid = 0x0105, ranger_node = 0x20;
+  unsigned node = 1, vid = 0x1d6b, pid = 0x0105, ranger_node = 0x20, ranger_b_node = 0x21;
+  double stripe_baseline_mm = hal::StripeCellGeometry{}.ranger.baseline_mm;
   unsigned pan_node = 1, tilt_node = 2, head_ranger_node = 0x20;
   int modbus_port = 1502;
 };
@@ -78,6 +85,12 @@ bool parse(int argc, char** argv, Args& a, std::string& why) {
       a.stripe = v;
     } else if (arg == "--record-stripe") {
       a.record_stripe = v;
+    } else if (arg == "--stripe-b") {
+      a.stripe_b = v;
+    } else if (arg == "--ranger-b-node") {
+      a.ranger_b_node = static_cast<unsigned>(std::strtoul(v.c_str(), nullptr, 0));
+    } else if (arg == "--stripe-baseline") {
+      a.stripe_baseline_mm = std::strtod(v.c_str(), nullptr);
     } else if (arg == "--modbus-port") {
       a.modbus_port = std::atoi(v.c_str());
     } else if (arg == "--ranger-node") {
@@ -124,6 +137,12 @@ bool parse(int argc, char** argv, Args& a, std::string& why) {
   if (!(a.scan_s >= 1.0 && a.scan_s <= 60.0)) why = "--scan-s must be within 1..60";
   if (a.node < 1 || a.node > 127) why = "--node must be within 1..127";
   if (a.ranger_node < 1 || a.ranger_node > 127) why = "--ranger-node must be within 1..127";
+  if (a.ranger_b_node < 1 || a.ranger_b_node > 127 || a.ranger_b_node == a.ranger_node) {
+    why = "--ranger-b-node must be within 1..127 and differ from --ranger-node";
+  }
+  if (!std::isfinite(a.stripe_baseline_mm) || a.stripe_baseline_mm == 0.0) {
+    why = "--stripe-baseline must be a non-zero number of mm";
+  }
   if (a.modbus_port < 1 || a.modbus_port > 65535) why = "--modbus-port must be within 1..65535";
   for (const unsigned n : {a.pan_node, a.tilt_node, a.head_ranger_node}) {
     if (n < 1 || n > 127) why = "--pan-node, --tilt-node, --head-ranger-node must be within 1..127";
@@ -159,7 +178,9 @@ int main(int argc, char** argv) {
   }
   if (!a.record_stripe.empty()) {
     if (a.scene.empty()) return usage("--record-stripe needs --scene");
-    const hil::StripeProfiles cast(a.scene);
+    hal::StripeCellGeometry cell;
+    cell.ranger.baseline_mm = a.stripe_baseline_mm;
+    const hil::StripeProfiles cast(a.scene, hil::stripe_cell_sweep(cell));
     if (!cast.error().empty()) return usage(cast.error());
     if (!cast.save(a.record_stripe)) return usage("cannot write " + a.record_stripe);
     std::printf("rangefit_cell_peer: %zu stripe profiles of %s in %s\n", cast.size(),
@@ -195,17 +216,25 @@ int main(int argc, char** argv) {
   jc.node = static_cast<std::uint8_t>(a.node);
   bus.add(std::make_shared<sim::SimCia402Node>(
       jc, [&sweep](hal::Timestamp t) { return sweep.omega_at(t); }));
-  std::unique_ptr<hil::StripeProfiles> profiles;
+  std::unique_ptr<hil::StripeProfiles> profiles, profiles_b;
   std::unique_ptr<hil::StripeCellPeer> stripe;
   if (!a.stripe.empty()) {
     profiles = std::make_unique<hil::StripeProfiles>(a.stripe);
     if (!profiles->error().empty()) return usage(profiles->error());
+    if (!a.stripe_b.empty()) {
+      profiles_b = std::make_unique<hil::StripeProfiles>(a.stripe_b);
+      if (!profiles_b->error().empty()) return usage(profiles_b->error());
+    }
     stripe = std::make_unique<hil::StripeCellPeer>(
         *profiles,
-        hil::StripeCellPeerOptions{.modbus_port = a.modbus_port,
-                                   .ranger_node = static_cast<std::uint8_t>(a.ranger_node)});
+        hil::StripeCellPeerOptions{
+            .modbus_port = a.modbus_port,
+            .ranger_node = static_cast<std::uint8_t>(a.ranger_node),
+            .second_ranger_node = static_cast<std::uint8_t>(a.ranger_b_node)},
+        profiles_b.get());
     if (const hal::Status s = stripe->start_axis(); !s) return usage(s.message);
     bus.add(stripe->ranger());
+    if (stripe->second_ranger()) bus.add(stripe->second_ranger());
   }
   // The head on its own bus: its driver is that bus' SYNC master, as the robot joint's is vcan0's.
   std::unique_ptr<hil::StripeProfiles> head_profiles;
@@ -273,6 +302,8 @@ int main(int argc, char** argv) {
       if (const hal::Status s = stripe->start_axis(); !s) {
         std::fprintf(stderr, "rangefit_cell_peer: %s\n", s.message.c_str());
       }
+    } else if (stripe && (line == "camera-b-on" || line == "camera-b-off")) {
+      stripe->set_second_camera_on(line == "camera-b-on");
     } else if (head && line == "tilt-stop") {
       head->set_tilt_silent(true);
     } else if (head && line == "tilt-start") {
@@ -291,6 +322,9 @@ int main(int argc, char** argv) {
       std::printf(" profiles %llu axis %.3f mm%s%s",
                   static_cast<unsigned long long>(stripe->profiles_sent()), stripe->position_mm(),
                   stripe->axis_up() ? "" : " server-down", stripe->axis_fault() ? " fault" : "");
+      if (stripe->second_ranger()) {
+        std::printf(" camera-b %s", stripe->second_camera_on() ? "on" : "off");
+      }
     }
     if (head) {
       std::printf(" head profiles %llu syncs %llu%s%s",

@@ -13,18 +13,37 @@ sim::SimAxisConfig drive_config(const StripeCellPeerOptions& o) {
 
 }  // namespace
 
-StripeCellPeer::StripeCellPeer(const StripeProfiles& profiles, StripeCellPeerOptions options)
+StripeCellPeer::StripeCellPeer(const StripeProfiles& profiles, StripeCellPeerOptions options,
+                               const StripeProfiles* second)
     : drive_(drive_config(options)),
       server_(drive_, {.host = "127.0.0.1", .port = options.modbus_port}) {
-  sim::SimRangerConfig rc;
-  rc.node = options.ranger_node;
-  rc.rate_hz = options.profile_rate_hz;
-  rc.points = static_cast<std::uint16_t>(profiles.points());
-  rc.units_um = profiles.units_um();
+  const auto config = [&](const StripeProfiles& p, std::uint8_t node) {
+    sim::SimRangerConfig rc;
+    rc.node = node;
+    rc.rate_hz = options.profile_rate_hz;
+    rc.points = static_cast<std::uint16_t>(p.points());
+    rc.units_um = p.units_um();
+    return rc;
+  };
   ranger_ = std::make_shared<sim::SimProfileRanger>(
-      rc, [this, &profiles](std::uint32_t, hal::Timestamp exposure, std::span<std::uint16_t> out) {
+      config(profiles, options.ranger_node),
+      [this, &profiles](std::uint32_t, hal::Timestamp exposure, std::span<std::uint16_t> out) {
         profiles.fill(exposed_at(exposure), out);
       });
+  if (second == nullptr) return;
+  // The same table under the same laser, seen from the other side: only the drive's position.
+  second_ranger_ = std::make_shared<sim::SimProfileRanger>(
+      config(*second, options.second_ranger_node),
+      [this, second](std::uint32_t, hal::Timestamp exposure, std::span<std::uint16_t> out) {
+        second->fill(drive_.position_at(exposure), out);
+      });
+  second_ranger_->set_silent(true);
+}
+
+void StripeCellPeer::set_second_camera_on(bool on) {
+  if (!second_ranger_) return;
+  second_ranger_->set_silent(!on);
+  second_on_ = on;
 }
 
 hal::Status StripeCellPeer::start_axis() {

@@ -21,14 +21,17 @@ namespace rangefit::hil {
 struct StripeCellPeerOptions {
   int modbus_port = 1502;
   std::uint8_t ranger_node = 0x20;
+  std::uint8_t second_ranger_node = 0x21;  // the second camera's, when it has profiles
   double profile_rate_hz = 12.6;  // as the simulated cell (sim::StripeCellOptions)
   double initial_mm = 100.0;      // where the table stands at power-up
 };
 
 class StripeCellPeer {
  public:
-  // profiles must outlive the peer.
-  StripeCellPeer(const StripeProfiles& profiles, StripeCellPeerOptions options);
+  // profiles (and second, the profiles of a second camera of the laser plane, when given) must
+  // outlive the peer. The second camera's ranger starts silent (set_second_camera_on).
+  StripeCellPeer(const StripeProfiles& profiles, StripeCellPeerOptions options,
+                 const StripeProfiles* second = nullptr);
 
   // Starts the server (again) and cancels a stop_axis_past() that has not fired.
   hal::Status start_axis();
@@ -39,8 +42,13 @@ class StripeCellPeer {
   // during a sweep that starts below it.
   void stop_axis_past(double axis_mm) { stop_past_ = axis_mm; }
   bool axis_up() const { return up_; }
-  // The ranger, to add to the CAN bus.
+  // The ranger, to add to the CAN bus; the second camera's (null without one).
   std::shared_ptr<sim::SimProfileRanger> ranger() const { return ranger_; }
+  std::shared_ptr<sim::SimProfileRanger> second_ranger() const { return second_ranger_; }
+  // The second camera streams only while on: its CAN FD traffic doubles the bus load, which
+  // moves the other streams' stamps under emulation.
+  void set_second_camera_on(bool on);
+  bool second_camera_on() const { return second_on_; }
   double position_mm() const { return drive_.position_at(hal::monotonic_now()); }
   bool axis_fault() const { return drive_.fault(); }
   std::uint64_t profiles_sent() const { return ranger_->profiles_sent(); }
@@ -52,6 +60,8 @@ class StripeCellPeer {
   sim::SimFhppDrive drive_;
   sim::SimAxisServer server_;
   std::shared_ptr<sim::SimProfileRanger> ranger_;
+  std::shared_ptr<sim::SimProfileRanger> second_ranger_;
+  std::atomic<bool> second_on_{false};
   std::mutex server_mutex_;  // start and stop come from stdin's commands and the bus thread
   std::atomic<bool> up_{false};
   std::atomic<double> stop_past_{-1.0};  // negative: not armed
