@@ -1,5 +1,6 @@
 #include "daemon/cell/device_backend.hpp"
 
+#include "daemon/cell/fuse_views.hpp"
 #include "daemon/cell/real_devices.hpp"
 #ifdef RANGEFIT_WITH_SIM
 #include "daemon/cell/sim_cell.hpp"
@@ -59,27 +60,18 @@ ScanOutcome DeviceBackend::scan(const ScanRequest& request, const std::atomic<bo
 }
 
 // One scan per sensor, each over its configured sweep (validation refuses a sweep override with
-// several sensors), fused into one cloud: the views are already in one world frame. Devices that
-// can scan together do (the cameras of one laser plane on one axis: one sweep for all); others
-// scan in turn, in order. The fused cloud has no grid; the first sensor's description goes with
-// it. For object detection the sensors are two cameras of one laser plane, and the view is the
-// first's with the second's camera (with_second_camera): a point either camera saw is in the
-// cloud, and the detector must know that either could have seen it. The request's scan timeout
-// covers all the scans.
+// several sensors), fused into one cloud (fuse_views). Devices that can scan together do (the
+// cameras of one laser plane on one axis or head: one sweep for all); others scan in turn, in
+// order, until one fails. The request's scan timeout covers all the scans.
 ScanOutcome DeviceBackend::scan_views(const ScanRequest& request, const std::atomic<bool>& cancel,
                                       const std::function<void()>& progress) {
-  // A view that fails fails the request; the views scanned so far go with the error, so the
-  // spool keeps them.
-  ScanOutcome fused;
   std::vector<const DeviceConfig*> devices;
   for (const std::string& name : request.sensors) {
     const DeviceConfig* device = config_.device(name);
-    if (device == nullptr) {
-      fused.status = hal::Status::Error("unknown sensor " + name);
-      return fused;
-    }
+    if (device == nullptr) return {hal::Status::Error("unknown sensor " + name), {}};
     devices.push_back(device);
   }
+  if (cancel) return {hal::Status::Error("cancelled"), {}};
   const auto one_request = [&](const DeviceConfig& device) {
     ScanRequest one = request;
     one.sensors.clear();
@@ -89,58 +81,26 @@ ScanOutcome DeviceBackend::scan_views(const ScanRequest& request, const std::ato
     one.sweep_speed = device.sweep_speed;
     return one;
   };
-  std::vector<ScanOutcome> together;
-  if (cancel) return {hal::Status::Error("cancelled"), {}};
-  CellDevices* cell = nullptr;
   const DeviceConfig& first = *devices.front();
   const bool alike = std::all_of(devices.begin(), devices.end(), [&](const DeviceConfig* d) {
     return d->driver == first.driver && d->kind == first.kind &&
            d->sweep_start == first.sweep_start && d->sweep_end == first.sweep_end &&
            d->sweep_speed == first.sweep_speed;
   });
+  CellDevices* cell = nullptr;
 #ifdef RANGEFIT_WITH_SIM
   if (alike && first.driver == DriverKind::kSim) cell = sim_.get();
 #endif
   if (alike && first.driver == DriverKind::kReal) cell = real_.get();
-  if (cell != nullptr) {
-    together = cell->scan_together(devices, one_request(first), cancel, progress);
+  std::vector<ScanOutcome> views;
+  if (cell != nullptr) views = cell->scan_together(devices, one_request(first), cancel, progress);
+  const bool together = !views.empty();
+  for (std::size_t k = 0; !together && k < devices.size(); ++k) {
+    views.push_back(scan(one_request(*devices[k]), cancel, progress));
+    if (!views.back().status) break;
   }
-  for (std::size_t k = 0; k < devices.size(); ++k) {
-    const std::string& name = devices[k]->name;
-    ScanOutcome view = together.empty() ? scan(one_request(*devices[k]), cancel, progress)
-                                        : std::move(together[k]);
-    if (!view.status) {  // a shared sweep's error names the devices already
-      fused.status =
-          together.empty() ? hal::Status::Error(name + ": " + view.status.message) : view.status;
-      return fused;
-    }
-    if (k == 0) {
-      fused.cloud.frame_id = view.cloud.frame_id;
-      fused.sensor = view.sensor;
-    } else if (view.cloud.frame_id != fused.cloud.frame_id) {
-      fused.status =
-          hal::Status::Error(name + ": scans into frame \"" + view.cloud.frame_id +
-                             "\", the first sensor into \"" + fused.cloud.frame_id + "\"");
-      return fused;
-    }
-    if (k > 0 && request.kind == DetectKind::kObject) {
-      const std::optional<SensorView> both =
-          with_second_camera(fused.sensor.view, view.sensor.view);
-      if (!both) {
-        fused.status =
-            hal::Status::Error(name + ": not a second camera of " + request.sensors.front() +
-                               "'s laser sweep (the same plane, axis and configured sweep range)");
-        return fused;
-      }
-      fused.sensor.view = *both;
-    }
-    append_view(fused.cloud, view.cloud);
-    fused.acquired_wall_ns = std::max(fused.acquired_wall_ns, view.acquired_wall_ns);
-  }
-  // Spooled and replayed with the cloud: the two cameras' view describes every point of it.
-  if (request.kind == DetectKind::kObject) fused.cloud.sensor = fused.sensor.view;
-  fused.status = hal::Status::Ok();
-  return fused;
+  // A shared sweep's error names the devices already.
+  return fuse_views(views, request.sensors, request.kind == DetectKind::kObject, together);
 }
 
 ScanOutcome DeviceBackend::replay(const DeviceConfig& device,

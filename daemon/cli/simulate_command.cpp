@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "daemon/cell/fuse_views.hpp"
 #include "daemon/cell/sim_cell.hpp"
 #include "daemon/cell/sim_sensor.hpp"
 #include "daemon/cli/commands.hpp"
@@ -35,6 +36,7 @@ struct SimulateArgs {
   std::uint64_t seed = 1;
   bool exact = false;
   bool double_precision = false;
+  bool mirrored_camera = false;
 };
 
 // The --sensor spellings (SensorKind::cli_name, else its name) of the kinds the cell simulates.
@@ -79,6 +81,8 @@ nlohmann::json shape_json(const sim::Shape& shape) {
 // devices streaming into fusion through the service's scan loop, which checks every device's
 // Status and health, with the device's default sweep. The cloud comes back in the scene's frame
 // (no device extrinsics). health: the devices' state after the scan.
+// With mirrored_camera, a second camera of the laser plane, mirrored to its other side, sweeps
+// with the first (SimCell::scan_together) and the two views are fused as rangefitd fuses them.
 ScanOutcome scan_scene(const SimulateArgs& a, nlohmann::json& health) {
   CellConfig config;
   config.sim.time_scale = 0.0;   // as fast as possible
@@ -89,12 +93,32 @@ ScanOutcome scan_scene(const SimulateArgs& a, nlohmann::json& health) {
   device.kind = *daemon::find_sensor_kind(a.sensor);  // a --sensor spelling of a kind
   device.scene = a.scene;
   config.devices.push_back(device);
+  if (a.mirrored_camera) {
+    device.name += "_b";
+    config.devices.push_back(device);
+    const hal::StripeCellGeometry& g = config.fusion.stripe_cell.geometry;
+    config.fusion.stripe_cell.cameras.push_back(
+        {device.name, g.ranger_position_cell_mm, g.ranger_rpy_cell_rad, -g.ranger.baseline_mm});
+    config.fusion.pan_tilt.cameras.push_back(
+        {device.name, -config.fusion.pan_tilt.geometry.ranger.baseline_mm});
+  }
   SimCell cell(config);
   ScanRequest request;
   request.id = "simulate";
-  request.sensor = device.name;
+  request.sensor = config.devices.front().name;
   const std::atomic<bool> cancel{false};
-  ScanOutcome out = cell.scan(config.devices.front(), request, cancel, [] {});
+  ScanOutcome out;
+  if (a.mirrored_camera) {
+    const DeviceConfig* both[] = {&config.devices[0], &config.devices[1]};
+    std::vector<ScanOutcome> views = cell.scan_together(both, request, cancel, [] {});
+    const std::string names[] = {config.devices[0].name, config.devices[1].name};
+    if (views.empty())
+      throw std::invalid_argument("--mirrored-camera: a " + a.sensor +
+                                  " has no second camera (stripe, pantilt)");
+    out = daemon::fuse_views(views, names, true);
+  } else {
+    out = cell.scan(config.devices.front(), request, cancel, [] {});
+  }
   health = nlohmann::json::array();
   for (const NamedHealth& h : cell.health()) {
     health.push_back({{"device", h.name},
@@ -187,6 +211,9 @@ void add_simulate_command(CLI::App& app, int* exit_code) {
   cmd->add_option("--truth", args->truth,
                   "ground-truth JSON to write (default OUT.truth.json; none with --out -)");
   cmd->add_flag("--exact", args->exact, "no noise and no chip quantisation");
+  cmd->add_flag("--mirrored-camera", args->mirrored_camera,
+                "stripe, pantilt: a second camera mirrored across the laser plane sweeps with the "
+                "first; the cloud is both cameras' points, as rangefitd fuses two cameras");
   cmd->callback([args, exit_code] {
     if (args->truth.empty() && !io::is_stdio(args->out)) args->truth = args->out + ".truth.json";
     try {

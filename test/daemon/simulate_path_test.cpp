@@ -51,6 +51,35 @@ TEST(SimulatePath, SimulateWritesTheCloudTheServicesSimulatedCellScans) {
   fs::remove_all(dir);
 }
 
+// --mirrored-camera: the second camera sweeps with the first, and the cloud is both views fused
+// as rangefitd fuses them: its sensor says so, so `rangefit object` judges it with both cameras.
+TEST(SimulatePath, AMirroredCameraAddsItsViewFromTheSameSweep) {
+  const fs::path dir = test::fresh_test_dir("rangefit_simulate_mirrored_test");
+  const std::string scene =
+      (fs::path(RANGEFIT_SOURCE_DIR) / "data/scenes/table_top_fig5_18.toml").string();
+  const auto simulate = [&](const std::string& sensor, const std::string& extra,
+                            const fs::path& out) {
+    return run_cli("simulate --scene " + scene + " --sensor " + sensor + " --seed 3 --out " +
+                   out.string() + extra + " > /dev/null 2> " + (dir / "err.txt").string());
+  };
+  for (const char* sensor : {"stripe", "pantilt"}) {
+    SCOPED_TRACE(sensor);
+    ASSERT_EQ(simulate(sensor, "", dir / "a.ply"), 0);
+    ASSERT_EQ(simulate(sensor, " --mirrored-camera", dir / "ab.ply"), 0);
+    const PointCloud a = io::read_cloud(dir / "a.ply");
+    const PointCloud ab = io::read_cloud(dir / "ab.ply");
+    EXPECT_GT(ab.size(), a.size() + a.size() / 2) << "the second camera's points are added";
+    EXPECT_EQ(a.sensor.second_camera_offset.norm(), 0.0);
+    EXPECT_GT(ab.sensor.second_camera_offset.norm(), 0.0) << "the cloud names both cameras";
+    // Mirrored across the laser plane: the cameras' offsets from it are opposite.
+    EXPECT_NEAR(ab.sensor.plane_normal.dot(ab.sensor.second_camera_offset),
+                -ab.sensor.plane_normal.dot(ab.sensor.camera_offset), 1e-6);
+  }
+  EXPECT_EQ(simulate("css", " --mirrored-camera", dir / "c.ply"), 1);
+  EXPECT_FALSE(fs::exists(dir / "c.ply"));
+  fs::remove_all(dir);
+}
+
 #endif
 
 }  // namespace simulate_path_test
