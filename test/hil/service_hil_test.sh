@@ -112,25 +112,9 @@ can_node = 1
 # The stripe cell (thesis fig. 5.8): the ranger on CAN FD, the table's axis on Modbus TCP. The
 # cell's table frame sits in the scene as fig. 5.18's [sensors.stripe] mounts it, so the results
 # are in the scene's frame, as the simulated cell gives them.
-[[devices]]
-name = "stripe"
-kind = "stripe"
-driver = "real"
-transport = "vcan0"
-can_node = 32
-motion = "axis"
-xyz_mm = [150.0, 100.0, 0.0]
-$(stripe_sweep)
+$(stripe_device stripe 32)
 # A second camera of the laser plane, mirrored to its other side, on the same axis.
-[[devices]]
-name = "stripe_b"
-kind = "stripe"
-driver = "real"
-transport = "vcan0"
-can_node = 33
-motion = "axis"
-xyz_mm = [150.0, 100.0, 0.0]
-$(stripe_sweep)
+$(stripe_device stripe_b 33)
 [[fusion.stripe_cell.cameras]]
 name = "stripe_b"
 ranger_position_cell_mm = [0, 200, 600]

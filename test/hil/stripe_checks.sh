@@ -9,9 +9,11 @@ object_request() {
     --timeout 120 > "$1" 2> "$1.err"
 }
 
-# The configured sweep of both cameras' devices: the object_request's, which a request naming
-# several sensors cannot give.
-stripe_sweep() {
+# A camera of the stripe cell, name $1 on CAN node $2 of vcan0, on the table's axis. Its
+# configured sweep is the object_request's, which a request naming several sensors cannot give.
+stripe_device() {
+  printf '[[devices]]\nname = "%s"\nkind = "stripe"\ndriver = "real"\ntransport = "vcan0"\n' "$1"
+  printf 'can_node = %s\nmotion = "axis"\nxyz_mm = [150.0, 100.0, 0.0]\n' "$2"
   printf 'sweep_start = 150.0\nsweep_end = 230.0\nsweep_speed = 10.0\n'
 }
 
