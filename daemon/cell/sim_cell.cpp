@@ -128,6 +128,17 @@ std::vector<NamedHealth> SimCell::health() const {
   return out;
 }
 
+SimCell::Run SimCell::start_run(const DeviceConfig& device, const ScanRequest& request,
+                                const std::atomic<bool>& cancel,
+                                const std::function<void()>& progress, const LoadedScene& scene) {
+  auto [seed, faults] = next_scan(device);
+  Run run{*this,  device, request, cancel,  progress, scene, seed,
+          faults, {},     {},      config_, *clock_,  {},    {}};
+  std::lock_guard lock(mutex_);
+  for (const auto& [name, counters] : totals_) run.base[name] = counters;
+  return run;
+}
+
 std::pair<std::uint64_t, sim::FaultOptions> SimCell::next_scan(const DeviceConfig& device) {
   const int n = ++scans_[device.name];
   sim::FaultOptions faults;
@@ -151,13 +162,7 @@ ScanOutcome SimCell::scan(const DeviceConfig& device, const ScanRequest& request
                            ") cannot scan; name a " + sensors + " device"),
         {}};
   }
-  auto [seed, faults] = next_scan(device);
-  Run run{*this,  device, request, cancel,  progress, *it->second, seed,
-          faults, {},     {},      config_, *clock_,  {},          {}};
-  {
-    std::lock_guard lock(mutex_);
-    for (const auto& [name, counters] : totals_) run.base[name] = counters;
-  }
+  Run run = start_run(device, request, cancel, progress, *it->second);
   return kind->scan(run);
 }
 
@@ -175,16 +180,10 @@ std::vector<ScanOutcome> SimCell::scan_together(std::span<const DeviceConfig* co
     const auto other = scenes_.find(d->name);
     if (other == scenes_.end() || other->second != scene->second) return {};
   }
-  auto [seed, faults] = next_scan(first);
-  Run run{*this, first,   request, cancel, progress, *scene->second, seed, faults, {},
-          {},    config_, *clock_, {},     {}};
+  Run run = start_run(first, request, cancel, progress, *scene->second);
   for (const DeviceConfig* d : devices.subspan(1)) {
     auto [s, f] = next_scan(*d);
     run.cameras.push_back({d, s, f});
-  }
-  {
-    std::lock_guard lock(mutex_);
-    for (const auto& [name, counters] : totals_) run.base[name] = counters;
   }
   return kind->scan_together(run);
 }

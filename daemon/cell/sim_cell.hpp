@@ -72,6 +72,10 @@ class SimCell final : public CellDevices {
 
   // Counts a scan of the device: its noise seed and the faults [devices.sim_fault] puts on it.
   std::pair<std::uint64_t, sim::FaultOptions> next_scan(const DeviceConfig& device);
+  // A scan of the device starts: counted, with the counters of the scans before it.
+  Run start_run(const DeviceConfig& device, const ScanRequest& request,
+                const std::atomic<bool>& cancel, const std::function<void()>& progress,
+                const LoadedScene& scene);
 };
 
 }  // namespace rangefit::daemon
