@@ -108,7 +108,8 @@ TEST(StripeCameras, ASecondCameraLostMidSweepFailsTheRequestNamingItAndTheNextSc
   EXPECT_FALSE(lost.status);
   EXPECT_NE(lost.status.message.find("stripe_b: sim-stripe-ranger: link lost"), std::string::npos)
       << lost.status.message;
-  const hal::DeviceHealth* h = find(backend.health(), "stripe_b");
+  const std::vector<NamedHealth> health = backend.health();
+  const hal::DeviceHealth* h = find(health, "stripe_b");
   ASSERT_NE(h, nullptr);
   EXPECT_EQ(h->state, hal::DeviceState::kDisconnected);
   const ScanOutcome again = backend.scan(object_request({"stripe", "stripe_b"}), cancel, progress);
