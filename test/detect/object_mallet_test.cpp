@@ -89,6 +89,22 @@ TEST(AxialSlide, ALineCrossingTheWallsPlanePastItsEndDoesNotCarryItOn) {
   EXPECT_NEAR(slide_to_wall(kCan, at_z(12.0), pts, tree).translation().z(), 0.0, 0.5);
 }
 
+// A neighbour's face 10 mm past a long part's end (a box beside a shaft's far cap) crosses the
+// wall's extension all around the axis. A gap of 10 mm along a shaft 240 mm long still ends the
+// wall's run: the shaft posed 7.5 mm towards the face is slid back onto its own wall.
+TEST(AxialSlide, ANeighboursFaceAGapPastALongPartsEndDoesNotCarryItOn) {
+  const Superquadric rod{12, 12, 120, 0.1, 1, 0, 0};
+  std::vector<Eigen::Vector3d> pts;
+  for (double z = -120.0; z <= 130.0; z += 1.0) {
+    if (z > 120.0 && z < 130.0) continue;  // the gap; from 130 mm on, the neighbour's face
+    for (double phi = 0.0; phi <= std::numbers::pi; phi += 0.1) {
+      pts.emplace_back(12.0 * std::cos(phi), 12.0 * std::sin(phi), z);
+    }
+  }
+  const KdTree tree(pts);
+  EXPECT_NEAR(slide_to_wall(rod, at_z(7.5), pts, tree).translation().z(), 0.0, 0.5);
+}
+
 // Varied stripe scenes (tuning seeds; sim/varied_scene.hpp) where the detector placed the mallet
 // wrongly: seed 7, a head lying with its caps along the sweep, fitted 4 mm short of its wall's
 // end and rejected as continuing past it; seed 28, its shaft 3-4 mm off along its axis; seed 15,
@@ -144,6 +160,12 @@ TEST(ObjectMallet, FoundWhereItsHeadShowsOnlyOneEnd) { expect_mallet_found(298);
 // (object_link_region.hpp).
 TEST(ObjectMallet, AHeadMissedOverTheWholeScanIsFoundWhereItsShaftPutsIt) {
   for (std::uint64_t seed : {301u, 570u, 585u}) expect_mallet_found(seed, true);
+}
+
+// Two-camera seed 377: a clutter box stands 11 mm past the shaft's far cap; its face carried the
+// shaft's wall run on, and the shaft stayed 7.5 mm off along its axis, away from the head.
+TEST(ObjectMallet, AShaftIsNotHeldOffItsWallByANeighbourPastItsEnd) {
+  expect_mallet_found(377, true);
 }
 
 // Seed 148: a look-alike mallet 10 % smaller, fitted to the model, sinks 6 mm into the table
