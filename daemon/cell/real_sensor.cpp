@@ -44,6 +44,21 @@ ScanOutcome failed(const DeviceConfig& device, const std::string& why) {
   return {hal::Status::Error(device.name + ": " + why), {}};
 }
 
+std::vector<ScanOutcome> all_failed(std::span<const DeviceConfig* const> devices,
+                                    const hal::Status& status) {
+  return std::vector<ScanOutcome>(devices.size(), ScanOutcome{status, {}});
+}
+
+std::function<bool(std::string*)> all_healthy(
+    std::vector<std::function<bool(std::string*)>> watches) {
+  return [watches = std::move(watches)](std::string* why) {
+    for (const auto& watch : watches) {
+      if (!watch(why)) return false;
+    }
+    return true;
+  };
+}
+
 std::unique_ptr<drivers::can::CanTransport> socketcan(const std::string& interface,
                                                       drivers::can::FrameFilter filter, bool fd) {
   drivers::can::SocketCanConfig c;

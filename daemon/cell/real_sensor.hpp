@@ -5,6 +5,7 @@
 // The helpers below are what the kinds' scans share.
 
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -70,6 +71,14 @@ void drop_stale(hal::SampleSource<A>& a, hal::SampleSource<B>& b) {
 }
 
 ScanOutcome failed(const DeviceConfig& device, const std::string& why);
+
+// The same outcome for every device of a shared sweep: it failed for all of them.
+std::vector<ScanOutcome> all_failed(std::span<const DeviceConfig* const> devices,
+                                    const hal::Status& status);
+
+// healthy(&why) for a scan loop over several sensors: false at the first watch that says so.
+std::function<bool(std::string*)> all_healthy(
+    std::vector<std::function<bool(std::string*)>> watches);
 
 // A SocketCAN transport on `interface` receiving what `filter` passes; fd: CAN FD frames too.
 std::unique_ptr<drivers::can::CanTransport> socketcan(const std::string& interface,

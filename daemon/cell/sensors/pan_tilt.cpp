@@ -42,20 +42,18 @@ std::vector<ScanOutcome> pan_tilt_sweep(RealDevices& cell,
   for (const DeviceConfig* d : devices.subspan(1)) {
     if (head_of(*d) != head_name) return {};  // not one head
   }
-  const auto all = [&](const hal::Status& s) {
-    return std::vector<ScanOutcome>(devices.size(), ScanOutcome{s, {}});
-  };
   std::string why;
   auto* head = cell.driver_as<hal::PanTiltSource>(head_name, &why);
-  if (head == nullptr) return all(hal::Status::Error(why));
+  if (head == nullptr) return all_failed(devices, hal::Status::Error(why));
   std::vector<hal::RangerSource*> rangers;
   std::vector<std::unique_ptr<fusion::PanTiltAssembler>> assemblers;
   std::vector<std::function<bool(std::string*)>> watches;
   std::vector<fusion::PanTiltFusionConfig> fcs;
   for (const DeviceConfig* d : devices) {
     auto* ranger = cell.driver_as<hal::RangerSource>(d->name, &why);
-    if (ranger == nullptr) return all(hal::Status::Error(why));
-    if (hal::Status s = usable(d->name, *ranger, head_name, *head); !s) return all(s);
+    if (ranger == nullptr) return all_failed(devices, hal::Status::Error(why));
+    if (hal::Status s = usable(d->name, *ranger, head_name, *head); !s)
+      return all_failed(devices, s);
     fusion::PanTiltFusionConfig fc = fusion::pan_tilt_for(cell.config().fusion.pan_tilt, d->name);
     if (request.sweep_start != request.sweep_end) {
       fc.geometry.sweep_angle_rad = std::abs(request.sweep_end - request.sweep_start);
@@ -79,16 +77,11 @@ std::vector<ScanOutcome> pan_tilt_sweep(RealDevices& cell,
       for (const auto& p : profiles[k]) assemblers[k]->add_profile(p);
     }
   };
-  const auto healthy = [&watches](std::string* w) {
-    for (const auto& watch : watches) {
-      if (!watch(w)) return false;
-    }
-    return true;
-  };
+  const auto healthy = all_healthy(std::move(watches));
   const ScanLoopEnd end = run_scan_loop(
       *head, std::span<hal::RangerSource* const>(rangers), control, [&] { return sweep.at_end; },
       fuse, healthy, &why);
-  if (end != ScanLoopEnd::kDone) return all(failed(device, why).status);
+  if (end != ScanLoopEnd::kDone) return all_failed(devices, failed(device, why).status);
   // The real head's tilt is held by the cell program; its zero is the calibrated pose.
   std::vector<ScanOutcome> out;
   for (std::size_t k = 0; k < devices.size(); ++k) {

@@ -19,12 +19,6 @@ std::vector<NamedDriver> stripe_drivers(const DeviceConfig& d, const CellConfig&
   return out;
 }
 
-// The same error for every camera: they share the sweep.
-std::vector<ScanOutcome> all_failed(std::span<const DeviceConfig* const> devices,
-                                    const hal::Status& status) {
-  return std::vector<ScanOutcome>(devices.size(), ScanOutcome{status, {}});
-}
-
 std::vector<ScanOutcome> stripe_sweep(RealDevices& cell,
                                       std::span<const DeviceConfig* const> devices,
                                       const ScanRequest& request, ScanControl control) {
@@ -71,12 +65,7 @@ std::vector<ScanOutcome> stripe_sweep(RealDevices& cell,
     if (!s) *w = axis_name + ": " + s.message;
     return static_cast<bool>(s);
   };
-  const auto healthy = [&watches](std::string* w) {
-    for (const auto& watch : watches) {
-      if (!watch(w)) return false;
-    }
-    return true;
-  };
+  const auto healthy = all_healthy(std::move(watches));
   const ScanLoopEnd end = sweep_stripe(*axis, cameras, control, start_sweep, healthy, &why);
   if (end == ScanLoopEnd::kCancelled) {
     // The operator must know when the axis could not be stopped: it may still be moving.
