@@ -1,7 +1,7 @@
 // Object detection on a stripe ranger with a camera on each side of its laser plane: a point the
 // laser lit is measured when either camera sees it, so a part that a tall wall hides from one
 // camera is still scanned by the other. The detector, told both cameras, judges the part on
-// what either could have seen; told only the walled-off camera, it would take the part as hidden.
+// what either could have seen.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -61,16 +61,18 @@ TEST(ObjectTwoCameras, APartWalledOffFromOneCameraIsJudgedOnWhatTheOtherSaw) {
   EXPECT_TRUE(test::true_positive(r.instances[0].parts[0].T_world_part, s.parts[0], true));
   EXPECT_GT(r.instances[0].parts[0].scores.coverage, 0.8);
 
-  // Told only the walled-off camera, the detector takes what the other camera measured as
-  // hidden behind the wall.
+  // Told only the walled-off camera, the detector cannot tell that the camera's lines of sight
+  // through the wall's unlit faces (the laser's shadow) were clear; the scan points behind the
+  // wall say they were, so the box is still found, but its bare samples there are no evidence
+  // and it is judged on fewer of them.
   ObjectDetectOptions o;
   o.sensor = s.view;
   o.sensor.second_camera_offset.setZero();
   o.seed = 5;
   const ObjectDetectResult r1 = detect_object(s.model, s.cloud.points, o);
-  ASSERT_FALSE(r1.found());
-  ASSERT_FALSE(r1.rejections.empty());
-  EXPECT_EQ(r1.rejections[0].check, Check::kHidden) << test::describe_rejections(r1);
+  ASSERT_TRUE(r1.found()) << test::describe_rejections(r1);
+  EXPECT_TRUE(test::true_positive(r1.instances[0].parts[0].T_world_part, s.parts[0], true));
+  EXPECT_LT(r1.instances[0].parts[0].scores.measurable, r.instances[0].parts[0].scores.measurable);
 }
 
 // Varied scenes with two cameras: the targets of a few tuning seeds are found where they stand.
