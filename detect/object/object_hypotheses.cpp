@@ -72,22 +72,25 @@ std::size_t uniform_index(std::uint64_t& state, std::size_t n) {
 
 // How far a posed part reaches through the table plane (<= 0: not at all), by its inscribed
 // ellipsoid, whose support along n is sqrt(sum (a_i n.R_i)^2): a part with eps <= 1 contains it,
-// so a part whose ellipsoid sinks sinks at least as far. Tapered and pinched (eps > 1) parts are
-// not judged (0).
+// so a part whose ellipsoid sinks sinks at least as far. A tapered part (a cone) does not contain
+// the ellipsoid of its sizes: by its own lowest point. Pinched (eps > 1) parts are not judged (0).
 double sinks_by(const Superquadric& part, const Eigen::Isometry3d& T, const pca::Plane& table) {
-  if (part.eps1 > 1.0 || part.eps2 > 1.0 || part.kx != 0.0 || part.ky != 0.0) return 0.0;
-  return support(ellipsoid_of(part), T.linear().transpose() * -table.normal) -
+  if (part.eps1 > 1.0 || part.eps2 > 1.0) return 0.0;
+  const Eigen::Vector3d down = T.linear().transpose() * -table.normal;
+  const bool tapered = part.kx != 0.0 || part.ky != 0.0;
+  return (tapered ? tapered_support(part, down) : support(ellipsoid_of(part), down)) -
          table.normal.dot(T.translation() - table.point);
 }
 
 // How far the posed part's lowest point stands above the table (< 0: below it), by its own
-// support; nullopt for tapered and pinched (eps > 1) parts, which it does not bound. Unlike
-// sinks_by's inscribed ellipsoid, a box tilted onto an edge (the fig. 5.18 box, 20 deg) rests.
+// support (with its taper: a cone lying on its flank, standing on its base or hung from its
+// apex); nullopt for pinched (eps > 1) parts, which it does not bound. Unlike sinks_by's
+// inscribed ellipsoid, a box tilted onto an edge (the fig. 5.18 box, 20 deg) rests.
 std::optional<double> lowest_above(const Superquadric& part, const Eigen::Isometry3d& T,
                                    const pca::Plane& table) {
-  if (part.eps1 > 1.0 || part.eps2 > 1.0 || part.kx != 0.0 || part.ky != 0.0) return std::nullopt;
+  if (part.eps1 > 1.0 || part.eps2 > 1.0) return std::nullopt;
   return table.normal.dot(T.translation() - table.point) -
-         support(part, T.linear().transpose() * -table.normal);
+         tapered_support(part, T.linear().transpose() * -table.normal);
 }
 
 // The part slid within the plane of the patch it was started on (which does not place it along
@@ -364,7 +367,9 @@ TableBound table_bound(const HypothesisContext& ctx, const Superquadric& part,
   if (!untapered && std::abs(T.linear().col(2).dot(n)) <= kUprightCos) return b;
   const double rest = std::max(kRestsWithinMm, kRestsWithinNoises * ctx.table_noise_mm);
   const Eigen::Vector4d plane(n.x(), n.y(), n.z(), n.dot(ctx.table->point));
-  if (std::abs(sinks_by(part, T, *ctx.table)) <= rest) {
+  // A standing tapered part is held on the table both ways wherever it stands: the size fit
+  // bounds its ellipsoid, which reaches down as far as its base only while it stands square.
+  if (!untapered || std::abs(sinks_by(part, T, *ctx.table)) <= rest) {
     b.plane = plane;
     return b;
   }

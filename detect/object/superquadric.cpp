@@ -75,6 +75,40 @@ double support(const Superquadric& sq, const Eigen::Vector3d& m) {
   return std::pow(std::pow(across, q_z) + std::pow(std::abs(sq.a3 * m.z()), q_z), 1.0 / q_z);
 }
 
+double tapered_support(const Superquadric& sq, const Eigen::Vector3d& m) {
+  if (sq.kx == 0.0 && sq.ky == 0.0) return support(sq, m);
+  constexpr int kNodes = 48, kGoldenSteps = 24;
+  const double q = 2.0 / (2.0 - sq.eps2), p_z = 2.0 / sq.eps1;
+  const double ax = std::abs(sq.a1 * m.x()), ay = std::abs(sq.a2 * m.y());
+  const auto at = [&](double t) {
+    const double c = std::pow(std::max(0.0, 1.0 - std::pow(std::abs(t), p_z)), 0.5 * sq.eps1);
+    const double x = ax * c * std::abs(1.0 + sq.kx * t), y = ay * c * std::abs(1.0 + sq.ky * t);
+    const double across = sq.eps2 >= 2.0 ? std::max(x, y)  // a diamond's
+                          : q == 2.0     ? std::hypot(x, y)
+                                         : std::pow(std::pow(x, q) + std::pow(y, q), 1.0 / q);
+    return across + m.z() * sq.a3 * t;
+  };
+  int best = 0;
+  double best_value = -INFINITY;
+  for (int i = 0; i <= kNodes; ++i) {
+    const double v = at(-1.0 + 2.0 * i / kNodes);
+    if (v > best_value) best_value = v, best = i;
+  }
+  double lo = -1.0 + 2.0 * std::max(best - 1, 0) / kNodes;
+  double hi = -1.0 + 2.0 * std::min(best + 1, kNodes) / kNodes;
+  const double r = 0.5 * (std::sqrt(5.0) - 1.0);
+  double x1 = hi - r * (hi - lo), x2 = lo + r * (hi - lo);
+  double f1 = at(x1), f2 = at(x2);
+  for (int i = 0; i < kGoldenSteps; ++i) {
+    if (f1 < f2) {
+      lo = x1, x1 = x2, f1 = f2, x2 = lo + r * (hi - lo), f2 = at(x2);
+    } else {
+      hi = x2, x2 = x1, f2 = f1, x1 = hi - r * (hi - lo), f1 = at(x1);
+    }
+  }
+  return std::max({best_value, f1, f2});
+}
+
 bool Superquadric::valid() const {
   const auto finite_pos = [](double v) { return std::isfinite(v) && v > 0.0; };
   const auto in = [](double v, double lo, double hi) {

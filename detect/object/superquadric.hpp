@@ -82,6 +82,13 @@ class SuperquadricMetric {
 // sqrt(sum (a_i m_i)^2). Tapering is ignored.
 double support(const Superquadric& sq, const Eigen::Vector3d& m);
 
+// The same with the taper (eq. 2.19-2.21), to ~0.01 % of the size: the part's cross-section at
+// height z = a3 t is the superellipse of half sizes a_i c(t) (1 + k_i t), c(t) = (1 -
+// |t|^(2 / eps1))^(eps1 / 2), whose support along m is the dual norm in x and y; plus m_z z,
+// maximised over t by a grid and a golden-section search about its best node. support() for an
+// untapered part.
+double tapered_support(const Superquadric& sq, const Eigen::Vector3d& m);
+
 // The ellipsoid of the part's half sizes (eps1 = eps2 = 1, taper kept): inscribed in a box or a
 // can, smooth where their support has kinks.
 Superquadric ellipsoid_of(const Superquadric& sq);

@@ -141,5 +141,43 @@ TEST(Superquadric, SupportIsTheFarthestReachOfTheSurface) {
   EXPECT_LT(support(make(25, 25, 50, 0.1, 0.1), m), box);
 }
 
+TEST(Superquadric, TaperedSupportIsTheFarthestReachOfTheTaperedSurface) {
+  const std::vector<Eigen::Vector3d> directions = {Eigen::Vector3d(0, 0, 1),
+                                                   Eigen::Vector3d(0, 0, -1),
+                                                   Eigen::Vector3d(1, 0, 0),
+                                                   Eigen::Vector3d(0.3, -0.5, 0.8).normalized(),
+                                                   Eigen::Vector3d(-0.9, 0.2, -0.1).normalized(),
+                                                   Eigen::Vector3d(0.6, 0.1, -0.8).normalized()};
+  std::vector<Superquadric> shapes = table_5_2();
+  shapes.push_back(make(20, 30, 40, 0.3, 0.6, 0.4, -0.7));
+  shapes.push_back(make(15, 15, 35, 1.0, 1.0, -0.5, 0.5));
+  for (const Superquadric& sq : shapes) {
+    std::vector<double> reach(directions.size(), -INFINITY);
+    for (double eta = -1.5708; eta <= 1.5708; eta += 0.002) {
+      for (double omega = -3.1416; omega < 3.1416; omega += 0.004) {
+        const Eigen::Vector3d p = surface_point(sq, eta, omega);
+        for (std::size_t k = 0; k < directions.size(); ++k) {
+          reach[k] = std::max(reach[k], directions[k].dot(p));
+        }
+      }
+    }
+    for (std::size_t k = 0; k < directions.size(); ++k) {
+      const double h = tapered_support(sq, directions[k]);
+      EXPECT_LE(reach[k], h + 1e-6)
+          << sq.eps1 << " " << sq.eps2 << " " << directions[k].transpose();
+      EXPECT_GT(reach[k], h - 0.3) << sq.eps1 << " " << sq.eps2 << " " << directions[k].transpose();
+    }
+  }
+  // The fig. 5.18 cone (apex at +z, base radius 2 a1 at -z) stands on its base and reaches its
+  // apex straight up; sideways its base rim, rounded off by eps1 0.1; untapered,
+  // tapered_support is support.
+  const Superquadric cone = make(20, 20, 40, 0.1, 1.0, -1.0, -1.0);
+  EXPECT_NEAR(tapered_support(cone, Eigen::Vector3d(0, 0, -1)), 40.0, 0.05);
+  EXPECT_NEAR(tapered_support(cone, Eigen::Vector3d(0, 0, 1)), 40.0, 0.05);
+  EXPECT_NEAR(tapered_support(cone, Eigen::Vector3d(1, 0, 0)), 38.15, 0.05);
+  const Eigen::Vector3d m = Eigen::Vector3d(0.3, -0.5, 0.8).normalized();
+  EXPECT_EQ(tapered_support(make(10, 20, 30, 0.4, 0.7), m), support(make(10, 20, 30, 0.4, 0.7), m));
+}
+
 }  // namespace superquadric_test
 }  // namespace rangefit
