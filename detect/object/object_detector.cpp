@@ -69,10 +69,11 @@ bool options_ok(const ObjectDetectOptions& o) {
          o.min_coverage_unknown_sensor >= 0.0 && o.min_coverage_compound_part >= 0.0 &&
          o.max_seen_through >= 0.0 && o.max_open_end >= 0.0 && o.max_open_end_compound >= 0.0 &&
          o.max_open_rim >= 0.0 && o.min_measurable_share_covered >= 0.0 && o.full_coverage >= 0.0 &&
-         o.max_size_deviation > 0.0 && o.max_candidates >= 1 && o.min_measurable_samples >= 0 &&
-         o.min_measurable_share >= 0.0 && o.max_continuation >= 0.0 && o.plane_margin_mm >= 0.0 &&
-         o.rest_noise_factor >= 0.0 && o.rest_size_share >= 0.0 && o.sink_floor_mm >= 0.0 &&
-         o.sink_noise_factor >= 0.0 && o.sink_sigma_factor >= 0.0 && valid(o.sensor);
+         o.max_size_deviation > 0.0 && o.size_deviation_sigmas >= 0.0 && o.max_candidates >= 1 &&
+         o.min_measurable_samples >= 0 && o.min_measurable_share >= 0.0 &&
+         o.max_continuation >= 0.0 && o.plane_margin_mm >= 0.0 && o.rest_noise_factor >= 0.0 &&
+         o.rest_size_share >= 0.0 && o.sink_floor_mm >= 0.0 && o.sink_noise_factor >= 0.0 &&
+         o.sink_sigma_factor >= 0.0 && valid(o.sensor);
 }
 
 // The check of eq. 5.2-5.4 that a hypothesis fails (see ObjectDetectOptions::max_measure).
@@ -231,12 +232,14 @@ std::optional<Rejection> misfit(const HypothesisContext& ctx, const Eigen::Isome
   // the points end where the scan stops seeing the part, and the size fit takes that for its
   // end. A true box lying behind a wall that hid its near end read 5.8 % short (sigma 0.4 %).
   bool determined = e.determined;
-  double scale = e.scale;
+  double scale = e.scale, allowance = e.allowance;
   if (e.along && *e.along < 1.0 && (seen.end_hidden[0] || seen.end_hidden[1])) {
     determined = e.across.has_value(), scale = e.across.value_or(1.0);
+    allowance = e.across_allowance;
   }
-  if (determined && std::abs(scale - 1.0) > o.max_size_deviation) {
-    return Rejection{0, Check::kSize, scale - 1.0, o.max_size_deviation, T.translation()};
+  const double max_deviation = o.max_size_deviation + allowance;
+  if (determined && std::abs(scale - 1.0) > max_deviation) {
+    return Rejection{0, Check::kSize, scale - 1.0, max_deviation, T.translation()};
   }
   // The extent of its flat caps: a narrower look-alike's missing strip of cap, wherever the fit
   // placed it, and where the fit left the size across the axis open, also one farther in.

@@ -137,8 +137,14 @@ struct ObjectDetectOptions {
   double sink_sigma_factor = 3.0;
   // And, where its points determine it, the size the points want is the model's within this
   // share (object_hypotheses.hpp size_evidence): a sphere 4 % larger or smaller is not it; a box
-  // or a cone seen from one side places its size to about 2 %.
+  // or a cone seen from one side places its size to about 2 %. A tapered part is allowed
+  // size_deviation_sigmas standard errors of the scale (the fit's, at most 0.005) more: its flank
+  // alone trades width for height (a cone under an overhang seen at 0.6-0.9 mm noise on its
+  // lower flank only wanted a thinner, taller cone, 3.3-4.8 % off at standard errors of
+  // 0.3-0.5 %), and the look-alike cones of the tuning scenes stood 12-500 standard errors off.
+  // Boxes and cans are not: the same allowance let two look-alike boxes 4-7 % larger through.
   double max_size_deviation = 0.03;
+  double size_deviation_sigmas = 3.0;
   // And its points lie on its surface as closely as the scan's noise allows: the robust spread
   // of their distances from it (mm) is at most residual_noise_factor x the noise of the removed
   // plane plus max_residual_floor_mm (a part fitted across fragments of other objects is not).

@@ -292,23 +292,32 @@ namespace {
 // whether it leaves the scale across the axis open.
 struct SizeVerdict {
   bool determined = false, across_open = true;
-  double scale = 1.0;
+  double scale = 1.0, allowance = 0.0;
   std::optional<double> across, along;  // the scales it places
+  double across_allowance = 0.0;
 };
 
-SizeVerdict size_verdict(const SizeFit& free, double noise) {
+// `sigmas` standard errors allowed each scale, at most kMaxScaleSigma's (a clear misfit's scale
+// may have an open one).
+SizeVerdict size_verdict(const SizeFit& free, double noise, double sigmas) {
   SizeVerdict v;
-  const auto farthest = [&v](double s) {
-    if (!v.determined || std::abs(s - 1.0) > std::abs(v.scale - 1.0)) v.scale = s;
+  const auto farthest = [&v, sigmas](double s, double sigma) {
+    const double allowance = sigmas * std::min(sigma, kMaxScaleSigma);
+    if (!v.determined || std::abs(s - 1.0) - allowance > std::abs(v.scale - 1.0) - v.allowance) {
+      v.scale = s, v.allowance = allowance;
+    }
     v.determined = true;
+    return allowance;
   };
   const bool clear_misfit =
       free.model_rms_mm > kMisfitNoises * noise && free.rms_mm < kClearlyBetter * free.model_rms_mm;
   if (clear_misfit || free.across_sigma <= kMaxScaleSigma) {
-    farthest(free.across), v.across_open = false, v.across = free.across;
+    v.across_allowance = farthest(free.across, free.across_sigma);
+    v.across_open = false, v.across = free.across;
   }
-  if (clear_misfit || free.along_sigma <= kMaxScaleSigma)
-    farthest(free.along), v.along = free.along;
+  if (clear_misfit || free.along_sigma <= kMaxScaleSigma) {
+    farthest(free.along, free.along_sigma), v.along = free.along;
+  }
   return v;
 }
 
@@ -422,6 +431,7 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
   // off the surface, and fitted with the first check's weights the fig. 5.18 box at 20 deg
   // triangulation wanted 3-5 % more than its size; with the second's, 0.6-1.4 %).
   const double noise = std::max(ctx.table_noise_mm, kSizeNoiseFloorMm);
+  const double sigmas = part.kx != 0.0 || part.ky != 0.0 ? o.size_deviation_sigmas : 0.0;
   const auto verdict = [&](const Eigen::Isometry3d& start, bool free_rotation) {
     const TableBound bound = table_bound(ctx, part, start, explained);
     SizeVerdict v;
@@ -437,8 +447,8 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
           fit_size(part, points_within(n, std::max(check.band_mm, kSizeBandSigmas * e.residual_mm)),
                    start, so);
       if (!free.ok) return std::optional<SizeVerdict>();
-      v = size_verdict(free, noise);
-      if (!v.determined || std::abs(v.scale - 1.0) <= o.max_size_deviation) break;
+      v = size_verdict(free, noise, sigmas);
+      if (!v.determined || std::abs(v.scale - 1.0) <= o.max_size_deviation + v.allowance) break;
     }
     return std::optional<SizeVerdict>(v);
   };
@@ -453,13 +463,15 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
             .toRotationMatrix();
     const std::optional<SizeVerdict> held = verdict(upright, false);
     if (held && held->determined &&
-        (!v->determined || std::abs(held->scale - 1.0) > std::abs(v->scale - 1.0))) {
+        (!v->determined ||
+         std::abs(held->scale - 1.0) - held->allowance > std::abs(v->scale - 1.0) - v->allowance)) {
       v = held;
     }
   }
   if (!v) return e;
-  e.determined = v->determined, e.scale = v->scale, e.across_open = v->across_open;
-  e.across = v->across, e.along = v->along;
+  e.determined = v->determined, e.scale = v->scale, e.allowance = v->allowance;
+  e.across_open = v->across_open;
+  e.across = v->across, e.along = v->along, e.across_allowance = v->across_allowance;
   return e;
 }
 

@@ -93,8 +93,10 @@ PartScores verify_pose(const HypothesisContext& ctx, const Superquadric& part,
 struct SizeEvidence {
   bool determined = false;  // the points place at least one of the two scales
   bool across_open = true;  // ... but not the one across the part's axis (a cap's extent)
-  double scale = 1.0;       // of those they place, the one farthest from 1
+  double scale = 1.0;       // of those they place, the one farthest from 1 beyond its allowance
+  double allowance = 0.0;   // size_deviation_sigmas x its standard error
   std::optional<double> across, along;  // each scale, where they place it
+  double across_allowance = 0.0;
   // Robust spread of the distances from the surface of the points near it at the given pose,
   // mm (1.4826 median |d|: the sigma of the range noise for a part that is really there).
   double residual_mm = 0.0;

@@ -12,6 +12,7 @@
 #include "sim/varied_scene.hpp"
 #include "test/detect/object_scenes.hpp"
 #include "test/detect/stripe_scan_fixture.hpp"
+#include "test/detect/varied_target.hpp"
 
 namespace rangefit {
 namespace object_size_test {
@@ -79,6 +80,16 @@ TEST(ObjectSize, FindsTheOccludedCylinderAndConesOfVariedScenes) {
   EXPECT_TRUE(found_target(sim::VariedTarget::kCylinder, 10, &why)) << why;
   for (std::uint64_t seed : {21u, 27u, 28u}) {
     EXPECT_TRUE(found_target(sim::VariedTarget::kCone, seed, &why)) << "seed " << seed << ": " << why;
+  }
+}
+
+// Cones under overhangs or behind a wall seen by the pan-tilt head at 0.55-0.93 mm noise
+// (pan-tilt tuning seeds 143, 179, 187): their points, the lower flank only, want a cone a few per
+// cent thinner and taller (3.3-4.8 % off, standard errors 0.3-0.5 %). A scale is off only beyond
+// the size tolerance plus three of its standard errors (size_deviation_sigmas).
+TEST(ObjectSize, FindsPanTiltConesWhosePointsLeaveTheirSizeLooselyPlaced) {
+  for (std::uint64_t seed : {143u, 179u, 187u}) {
+    test::expect_varied_target_found(sim::VariedTarget::kCone, seed, true);
   }
 }
 
