@@ -504,7 +504,12 @@ PartHypothesis generate_hypothesis(const HypothesisContext& ctx, const Superquad
     return !above || std::abs(*above) <= table_margin;
   };
   if (ctx.table && ctx.rests_on_table) {
-    init.preferred = rests;
+    // A tapered part's starts only must not sink through the table (admissible): on the upper
+    // flank of a standing cone the moments place it higher than it stands. Preferring resting
+    // starts took the fig. 5.18 cone a quarter more hypotheses (17.8 -> 22.3); on the varied
+    // tuning scenes (1..300, each part lost <= 40 %) it found one stripe cone more and lost two
+    // pan-tilt cones.
+    if (part.kx == 0.0 && part.ky == 0.0) init.preferred = rests;
     init.settle = [&](const Eigen::Isometry3d& T, const Eigen::Vector3d& patch_normal) {
       return settled(part, T, patch_normal, *ctx.table);
     };
