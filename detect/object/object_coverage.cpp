@@ -298,8 +298,10 @@ class SampleJudge {
       eye[eyes_facing++] = k;
     }
     if (eyes.count > 1 && eyes_facing == 1) return Sample::kNoEvidence;  // no camera faces it
-    tree_.knn_search(p, 1, nbr_);
-    const double nearest = nbr_.empty() ? INFINITY : (points_[nbr_[0]] - p).norm();
+    const auto nearest_point = [&] {
+      tree_.knn_search(p, 1, nbr_);
+      return nbr_.empty() ? INFINITY : (points_[nbr_[0]] - p).norm();
+    };
     // A camera's line of sight may also pass where the laser never reached (a wall's grazed
     // face, laser_shadow.hpp): the sample may be hidden there, unless what cast the shadow is the
     // part's own surface.
@@ -321,8 +323,9 @@ class SampleJudge {
       // overhang seen by a low camera across the overhang's shadow showed 1,641 points and not
       // one measurable sample without this.
       if (!camera_clear)
-        return camera_unblocked && nearest <= tol_ ? Sample::kCovered : Sample::kHidden;
+        return camera_unblocked && nearest_point() <= tol_ ? Sample::kCovered : Sample::kHidden;
     }
+    const double nearest = nearest_point();
     if (nearest <= tol_) return Sample::kCovered;
     // The first eye (the laser, or the only one) lit everything along its ray until the first
     // surface: a measured cell beyond the sample means the light went through it. A sample
