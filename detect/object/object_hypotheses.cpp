@@ -77,8 +77,7 @@ std::size_t uniform_index(std::uint64_t& state, std::size_t n) {
 double sinks_by(const Superquadric& part, const Eigen::Isometry3d& T, const pca::Plane& table) {
   if (part.eps1 > 1.0 || part.eps2 > 1.0) return 0.0;
   const Eigen::Vector3d down = T.linear().transpose() * -table.normal;
-  const bool tapered = part.kx != 0.0 || part.ky != 0.0;
-  return (tapered ? tapered_support(part, down) : support(ellipsoid_of(part), down)) -
+  return (part.has_taper() ? tapered_support(part, down) : support(ellipsoid_of(part), down)) -
          table.normal.dot(T.translation() - table.point);
 }
 
@@ -372,13 +371,12 @@ TableBound table_bound(const HypothesisContext& ctx, const Superquadric& part,
   TableBound b;
   if (!ctx.table || !explained.empty()) return b;
   const Eigen::Vector3d& n = ctx.table->normal;
-  const bool untapered = part.kx == 0.0 && part.ky == 0.0;
-  if (!untapered && std::abs(T.linear().col(2).dot(n)) <= kUprightCos) return b;
+  if (part.has_taper() && std::abs(T.linear().col(2).dot(n)) <= kUprightCos) return b;
   const double rest = std::max(kRestsWithinMm, kRestsWithinNoises * ctx.table_noise_mm);
   const Eigen::Vector4d plane(n.x(), n.y(), n.z(), n.dot(ctx.table->point));
   // A standing tapered part is held on the table both ways wherever it stands: the size fit
   // bounds its ellipsoid, which reaches down as far as its base only while it stands square.
-  if (!untapered || std::abs(sinks_by(part, T, *ctx.table)) <= rest) {
+  if (part.has_taper() || std::abs(sinks_by(part, T, *ctx.table)) <= rest) {
     b.plane = plane;
     return b;
   }
@@ -431,7 +429,7 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
   // off the surface, and fitted with the first check's weights the fig. 5.18 box at 20 deg
   // triangulation wanted 3-5 % more than its size; with the second's, 0.6-1.4 %).
   const double noise = std::max(ctx.table_noise_mm, kSizeNoiseFloorMm);
-  const double sigmas = part.kx != 0.0 || part.ky != 0.0 ? o.size_deviation_sigmas : 0.0;
+  const double sigmas = part.has_taper() ? o.size_deviation_sigmas : 0.0;
   const auto verdict = [&](const Eigen::Isometry3d& start, bool free_rotation) {
     const TableBound bound = table_bound(ctx, part, start, explained);
     SizeVerdict v;
@@ -509,7 +507,7 @@ PartHypothesis generate_hypothesis(const HypothesisContext& ctx, const Superquad
     // starts took the fig. 5.18 cone a quarter more hypotheses (17.8 -> 22.3); on the varied
     // tuning scenes (1..300, each part lost <= 40 %) it found one stripe cone more and lost two
     // pan-tilt cones.
-    if (part.kx == 0.0 && part.ky == 0.0) init.preferred = rests;
+    if (!part.has_taper()) init.preferred = rests;
     init.settle = [&](const Eigen::Isometry3d& T, const Eigen::Vector3d& patch_normal) {
       return settled(part, T, patch_normal, *ctx.table);
     };

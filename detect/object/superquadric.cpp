@@ -76,7 +76,7 @@ double support(const Superquadric& sq, const Eigen::Vector3d& m) {
 }
 
 double tapered_support(const Superquadric& sq, const Eigen::Vector3d& m) {
-  if (sq.kx == 0.0 && sq.ky == 0.0) return support(sq, m);
+  if (!sq.has_taper()) return support(sq, m);
   constexpr int kNodes = 48, kGoldenSteps = 24;
   const double q = 2.0 / (2.0 - sq.eps2), p_z = 2.0 / sq.eps1;
   const double ax = std::abs(sq.a1 * m.x()), ay = std::abs(sq.a2 * m.y());

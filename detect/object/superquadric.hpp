@@ -35,6 +35,8 @@ struct Superquadric {
   bool valid() const;
   // True for a ball (equal sizes, eps 1, no taper): its pose has no orientation.
   bool ball() const;
+  // True when either taper factor is non-zero.
+  bool has_taper() const { return kx != 0.0 || ky != 0.0; }
 };
 
 // Precomputed exponents of one part for fast repeated evaluation (the pose fit calls this per
