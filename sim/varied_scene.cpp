@@ -16,6 +16,8 @@ namespace rangefit::sim {
 namespace {
 
 constexpr double kCoverHeightMm = 120.0;  // the fan reaches every point of the workspace up to this
+constexpr double kMinCameraHeightMm = 50.0;  // cameras stay this far above the table top
+constexpr int kMaxSetupRedraws = 100;
 constexpr double kObjectGapMm = 0.5;      // bounding boxes at least this far apart
 constexpr double kMaxAddedOcclusion = 0.04;  // clutter may hide this much more than drawn
 constexpr int kPlacementTries = 60;
@@ -122,6 +124,20 @@ ScanSetup draw_setup(const VariedSceneOptions& o, Draw& d) {
   // Drawn only when asked for, so that one-camera scenes stay as they were drawn.
   if (o.two_camera_probability > 0.0) s.two_cameras = d.chance(o.two_camera_probability);
   return s;
+}
+
+// The lowest height above the table a camera of the sweep reaches (at its ends, and in between
+// for a turning head, whose cameras move on circles).
+double lowest_camera(const StripeSweep& w) {
+  constexpr int kChecks = 16;
+  double lowest = INFINITY;
+  for (int i = 0; i <= kChecks; ++i) {
+    const double s = w.position(0) + (w.position(w.profiles - 1) - w.position(0)) * i / kChecks;
+    const ProfilePose pose = w.pose(s);
+    lowest = std::min(lowest, pose.camera.z());
+    if (pose.second_camera) lowest = std::min(lowest, pose.second_camera->z());
+  }
+  return lowest;
 }
 
 std::vector<int> indices(std::size_t n) {
@@ -268,9 +284,17 @@ VariedScene make_varied_scene(const VariedSceneOptions& o, std::uint64_t seed) {
   const double ws_scale = kind == VariedTarget::kMallet ? o.mallet_workspace_scale : 1.0;
   const Eigen::Vector2d half = 0.5 * ws_scale * Eigen::Vector2d(o.workspace_x_mm, o.workspace_y_mm);
   const Eigen::AlignedBox2d ws(-half, half);
-  StripeSweep sweep = make_sweep(
-      f.scan, Eigen::AlignedBox3d(Eigen::Vector3d(-half.x() - 5, -half.y() - 5, 0.0),
-                                  Eigen::Vector3d(half.x() + 5, half.y() + 5, kCoverHeightMm)));
+  const Eigen::AlignedBox3d cover(Eigen::Vector3d(-half.x() - 5, -half.y() - 5, 0.0),
+                                  Eigen::Vector3d(half.x() + 5, half.y() + 5, kCoverHeightMm));
+  StripeSweep sweep = make_sweep(f.scan, cover);
+  // A head's camera turns with it; one that would pass under the table top (a steep view, a wide
+  // baseline on the lower side) is no setup anyone builds, and it would see the parts through
+  // the table. Drawn again until every camera stays above it over the whole sweep.
+  for (int redraw = 0; redraw < kMaxSetupRedraws && lowest_camera(sweep) < kMinCameraHeightMm;
+       ++redraw) {
+    f.scan = draw_setup(o, d);
+    sweep = make_sweep(f.scan, cover);
+  }
 
   std::vector<TableObject> objects;  // target, occluder, look-alikes, clutter
   TargetView target;                 // what the sensor measures of the target alone

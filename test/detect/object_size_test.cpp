@@ -84,11 +84,11 @@ TEST(ObjectSize, FindsTheOccludedCylinderAndConesOfVariedScenes) {
 }
 
 // Cones under overhangs or behind a wall seen by the pan-tilt head at 0.55-0.93 mm noise
-// (pan-tilt tuning seeds 143, 179, 187): their points, the lower flank only, want a cone a few per
+// (pan-tilt tuning seeds 146, 179, 187): their points, the lower flank only, want a cone a few per
 // cent thinner and taller (3.3-4.8 % off, standard errors 0.3-0.5 %). A scale is off only beyond
 // the size tolerance plus three of its standard errors (size_deviation_sigmas).
 TEST(ObjectSize, FindsPanTiltConesWhosePointsLeaveTheirSizeLooselyPlaced) {
-  for (std::uint64_t seed : {143u, 179u, 187u}) {
+  for (std::uint64_t seed : {146u, 179u, 187u}) {
     test::expect_varied_target_found(sim::VariedTarget::kCone, seed, true);
   }
 }

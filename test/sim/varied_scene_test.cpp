@@ -215,6 +215,27 @@ TEST(VariedScene, FactorsLieInTheirRangesAndVaryOverSeeds) {
   }
 }
 
+// A head's cameras turn with it; drawn so that none passes under the table top at any profile
+// (it would see the parts through the table). Steep views with a wide baseline on the lower side
+// took cameras down to 90 mm below it, on one or two cameras alike.
+TEST(VariedScene, ThePanTiltHeadsCamerasStayAboveTheTable) {
+  VariedSceneOptions o = tiny(VariedTarget::kBox, true);
+  o.two_camera_probability = 0.5;
+  int low_baseline_side = 0;
+  for (std::uint64_t seed = kTuningSeedBase; seed < kTuningSeedBase + 40; ++seed) {
+    const VariedScene s = make_varied_scene(o, seed);
+    for (int i = 0; i < s.sweep.profiles; ++i) {
+      const ProfilePose pose = s.sweep.pose(s.sweep.position(i));
+      ASSERT_GE(pose.camera.z(), 50.0) << "seed " << seed << " profile " << i;
+      if (pose.second_camera) {
+        ASSERT_GE(pose.second_camera->z(), 50.0) << "seed " << seed << " profile " << i;
+      }
+    }
+    low_baseline_side += s.factors.scan.camera_side < 0 && !s.factors.scan.two_cameras;
+  }
+  EXPECT_GT(low_baseline_side, 0);  // the lower side is still drawn
+}
+
 // An exact scene at 1.25 mm steps, never cut by the sweep's end, and the scan of its target
 // alone on the same sweep: what the scene's occluders and clutter took is the difference.
 std::pair<VariedScene, StripeScan> scene_and_target_alone(VariedTarget t, std::uint64_t seed,
