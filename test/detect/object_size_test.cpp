@@ -143,5 +143,25 @@ TEST(ObjectSize, TellsTheBoxFromLookAlikesAFewPerCentThinnerOrLonger) {
   }
 }
 
+// A ball look-alike 5.8 % flatter along a level axis (pan-tilt object-free seeds 79 and 172, the
+// model a ball): its scales asked about the table's normal both mix the short axis with the
+// others and read 0.977 and 1.028, within the 3 %. Fitted from level axes too, one turns onto it
+// and reads 0.943. The true ball beside look-alikes 4.9-18.6 % off (pan-tilt tuning seeds 2-4) is
+// still found.
+TEST(ObjectSize, ABallFlatterAlongALevelAxisIsNotTheBall) {
+  for (std::uint64_t seed : {79u, 172u}) {
+    sim::VariedSceneOptions so;
+    so.target = sim::VariedTarget::kNone;
+    so.pan_tilt = true;
+    const sim::VariedScene s = sim::make_varied_scene(so, seed);
+    ASSERT_TRUE(s.model.parts[0].shape.ball()) << "seed " << seed;
+    const ObjectDetectResult r = detect(s, seed);
+    EXPECT_FALSE(r.found()) << "seed " << seed << ": " << test::describe_rejections(r);
+  }
+  for (std::uint64_t seed : {2u, 3u, 4u}) {
+    test::expect_varied_target_found(sim::VariedTarget::kSphere, seed, true);
+  }
+}
+
 }  // namespace object_size_test
 }  // namespace rangefit
