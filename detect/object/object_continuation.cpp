@@ -151,27 +151,36 @@ Continuation surface_continuation(const Superquadric& sq, const Eigen::Isometry3
       const double u = outwards(sq, q, ext[k].along);
       const double size = size_along(sq, ext[k].along);
       // Past the face, short of the stretched part's own end, on its extended surface.
-      if (u * size <= size + past[k] || u * size > reach[k] * size - 2.0 * o.band_mm) continue;
+      if (u * size <= size || u * size > reach[k] * size - 2.0 * o.band_mm) continue;
       if (std::abs(surface_distance(stretched[k], q)) <= o.band_mm) {
         carried.emplace_back(2 * k + (side_of(q, ext[k].along) > 0.0), u * size - size - past[k]);
         break;
       }
     }
   }
-  // Only what carries on from the face: a face's continuing points count when the nearest of them
-  // lies where they are first counted, within two point spacings (or the band). A neighbouring
-  // object whose top stands level with the part's a few millimetres beyond it extends the face
-  // just as well, but across a bare strip. Farther out a continuing surface may be broken (a
-  // shadow across it) and still count.
+  // Only what carries on from the face: a face's points past `past` count when the surface runs
+  // on to them from the face without a gap wider than two point spacings (or the band). A
+  // neighbouring object whose face stands level with the part's a few millimetres beyond it
+  // extends the face just as well, but across a bare strip: a true box's neighbour 5.7 mm past its
+  // edge, just beyond the margin, had counted as its own surface carrying on. Farther out a
+  // continuing surface may be broken (a shadow across it) and still count.
   if (!carried.empty()) {
     const double gap =
         std::max(o.band_mm, 2.0 * median_neighbour_distance(points, tree, own).value_or(0.0));
     std::sort(carried.begin(), carried.end());
     for (std::size_t i = 0; i < carried.size();) {
-      std::size_t j = i;
-      while (j < carried.size() && carried[j].first == carried[i].first) ++j;
-      if (carried[i].second <= gap) c.continuing += static_cast<int>(j - i);
-      i = j;
+      const std::size_t group = carried[i].first;
+      // Nearer than the band past the face a point is the part's own surface.
+      double run = o.band_mm - past[group / 2];
+      bool broken = false;
+      int beyond = 0;
+      for (; i < carried.size() && carried[i].first == group; ++i) {
+        const double v = carried[i].second;
+        if (!broken) broken = v - run > gap;
+        if (!broken) run = std::max(run, v);
+        beyond += v > 0.0;
+      }
+      if (run > 0.0) c.continuing += beyond;
     }
   }
   if (c.surface > 0) c.share = static_cast<double>(c.continuing) / c.surface;

@@ -39,7 +39,7 @@ struct ContinuationOptions {
 struct Continuation {
   int surface = 0;     // points on the part's surface (within band_mm)
   // Points outside it, on one of its flat faces extended past its edge, of the faces whose
-  // nearest such point lies within two point spacings (or band_mm) of where they are counted.
+  // surface runs on to them from the edge with no gap wider than two point spacings (or band_mm).
   int continuing = 0;
   // continuing / surface: the share of the part's own evidence that carries on past it (0 with
   // no surface points or a part that is not asked).
