@@ -6,7 +6,9 @@
 // by a wall or an overhang, a target cut by the end of the sweep, and clutter: look-alikes of
 // the model 4-20 % larger or smaller, cans, boxes, balls, other superquadrics, standing and
 // lying, touching or close to each other. The thesis scenes (fig. 5.18, 5.28, the mallet among
-// look-alikes) come as instances under any scan setup.
+// look-alikes) come as instances under any scan setup. A pan-tilt head's cameras stay at least
+// 50 mm above the table over the whole sweep (setups that would take one under it are drawn
+// again).
 //
 // Points are in the table frame (z up, table surface z = 0, mm), the frame of `view`.
 //
