@@ -294,6 +294,10 @@ struct SizeVerdict {
   double scale = 1.0, allowance = 0.0;
   std::optional<double> across, along;  // the scales it places
   double across_allowance = 0.0;
+  // How far the scale it judges by stands from 1 beyond its allowance.
+  double excess() const { return std::abs(scale - 1.0) - allowance; }
+  // No scale placed, or none farther from 1 than `max_deviation` beyond its allowance.
+  bool within(double max_deviation) const { return !determined || excess() <= max_deviation; }
 };
 
 // `sigmas` standard errors allowed each scale, at most kMaxScaleSigma's (a clear misfit's scale
@@ -302,7 +306,7 @@ SizeVerdict size_verdict(const SizeFit& free, double noise, double sigmas) {
   SizeVerdict v;
   const auto farthest = [&v, sigmas](double s, double sigma) {
     const double allowance = sigmas * std::min(sigma, kMaxScaleSigma);
-    if (!v.determined || std::abs(s - 1.0) - allowance > std::abs(v.scale - 1.0) - v.allowance) {
+    if (!v.determined || std::abs(s - 1.0) - allowance > v.excess()) {
       v.scale = s, v.allowance = allowance;
     }
     v.determined = true;
@@ -446,7 +450,7 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
                    start, so);
       if (!free.ok) return std::optional<SizeVerdict>();
       v = size_verdict(free, noise, sigmas);
-      if (!v.determined || std::abs(v.scale - 1.0) <= o.max_size_deviation + v.allowance) break;
+      if (v.within(o.max_size_deviation)) break;
     }
     return std::optional<SizeVerdict>(v);
   };
@@ -460,26 +464,21 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
         Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), ctx.table->normal)
             .toRotationMatrix();
     const auto farther = [&](const std::optional<SizeVerdict>& w) {
-      if (w && w->determined &&
-          (!v->determined ||
-           std::abs(w->scale - 1.0) - w->allowance > std::abs(v->scale - 1.0) - v->allowance)) {
-        v = w;
-      }
+      if (w && w->determined && (!v->determined || w->excess() > v->excess())) v = w;
     };
     farther(verdict(upright, false));
     // A look-alike squashed along a level axis: the fits above are symmetric about that axis
     // (upright, both scales mix the short axis with the others, and a ball 5.8 % flatter read
     // 0.977). Fitted from two level axes at right angles, one within 45 deg of it turns onto it.
-    const bool off =
-        v->determined && std::abs(v->scale - 1.0) > o.max_size_deviation + v->allowance;
-    const Eigen::Vector3d up = ctx.table->normal.normalized();
-    const Eigen::Vector3d level_x = up.unitOrthogonal(), level_y = up.cross(level_x);
-    for (const Eigen::Vector3d& axis : {level_x, level_y}) {
-      if (off) break;
-      Eigen::Isometry3d level = at_model.T_world_part;
-      level.linear() =
-          Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis).toRotationMatrix();
-      farther(verdict(level, true));
+    if (v->within(o.max_size_deviation)) {
+      const Eigen::Vector3d up = ctx.table->normal.normalized();
+      const Eigen::Vector3d level_x = up.unitOrthogonal(), level_y = up.cross(level_x);
+      for (const Eigen::Vector3d& axis : {level_x, level_y}) {
+        Eigen::Isometry3d level = at_model.T_world_part;
+        level.linear() =
+            Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis).toRotationMatrix();
+        farther(verdict(level, true));
+      }
     }
   }
   if (!v) return e;
