@@ -19,11 +19,14 @@ struct ResultFile {
   std::string_view name;
   std::string_view content_type;
 };
-inline constexpr std::array<ResultFile, 12> kResultFiles = {{
+inline constexpr std::array<ResultFile, 15> kResultFiles = {{
     {"cloud.ply", "application/octet-stream"},
     {"picture.png", "image/png"},
     {"model.toml", "text/plain; charset=utf-8"},
     {"raw_sweep_stripe.txt", "text/plain; charset=utf-8"},
+    {"raw_sweep_stripe_2.txt", "text/plain; charset=utf-8"},  // further cameras of one request
+    {"raw_sweep_stripe_3.txt", "text/plain; charset=utf-8"},
+    {"raw_sweep_stripe_4.txt", "text/plain; charset=utf-8"},
     {"calibration_stripe.toml", "text/plain; charset=utf-8"},
     {"calibration_stripe.toml.report.txt", "text/plain; charset=utf-8"},
     {"css_sphere_scan.txt", "text/plain; charset=utf-8"},

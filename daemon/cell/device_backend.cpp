@@ -100,7 +100,12 @@ ScanOutcome DeviceBackend::scan_views(const ScanRequest& request, const std::ato
     if (!views.back().status) break;
   }
   // A shared sweep's error names the devices already.
-  return fuse_views(views, request.sensors, request.kind == DetectKind::kObject, together);
+  // A stripe calibration solves each camera on its own sweep: the views go apart too.
+  const bool calibration = request.kind == DetectKind::kCalibrate;
+  return fuse_views(views, request.sensors,
+                    {.cameras = request.kind == DetectKind::kObject,
+                     .named = together,
+                     .keep_apart = calibration});
 }
 
 ScanOutcome DeviceBackend::replay(const DeviceConfig& device,

@@ -6,13 +6,15 @@
 namespace rangefit::daemon {
 
 ScanOutcome fuse_views(std::span<ScanOutcome> views, std::span<const std::string> names,
-                       bool cameras, bool named) {
+                       const FuseOptions& options) {
+  const bool cameras = options.cameras;
   ScanOutcome fused;
   for (std::size_t k = 0; k < views.size(); ++k) {
     ScanOutcome& view = views[k];
     const std::string& name = names[k];
     if (!view.status) {
-      fused.status = named ? view.status : hal::Status::Error(name + ": " + view.status.message);
+      fused.status =
+          options.named ? view.status : hal::Status::Error(name + ": " + view.status.message);
       return fused;
     }
     if (k == 0) {
@@ -36,6 +38,7 @@ ScanOutcome fuse_views(std::span<ScanOutcome> views, std::span<const std::string
       fused.sensor.view = *both;
     }
     append_view(fused.cloud, view.cloud);
+    if (options.keep_apart) fused.views.push_back({name, std::move(view.cloud), view.sensor});
     fused.acquired_wall_ns = std::max(fused.acquired_wall_ns, view.acquired_wall_ns);
   }
   // Spooled and replayed with the cloud: the cameras' view describes every point of it.

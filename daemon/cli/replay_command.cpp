@@ -40,7 +40,7 @@ void add_replay_command(CLI::App& app, int* exit_code) {
     }
     daemon::ModelDetector detector(config);
     // The spool keeps the cloud and the request, not the sensor: detection without it.
-    daemon::DetectionResult result = detector.detect(spooled->cloud, spooled->request, {});
+    daemon::DetectionResult result = detector.detect(spooled->cloud, spooled->request, {}, {});
     result.request_id = spooled->request.id;
     result.kind = spooled->request.kind;
     result.model = spooled->request.model;

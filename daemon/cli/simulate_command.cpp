@@ -115,7 +115,7 @@ ScanOutcome scan_scene(const SimulateArgs& a, nlohmann::json& health) {
     if (views.empty())
       throw std::invalid_argument("--mirrored-camera: a " + a.sensor +
                                   " has no second camera (stripe, pantilt)");
-    out = daemon::fuse_views(views, names, true);
+    out = daemon::fuse_views(views, names, {.cameras = true});
   } else {
     out = cell.scan(config.devices.front(), request, cancel, [] {});
   }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "daemon/service/json_codec.hpp"
@@ -145,7 +146,7 @@ std::string check_rig(const std::vector<StripeCalibrationSweep>& all) {
     const CalibrationTarget& t = all[i].target;
     if (t.edge_mm != own.edge_mm || t.bar_mm != own.bar_mm ||
         !t.T_table_target.isApprox(own.T_table_target, 1e-9)) {
-      return "request " + std::to_string(i + 1) + " of " + std::to_string(all.size()) + " on " +
+      return "sweep " + std::to_string(i + 1) + " of " + std::to_string(all.size()) + " on " +
              all[i].sensor + " names another cube or cube pose than this one";
     }
     for (std::size_t j = 0; j < i; ++j) {
@@ -177,37 +178,78 @@ nlohmann::json camera_json(const calib::StripeCalibrationResult& c,
 
 }  // namespace
 
-DetectionResult calibrate_request(const PointCloud& cloud, const ScanRequest& request,
-                                  const ScanSensor& sensor, StripeCalibrationSweeps& sweeps,
-                                  std::uint64_t default_seed) {
-  // Validation admits only the stripe target (and only on a stripe sensor).
+// The file a request's sweep of its k-th camera is spooled as (k from 0).
+std::string raw_sweep_file(std::size_t k) {
+  return k == 0 ? std::string("raw_sweep_stripe.txt")
+                : "raw_sweep_stripe_" + std::to_string(k + 1) + ".txt";
+}
+
+namespace {
+
+// One camera's sweep of this request, taken back from its fused scan; empty with *why set when
+// it cannot be.
+std::optional<StripeCalibrationSweep> own_sweep(const std::string& name, const PointCloud& cloud,
+                                                const ScanSensor& sensor,
+                                                const CalibrationTarget& target, std::string* why) {
   if (!sensor.stripe) {
-    return DetectionResult::error(request,
-                                  "calibrate stripe: the scan's sensor reports no stripe cell "
-                                  "geometry (a stripe sweep on the cell is needed, not a replay)");
+    *why = name +
+           ": the scan's sensor reports no stripe cell geometry (a stripe sweep on the cell is "
+           "needed, not a replay)";
+    return std::nullopt;
   }
   RawStripeProfiles raw = raw_stripe_profiles(in_fusion_frame(cloud, sensor), *sensor.stripe);
-  if (!raw.error.empty()) return DetectionResult::error(request, "calibrate stripe: " + raw.error);
-  StripeCalibrationSweep own{
-      request.sensor, {sensor.stripe_camera, *sensor.stripe}, {}, request.target};
+  if (!raw.error.empty()) {
+    *why = name + ": " + raw.error;
+    return std::nullopt;
+  }
+  StripeCalibrationSweep own{name, {sensor.stripe_camera, *sensor.stripe}, {}, target};
   own.sweep.kind = calib::SweepKind::kStripe;
   own.sweep.points_per_profile = sensor.stripe->ranger.points_per_profile;
   own.sweep.axis_mm = std::move(raw.axis_mm);
   own.sweep.profiles = std::move(raw.profiles);
+  return own;
+}
+
+}  // namespace
+
+DetectionResult calibrate_request(const PointCloud& cloud, const ScanRequest& request,
+                                  const ScanSensor& sensor, std::span<const SensorScan> views,
+                                  StripeCalibrationSweeps& sweeps, std::uint64_t default_seed) {
+  // Validation admits only the stripe target, on stripe sensors. Several cameras in one request
+  // each come apart (views); one comes as the scan itself.
+  std::vector<StripeCalibrationSweep> own;
+  std::string why;
+  if (views.empty()) {
+    if (auto s = own_sweep(request.sensor, cloud, sensor, request.target, &why)) {
+      own.push_back(std::move(*s));
+    }
+  }
+  for (const SensorScan& v : views) {
+    auto s = own_sweep(v.name, v.cloud, v.sensor, request.target, &why);
+    if (!s) break;
+    own.push_back(std::move(*s));
+  }
+  if (!why.empty()) return DetectionResult::error(request, "calibrate stripe: " + why);
   DetectionResult out;
-  out.details = {
-      {"target", request.target.kind}, {"applied", false}, {"profiles", own.sweep.profiles.size()}};
-  out.files.emplace_back("raw_sweep_stripe.txt", calib::format_raw_sweep(own.sweep));
+  out.details = {{"target", request.target.kind},
+                 {"applied", false},
+                 {"profiles", own.front().sweep.profiles.size()}};
+  for (std::size_t k = 0; k < own.size(); ++k) {
+    out.files.emplace_back(raw_sweep_file(k), calib::format_raw_sweep(own[k].sweep));
+  }
   std::string unknown;
-  const std::vector<StripeCalibrationSweep> all =
-      sweeps.join(request.id, std::move(own), request.target.scans, &unknown);
+  const std::size_t own_cameras = own.size();
+  std::vector<StripeCalibrationSweep> all;
+  for (auto& earlier : sweeps.join(request.id, std::move(own), request.target.scans, &unknown)) {
+    for (auto& s : earlier) all.push_back(std::move(s));
+  }
   if (!unknown.empty()) {
     out.reason = std::string(kNotCalibrated) +
                  unknown_record_reason("stripe", unknown, "raw_sweep_stripe.txt");
     return out;
   }
-  if (const std::string why = check_rig(all); !why.empty()) {
-    out.reason = std::string(kNotCalibrated) + why;
+  if (const std::string no_rig = check_rig(all); !no_rig.empty()) {
+    out.reason = std::string(kNotCalibrated) + no_rig;
     return out;
   }
   calib::StripeRigInput in;
@@ -227,7 +269,8 @@ DetectionResult calibrate_request(const PointCloud& cloud, const ScanRequest& re
     return out;
   }
   out.found = true;
-  const calib::StripeCalibrationResult& mine = r.cameras.back();
+  // This request's sensor: its first camera, after the earlier requests' cameras.
+  const calib::StripeCalibrationResult& mine = r.cameras[all.size() - own_cameras];
   out.details["rms_mm"] = r.rms_mm;
   out.details["initial_rms_mm"] = r.initial_rms_mm;
   out.details["plane_points"] = r.points;
@@ -248,8 +291,11 @@ DetectionResult calibrate_request(const PointCloud& cloud, const ScanRequest& re
     out.parts.push_back({all.size() > 1 ? "ranger_" + all[k].sensor : std::string("ranger"),
                          r.cameras[k].geometry.T_cell_ranger(), 1.0, 0});
   }
-  std::string source = "rangefitd request " + request.id + " on " + request.sensor;
-  for (std::size_t k = 0; k + 1 < all.size(); ++k) {
+  std::string source = "rangefitd request " + request.id + " on ";
+  for (std::size_t k = all.size() - own_cameras; k < all.size(); ++k) {
+    source += (k + own_cameras == all.size() ? "" : ", ") + all[k].sensor;
+  }
+  for (std::size_t k = 0; k < request.target.scans.size(); ++k) {
     source += (k == 0 ? " with " : ", ") + request.target.scans[k];
   }
   out.files.emplace_back("calibration_stripe.toml", stripe_calibration_toml(r, cameras, source));

@@ -13,9 +13,11 @@
 // as raw_sweep_stripe.txt, the file `rangefit calibrate stripe --scans` reads.
 //
 // Several cameras of one laser plane (the stripe devices [[fusion.stripe_cell.cameras]] names,
-// besides the first) calibrate together: each sweeps the cube in a request of its own, and the
-// last names the earlier ones in `scans`; they are solved as one rig (calib/
-// stripe_calibration.hpp), and the result holds every camera's fields.
+// besides the first) calibrate together, solved as one rig (calib/stripe_calibration.hpp), and
+// the result holds every camera's fields. One request may name them all (`sensors`): on one axis
+// they sweep the cube together, the axis moving once, and each camera's sweep is spooled
+// (raw_sweep_file). Or each sweeps in a request of its own, and the last names the earlier ones
+// in `scans`; the two ways combine.
 
 #include <cstdint>
 #include <span>
@@ -26,6 +28,7 @@
 #include "calib/raw_sweep_text.hpp"
 #include "calib/stripe_calibration.hpp"
 #include "daemon/service/calibration_records.hpp"
+#include "daemon/service/pipeline.hpp"
 #include "daemon/service/scan_sensor.hpp"
 #include "daemon/service/scan_types.hpp"
 #include "detect/common/point_cloud.hpp"
@@ -79,10 +82,17 @@ struct StripeCalibrationSweep {
   calib::RawSweep sweep;
   CalibrationTarget target;
 };
-using StripeCalibrationSweeps = CalibrationRecords<StripeCalibrationSweep>;
+// A request's sweeps: one per camera it named.
+using StripeCalibrationSweeps = CalibrationRecords<std::vector<StripeCalibrationSweep>>;
 
+// The spool file of a request's sweep with its k-th camera (from 0): raw_sweep_stripe.txt for the
+// first, raw_sweep_stripe_<k + 1>.txt for the others.
+std::string raw_sweep_file(std::size_t k);
+
+// views: each camera's scan apart when the request named several (sensors); empty: the scan
+// (cloud, sensor) is request.sensor's.
 DetectionResult calibrate_request(const PointCloud& cloud, const ScanRequest& request,
-                                  const ScanSensor& sensor, StripeCalibrationSweeps& sweeps,
-                                  std::uint64_t default_seed);
+                                  const ScanSensor& sensor, std::span<const SensorScan> views,
+                                  StripeCalibrationSweeps& sweeps, std::uint64_t default_seed);
 
 }  // namespace rangefit::daemon

@@ -16,7 +16,7 @@
 namespace rangefit::daemon {
 
 DetectionResult ModelDetector::detect(const PointCloud& cloud, const ScanRequest& request,
-                                      const ScanSensor& sensor) {
+                                      const ScanSensor& sensor, std::span<const SensorScan> views) {
   const ScanSensor seen = with_request_sensor(sensor, request);
   switch (request.kind) {
     case DetectKind::kObject:
@@ -31,7 +31,7 @@ DetectionResult ModelDetector::detect(const PointCloud& cloud, const ScanRequest
         return calibrate_pan_tilt_request(cloud, request, seen, pan_tilt_sweeps_,
                                           config_.detection.seed);
       }
-      return calibrate_request(cloud, request, seen, stripe_sweeps_, config_.detection.seed);
+      return calibrate_request(cloud, request, seen, views, stripe_sweeps_, config_.detection.seed);
     case DetectKind::kBore:
       break;
   }

@@ -17,7 +17,7 @@ class ModelDetector final : public Detector {
  public:
   explicit ModelDetector(DetectorConfig config) : config_(std::move(config)) {}
   DetectionResult detect(const PointCloud& cloud, const ScanRequest& request,
-                         const ScanSensor& sensor) override;
+                         const ScanSensor& sensor, std::span<const SensorScan> views) override;
 
  private:
   DetectionResult detect_object_request(const PointCloud& cloud, const ScanRequest& request,

@@ -175,7 +175,7 @@ DetectionResult Pipeline::run_detection(const ScanOutcome& scan, const ScanReque
   }
   auto detect = [this, &scan, &request] {
     try {
-      return detector_.detect(scan.cloud, request, scan.sensor);
+      return detector_.detect(scan.cloud, request, scan.sensor, scan.views);
     } catch (const std::exception& e) {
       return DetectionResult::error(request, std::string("detector threw: ") + e.what());
     }

@@ -12,6 +12,7 @@
 #include <future>
 #include <memory>
 #include <mutex>
+#include <span>
 #include <string>
 #include <thread>
 #include <vector>
@@ -31,6 +32,14 @@ struct NamedHealth {
   hal::DeviceHealth health;
 };
 
+// One sensor's own scan among several a request fused (sensors): as that sensor took it (world
+// frame, organised when the sensor is), with what it knows about its rays.
+struct SensorScan {
+  std::string name;  // the device
+  PointCloud cloud;
+  ScanSensor sensor;
+};
+
 struct ScanOutcome {
   ScanOutcome() = default;
   ScanOutcome(hal::Status s, PointCloud c, ScanSensor view = {}, std::int64_t acquired = 0)
@@ -45,6 +54,9 @@ struct ScanOutcome {
   // Wall-clock time (ns since the Unix epoch) the scan's last sample was taken; 0: unknown
   // (the result is then stamped when it is published).
   std::int64_t acquired_wall_ns = 0;
+  // Each sensor's scan apart, when the request fused several and its detection needs them apart
+  // (the cameras of a stripe calibration: each is solved on its own sweep); else empty.
+  std::vector<SensorScan> views;
 };
 
 class ScanBackend {
@@ -60,9 +72,10 @@ class ScanBackend {
 class Detector {
  public:
   virtual ~Detector() = default;
-  // Fills found/reason/parts/bore_radius_mm; the pipeline fills ids, counts and timings.
+  // Fills found/reason/parts/bore_radius_mm; the pipeline fills ids, counts and timings. views:
+  // the scan's sensors apart (ScanOutcome::views), empty unless the request needs them.
   virtual DetectionResult detect(const PointCloud& cloud, const ScanRequest& request,
-                                 const ScanSensor& sensor) = 0;
+                                 const ScanSensor& sensor, std::span<const SensorScan> views) = 0;
 };
 
 class ResultSink {

@@ -144,7 +144,8 @@ std::string check_target(CalibrationTarget& t, const std::string& own_id) {
 // Several sensors' scans fused: each a configured device, named once, scanning its configured
 // sweep (a request's sweep is in one device's units). The first is the sensor. Learn fuses any
 // views; object detection two cameras of one laser plane, a stripe cell's or a pan-tilt head's
-// (the scan merges their views, DeviceBackend::scan_views).
+// (the scan merges their views, DeviceBackend::scan_views); a stripe calibration the cameras of
+// its laser plane (each solved on its own sweep, together as one rig).
 std::string check_views(ScanRequest& request, const DaemonConfig& config) {
   if (request.sensors.empty()) return "";
   if (request.kind == DetectKind::kObject) {
@@ -165,8 +166,22 @@ std::string check_views(ScanRequest& request, const DaemonConfig& config) {
                "; an object request fuses two cameras of one laser plane";
       }
     }
+  } else if (request.kind == DetectKind::kCalibrate) {
+    const SensorKind* target = target_kind(request.target);
+    if (target == nullptr || DeviceKind(*target) != DeviceKind("stripe")) {
+      return "sensors: a calibrate request takes several sensors for the stripe target only (the "
+             "cameras of its laser plane, one sweep); give one sensor";
+    }
+    for (const std::string& name : request.sensors) {
+      const DeviceConfig* d = config.device(name);
+      if (d != nullptr && d->kind != DeviceKind("stripe")) {
+        return "sensors: \"" + name + "\" is a " + std::string(d->kind.name()) +
+               "; a stripe calibration takes the cameras of its laser plane";
+      }
+    }
   } else if (request.kind != DetectKind::kLearn) {
-    return "sensors (several scans fused) is for learn and object requests; give one sensor";
+    return "sensors (several scans fused) is for learn, object and stripe calibrate requests; "
+           "give one sensor";
   }
   if (request.sensors.size() > kMaxViews) {
     return "sensors: at most " + std::to_string(kMaxViews) + " scans are fused";

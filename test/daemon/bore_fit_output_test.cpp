@@ -45,7 +45,7 @@ void expect_plausible_sigma(const nlohmann::json& sigma) {
 TEST(BoreFitOutput, ServiceDetailsCarryTheCylindersStandardErrors) {
   const PointCloud cloud = io::read_cloud(kExample);
   ModelDetector detector{DetectorConfig{}};
-  const DetectionResult r = detector.detect(cloud, example_request(), ScanSensor{});
+  const DetectionResult r = detector.detect(cloud, example_request(), ScanSensor{}, {});
   ASSERT_TRUE(r.found) << r.reason;
   ASSERT_TRUE(r.details.contains("sigma")) << r.details.dump();
   expect_plausible_sigma(r.details.at("sigma"));
@@ -66,7 +66,7 @@ TEST(BoreFitOutput, CliJsonReportsTheSameFitFieldsAsTheService) {
   // Same scan, prior and seed: the service's details hold the same fit fields, bit for bit.
   ModelDetector detector{DetectorConfig{}};
   const DetectionResult r =
-      detector.detect(io::read_cloud(kExample), example_request(), ScanSensor{});
+      detector.detect(io::read_cloud(kExample), example_request(), ScanSensor{}, {});
   ASSERT_TRUE(r.found) << r.reason;
   for (const char* key : {"sigma", "plane_normal", "refined", "second_fit"}) {
     EXPECT_EQ(j.at(key), r.details.at(key)) << key;

@@ -64,7 +64,8 @@ class CentroidDetector final : public daemon::Detector {
  public:
   bool throw_next = false;
   daemon::DetectionResult detect(const PointCloud& cloud, const daemon::ScanRequest&,
-                                 const daemon::ScanSensor&) override {
+                                 const daemon::ScanSensor&,
+                                 std::span<const daemon::SensorScan>) override {
     if (throw_next) throw std::runtime_error("boom");
     daemon::DetectionResult r;
     if (cloud.empty()) {

@@ -20,11 +20,11 @@ class BlockingDetector final : public Detector {
  public:
   std::atomic<bool> block{true};
   std::atomic<int> calls{0};
-  DetectionResult detect(const PointCloud& cloud, const ScanRequest& r,
-                         const ScanSensor&) override {
+  DetectionResult detect(const PointCloud& cloud, const ScanRequest& r, const ScanSensor&,
+                         std::span<const SensorScan>) override {
     ++calls;
     while (block) std::this_thread::sleep_for(milliseconds(1));
-    return inner_.detect(cloud, r, {});
+    return inner_.detect(cloud, r, {}, {});
   }
 
  private:

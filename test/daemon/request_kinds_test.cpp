@@ -317,7 +317,8 @@ TEST(RequestKinds, ValidationNamesWhatIsWrong) {
   EXPECT_EQ(views({"stripe", "css"}, [](ScanRequest& r) { r.sweep_end = 100.0; }),
             "with sensors each scans its configured sweep: leave sweep out");
   EXPECT_EQ(views({"stripe", "css"}, [](ScanRequest& r) { r.kind = DetectKind::kBore; }),
-            "sensors (several scans fused) is for learn and object requests; give one sensor");
+            "sensors (several scans fused) is for learn, object and stripe calibrate requests; "
+            "give one sensor");
   // An object request fuses the two cameras of one laser plane: two stripe devices, or two
   // pan_tilt devices.
   const auto object = [](ScanRequest& r) {
@@ -353,6 +354,27 @@ TEST(RequestKinds, ValidationNamesWhatIsWrong) {
   cal.sensor = "css";
   EXPECT_EQ(validate_request(cal, config),
             "calibrate stripe needs a stripe sensor; \"css\" is a css");
+  // A stripe calibration takes the cameras of its laser plane together; other targets one.
+  DaemonConfig two_cameras = config;
+  DeviceConfig stripe2;
+  stripe2.name = "stripe2";
+  stripe2.kind = "stripe";
+  two_cameras.devices.push_back(stripe2);
+  cal = calibrate_request();
+  cal.sensors = {"stripe", "stripe2"};
+  EXPECT_EQ(validate_request(cal, two_cameras), "");
+  EXPECT_EQ(cal.sensor, "stripe");
+  cal.sensors = {"stripe", "css"};
+  EXPECT_EQ(validate_request(cal, config),
+            "sensors: \"css\" is a css; a stripe calibration takes the cameras of its laser "
+            "plane");
+  cal = calibrate_request();
+  cal.target.kind = "css";
+  cal.target.radius_mm = 25.0;
+  cal.sensors = {"css", "css2"};
+  EXPECT_EQ(validate_request(cal, config),
+            "sensors: a calibrate request takes several sensors for the stripe target only (the "
+            "cameras of its laser plane, one sweep); give one sensor");
   cal = calibrate_request();
   cal.target.bar_mm = 100.0;
   EXPECT_EQ(validate_request(cal, config),

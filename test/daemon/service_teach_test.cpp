@@ -14,6 +14,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "calib/raw_sweep_text.hpp"
 #include "calib/stripe_calibration.hpp"
 #include "daemon/rangefitd/service.hpp"
 #include "detect/common/angles.hpp"
@@ -302,17 +303,13 @@ TEST(ServiceTeach, CalibrateRequestRecoversTheStripeCellAndAppliesNothing) {
   fs::remove_all(dir);
 }
 
-// Two cameras of one laser plane, one on each side of it: each sweeps the cube in a request of
-// its own, the second names the first, and both come back to the configured cell together.
-TEST(ServiceTeach, TwoCamerasOfOneLaserPlaneCalibrateTogether) {
-  const fs::path dir = test::fresh_test_dir("rangefit_service_calibrate_rig");
-  // Body diagonal straight up towards the laser: both sides see the three outer faces.
-  const Eigen::Isometry3d T_cube = test::cube_between_cameras();
+// The cube cell with a second camera "stripe_b" of its laser plane, on the other side of it, in
+// its own frame of the plane: turned 2 deg about the plane's normal, shifted 6 and -5 mm.
+DaemonConfig two_camera_cube_cell(const fs::path& dir, const Eigen::Isometry3d& T_cube) {
   DaemonConfig config = cube_cell(dir, T_cube);
   DeviceConfig b = config.devices.front();
   b.name = "stripe_b";
   config.devices.push_back(b);
-  // Its own frame of the plane: turned 2 deg about the plane's normal, shifted 6 and -5 mm.
   Eigen::Isometry3d P = Eigen::Isometry3d::Identity();
   P.linear() = Eigen::AngleAxisd(2.0 * kDeg, Eigen::Vector3d::UnitY()).toRotationMatrix();
   P.translation() = Eigen::Vector3d(6.0, 0.0, -5.0);
@@ -321,6 +318,43 @@ TEST(ServiceTeach, TwoCamerasOfOneLaserPlaneCalibrateTogether) {
   config.fusion.stripe_cell.cameras.push_back({"stripe_b", T_b.translation(),
                                                calib::rpy_of(T_b.linear(), a.ranger_rpy_cell_rad),
                                                -a.ranger.baseline_mm});
+  return config;
+}
+
+// Each camera of the rig result came back to the configured cell within 0.05 mm / 0.01 deg.
+void expect_both_cameras_calibrated(const DetectionResult& r, const DaemonConfig& config) {
+  EXPECT_EQ(r.details.at("cameras").get<int>(), 2);
+  const auto v = [](const nlohmann::json& j) {
+    return Eigen::Vector3d(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>());
+  };
+  const auto& cams = r.details.at("stripe_cameras");
+  ASSERT_EQ(cams.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const hal::StripeCellGeometry truth =
+        fusion::stripe_cell_for(config.fusion.stripe_cell, k == 0 ? "stripe" : "stripe_b").geometry;
+    SCOPED_TRACE(cams[k].dump());
+    EXPECT_EQ(cams[k].at("sensor").get<std::string>(), k == 0 ? "stripe" : "stripe_b");
+    EXPECT_LT((v(cams[k].at("ranger_position_cell_mm")) - truth.ranger_position_cell_mm).norm(),
+              0.05);
+    EXPECT_LT((v(cams[k].at("ranger_rpy_cell_rad")) - truth.ranger_rpy_cell_rad).norm(),
+              0.01 * kDeg);
+  }
+  const auto& files = r.details.at("files");
+  const std::string toml = text_of(files.at("calibration_stripe.toml").get<std::string>());
+  EXPECT_NE(toml.find("[[fusion.stripe_cell.cameras]]"), std::string::npos) << toml;
+  EXPECT_NE(toml.find("name = \"stripe_b\""), std::string::npos) << toml;
+  EXPECT_NE(text_of(files.at("calibration_stripe.toml.report.txt").get<std::string>())
+                .find("piercing points averaged"),
+            std::string::npos);
+}
+
+// Two cameras of one laser plane, one on each side of it: each sweeps the cube in a request of
+// its own, the second names the first, and both come back to the configured cell together.
+TEST(ServiceTeach, TwoCamerasOfOneLaserPlaneCalibrateTogether) {
+  const fs::path dir = test::fresh_test_dir("rangefit_service_calibrate_rig");
+  // Body diagonal straight up towards the laser: both sides see the three outer faces.
+  const Eigen::Isometry3d T_cube = test::cube_between_cameras();
+  const DaemonConfig config = two_camera_cube_cell(dir, T_cube);
   hal::MonotonicClock clock;
   Service service(config, clock);
   auto loop = std::make_unique<test::ServiceLoop>(service);
@@ -338,30 +372,46 @@ TEST(ServiceTeach, TwoCamerasOfOneLaserPlaneCalibrateTogether) {
   ASSERT_TRUE(first && both && twice);
   ASSERT_TRUE(first->found) << first->reason;  // the first camera on its own, as before
   ASSERT_TRUE(both->found) << both->reason << " " << both->details.dump();
-  EXPECT_EQ(both->details.at("cameras").get<int>(), 2);
-  const auto v = [](const nlohmann::json& j) {
-    return Eigen::Vector3d(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>());
-  };
-  const auto& cams = both->details.at("stripe_cameras");
-  ASSERT_EQ(cams.size(), 2u);
-  for (std::size_t k = 0; k < 2; ++k) {
-    const hal::StripeCellGeometry truth =
-        fusion::stripe_cell_for(config.fusion.stripe_cell, k == 0 ? "stripe" : "stripe_b").geometry;
-    SCOPED_TRACE(cams[k].dump());
-    EXPECT_EQ(cams[k].at("sensor").get<std::string>(), k == 0 ? "stripe" : "stripe_b");
-    EXPECT_LT((v(cams[k].at("ranger_position_cell_mm")) - truth.ranger_position_cell_mm).norm(),
-              0.05);
-    EXPECT_LT((v(cams[k].at("ranger_rpy_cell_rad")) - truth.ranger_rpy_cell_rad).norm(),
-              0.01 * kDeg);
-  }
+  expect_both_cameras_calibrated(*both, config);
+  EXPECT_TRUE(fs::exists(both->details.at("files").at("raw_sweep_stripe.txt").get<std::string>()));
+  EXPECT_FALSE(twice->found);
+  EXPECT_NE(twice->reason.find("one sweep per camera"), std::string::npos) << twice->reason;
+  fs::remove_all(dir);
+}
+
+// One request names both cameras: they sweep the cube together (one axis), each camera's sweep
+// is spooled as the file `rangefit calibrate stripe --scans` reads, and they are solved as one
+// rig. A later request with the first camera alone that names it is the same camera twice.
+TEST(ServiceTeach, TwoCamerasOfOneLaserPlaneCalibrateInOneRequest) {
+  const fs::path dir = test::fresh_test_dir("rangefit_service_calibrate_rig_one");
+  const Eigen::Isometry3d T_cube = test::cube_between_cameras();
+  const DaemonConfig config = two_camera_cube_cell(dir, T_cube);
+  hal::MonotonicClock clock;
+  Service service(config, clock);
+  auto loop = std::make_unique<test::ServiceLoop>(service);
+  ScanRequest req = stripe_calibrate("calibrate-ab", T_cube);
+  req.sensors = {"stripe", "stripe_b"};
+  const auto both = run(service, req);
+  req.id = "calibrate-a-again";
+  req.sensors.clear();
+  req.sensor = "stripe";
+  req.target.scans = {"calibrate-ab"};
+  const auto twice = run(service, req);
+  loop.reset();
+  ASSERT_TRUE(both && twice);
+  ASSERT_TRUE(both->found) << both->reason << " " << both->details.dump();
+  expect_both_cameras_calibrated(*both, config);
   const auto& files = both->details.at("files");
-  const std::string toml = text_of(files.at("calibration_stripe.toml").get<std::string>());
-  EXPECT_NE(toml.find("[[fusion.stripe_cell.cameras]]"), std::string::npos) << toml;
-  EXPECT_NE(toml.find("name = \"stripe_b\""), std::string::npos) << toml;
-  EXPECT_NE(text_of(files.at("calibration_stripe.toml.report.txt").get<std::string>())
-                .find("piercing points averaged"),
-            std::string::npos);
-  EXPECT_TRUE(fs::exists(files.at("raw_sweep_stripe.txt").get<std::string>()));
+  for (const char* name : {"raw_sweep_stripe.txt", "raw_sweep_stripe_2.txt"}) {
+    SCOPED_TRACE(name);
+    const calib::RawSweepParse sweep =
+        calib::parse_raw_sweep(text_of(files.at(name).get<std::string>()));
+    ASSERT_TRUE(sweep.sweep) << sweep.error;
+    EXPECT_GT(sweep.sweep->profiles.size(), 100u);
+  }
+  EXPECT_NE(
+      text_of(files.at("calibration_stripe.toml").get<std::string>()).find("on stripe, stripe_b"),
+      std::string::npos);
   EXPECT_FALSE(twice->found);
   EXPECT_NE(twice->reason.find("one sweep per camera"), std::string::npos) << twice->reason;
   fs::remove_all(dir);

@@ -283,6 +283,8 @@ def run(args, tmp, procs):
             "Scan and calibrate"
         assert browser.js("return document.getElementById('calibrate-cube').closest('label')"
                           ".hidden"), "the cube's fields show for the CSS"
+        assert browser.js("return document.getElementById('calibrate-sensors').closest('label')"
+                          ".hidden"), "the stripe cameras' choice shows for the CSS"
         # The page shows the learnt result before it has drawn its cloud; it takes the next
         # request once the button is back.
         wait("the page ready for the next request",

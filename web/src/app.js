@@ -88,6 +88,7 @@ function renderState(s) {
     for (const d of s.sensors) {
       $('sensor').append(new Option(d, d));
       $('learn-sensors').append(new Option(d, d));
+      $('calibrate-sensors').append(new Option(d, d));
     }
   }
 }
@@ -136,6 +137,18 @@ function calibrationTarget() {
   return t;
 }
 
+// The sensors a multiple select chose: several go as sensors, one as the sensor, none leaves
+// the sensor field's choice.
+function chooseSensors(r, id) {
+  const chosen = [...$(id).selectedOptions].map((o) => o.value);
+  if (chosen.length > 1) {
+    r.sensors = chosen;
+    r.sensor = '';
+  } else if (chosen.length === 1) {
+    r.sensor = chosen[0];
+  }
+}
+
 function request() {
   const kind = $('kind').value;
   const r = { kind, sensor: $('sensor').value };
@@ -145,15 +158,10 @@ function request() {
   } else if (kind === 'learn') {
     r.model = $('learn-name').value;
     r.parts = Number($('learn-parts').value);
-    const fused = [...$('learn-sensors').selectedOptions].map((o) => o.value);
-    if (fused.length > 1) {
-      r.sensors = fused;
-      r.sensor = '';
-    } else if (fused.length === 1) {
-      r.sensor = fused[0];
-    }
+    chooseSensors(r, 'learn-sensors');
   } else if (kind === 'calibrate') {
     r.target = calibrationTarget();
+    if (r.target.kind === 'stripe') chooseSensors(r, 'calibrate-sensors');
   } else {
     r.model = $('object-model').value;
     r.instances = Number($('object-instances').value) || 1;
@@ -218,9 +226,10 @@ $('kind').addEventListener('change', () => {
 });
 function showTargetFields() {
   const target = $('calibrate-target').value;
-  for (const label of $('calibrate-fields').querySelectorAll('label[class]')) {
-    label.hidden = !label.classList.contains(target === 'stripe' ? 'cube' : target) &&
-      !(target === 'pantilt' && label.classList.contains('cube'));
+  // Each target's own fields, and the cube's for both cube targets.
+  for (const field of $('calibrate-fields').querySelectorAll('label[class], p[class~="stripe"]')) {
+    field.hidden = !field.classList.contains(target) &&
+      !(target !== 'css' && field.classList.contains('cube'));
   }
 }
 $('calibrate-target').addEventListener('change', showTargetFields);

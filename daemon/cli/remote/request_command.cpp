@@ -47,7 +47,7 @@ struct RequestArgs {
   int trials = 0;
   std::uint64_t seed = 0;
   int parts = 0;                                     // learn
-  std::vector<std::string> sensors;                  // learn, object: scans fused
+  std::vector<std::string> sensors;                  // learn, object, calibrate stripe
   std::vector<double> cube{120.0, 12.0}, cube_pose;  // calibrate stripe, pantilt
   std::string target = "stripe";                     // calibrate: stripe | pantilt | css
   std::optional<double> tilt_rad;                    // calibrate pantilt: the held tilt
@@ -216,9 +216,9 @@ void add_object_request(CLI::App* cmd, int* exit_code) {
       ->check(finite_range(-kMaxCoordinateMm, kMaxCoordinateMm));
   object
       ->add_option("--sensors", object_args.sensors,
-                   "the two cameras of one laser plane (A,B: stripe devices, each its configured "
-                   "sweep): each sweeps in turn, and the object is found in both clouds fused, "
-                   "a point either camera saw counting")
+                   "the two cameras of one laser plane (A,B: stripe or pan-tilt devices, each "
+                   "its configured sweep): on one axis or head they sweep together, and the "
+                   "object is found in both clouds fused, a point either camera saw counting")
       ->delimiter(',')
       ->excludes("--sensor")
       ->excludes("--sweep");
@@ -321,10 +321,17 @@ void add_calibrate_request(CLI::App* cmd, int* exit_code) {
   calibrate->require_subcommand(1);
   auto* stripe = calibrate->add_subcommand(
       "stripe",
-      "the stripe cell from a sweep over the hollow cube, one request per camera of the laser "
+      "the stripe cell from a sweep over the hollow cube, with one or all cameras of the laser "
       "plane (as `rangefit calibrate stripe`)");
   common(stripe, calibrate_args);
   add_cube_options(stripe, calibrate_args, "on the table");
+  stripe
+      ->add_option("--sensors", calibrate_args.sensors,
+                   "the cameras of the laser plane to calibrate together (A,B: stripe devices): "
+                   "on one axis they sweep the cube together, the axis moving once")
+      ->delimiter(',')
+      ->excludes("--sensor")
+      ->excludes("--sweep");
   stripe
       ->add_option("--scans", calibrate_args.scans,
                    "ids of the earlier stripe requests (the laser plane's other cameras, each "
