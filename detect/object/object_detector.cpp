@@ -1151,15 +1151,18 @@ bool slide_to_confirm(const HypothesisContext& ctx, const ObjectModel& model,
   const Superquadric& part = model.parts[0].shape;
   const Eigen::Isometry3d& T = inst.parts[0].T_world_part;
   // Where along the wall: as little as possible; from an open end, back towards the other; from
-  // space seen through or a cap's rim reaching past the face the scan shows, which end is off is
-  // not known, so either way as well.
+  // space seen through, a cap's rim reaching past the face the scan shows or a scan carrying on
+  // past a face, which end is off is not known, so either way as well, as far as the wall's run
+  // allows. Lying boxes whose one end was hidden were fitted 13 and 37 mm along their axis past
+  // that end: their wall's run fit within them from there too, so "as little as possible" left
+  // them in place, and the scan carried on past the other end (pan-tilt tuning seeds 29, 171).
   std::vector<Eigen::Vector3d> prefer{Eigen::Vector3d::Zero()};
   if (failed == Check::kOpenEnd) {
     const SurfaceCoverage c = surface_coverage(part, T, ctx.points, *ctx.tree, cover);
     const double minus = std::max(c.open_end_at[0], c.open_end_far_at[0]);
     const double plus = std::max(c.open_end_at[1], c.open_end_far_at[1]);
     prefer[0].z() = plus > minus ? -part.a3 : part.a3;
-  } else if (failed == Check::kSeenThrough || failed == Check::kOpenRim) {
+  } else {
     prefer.push_back(Eigen::Vector3d(0.0, 0.0, part.a3));
     prefer.push_back(Eigen::Vector3d(0.0, 0.0, -part.a3));
   }
