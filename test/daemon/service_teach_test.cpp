@@ -348,59 +348,67 @@ void expect_both_cameras_calibrated(const DetectionResult& r, const DaemonConfig
             std::string::npos);
 }
 
+// The service on the two-camera cube cell, the cube's body diagonal straight up towards the
+// laser (both sides see its three outer faces), answering requests until stop().
+struct TwoCameraCubeService {
+  explicit TwoCameraCubeService(const char* name)
+      : dir(test::fresh_test_dir(name)),
+        T_cube(test::cube_between_cameras()),
+        config(two_camera_cube_cell(dir, T_cube)),
+        service(config, clock),
+        loop(std::make_unique<test::ServiceLoop>(service)) {}
+  ~TwoCameraCubeService() { fs::remove_all(dir); }
+  void stop() { loop.reset(); }
+
+  fs::path dir;
+  Eigen::Isometry3d T_cube;
+  DaemonConfig config;
+  hal::MonotonicClock clock;
+  Service service;
+  std::unique_ptr<test::ServiceLoop> loop;
+};
+
 // Two cameras of one laser plane, one on each side of it: each sweeps the cube in a request of
 // its own, the second names the first, and both come back to the configured cell together.
 TEST(ServiceTeach, TwoCamerasOfOneLaserPlaneCalibrateTogether) {
-  const fs::path dir = test::fresh_test_dir("rangefit_service_calibrate_rig");
-  // Body diagonal straight up towards the laser: both sides see the three outer faces.
-  const Eigen::Isometry3d T_cube = test::cube_between_cameras();
-  const DaemonConfig config = two_camera_cube_cell(dir, T_cube);
-  hal::MonotonicClock clock;
-  Service service(config, clock);
-  auto loop = std::make_unique<test::ServiceLoop>(service);
-  ScanRequest req = stripe_calibrate("calibrate-a", T_cube);
+  TwoCameraCubeService cell("rangefit_service_calibrate_rig");
+  ScanRequest req = stripe_calibrate("calibrate-a", cell.T_cube);
   req.sensor = "stripe";
-  const auto first = run(service, req);
+  const auto first = run(cell.service, req);
   req.id = "calibrate-b";
   req.sensor = "stripe_b";
   req.target.scans = {"calibrate-a"};
-  const auto both = run(service, req);
+  const auto both = run(cell.service, req);
   req.id = "calibrate-b-again";  // the same camera twice is no rig
   req.target.scans = {"calibrate-b"};
-  const auto twice = run(service, req);
-  loop.reset();
+  const auto twice = run(cell.service, req);
+  cell.stop();
   ASSERT_TRUE(first && both && twice);
   ASSERT_TRUE(first->found) << first->reason;  // the first camera on its own, as before
   ASSERT_TRUE(both->found) << both->reason << " " << both->details.dump();
-  expect_both_cameras_calibrated(*both, config);
+  expect_both_cameras_calibrated(*both, cell.config);
   EXPECT_TRUE(fs::exists(both->details.at("files").at("raw_sweep_stripe.txt").get<std::string>()));
   EXPECT_FALSE(twice->found);
   EXPECT_NE(twice->reason.find("one sweep per camera"), std::string::npos) << twice->reason;
-  fs::remove_all(dir);
 }
 
 // One request names both cameras: they sweep the cube together (one axis), each camera's sweep
 // is spooled as the file `rangefit calibrate stripe --scans` reads, and they are solved as one
 // rig. A later request with the first camera alone that names it is the same camera twice.
 TEST(ServiceTeach, TwoCamerasOfOneLaserPlaneCalibrateInOneRequest) {
-  const fs::path dir = test::fresh_test_dir("rangefit_service_calibrate_rig_one");
-  const Eigen::Isometry3d T_cube = test::cube_between_cameras();
-  const DaemonConfig config = two_camera_cube_cell(dir, T_cube);
-  hal::MonotonicClock clock;
-  Service service(config, clock);
-  auto loop = std::make_unique<test::ServiceLoop>(service);
-  ScanRequest req = stripe_calibrate("calibrate-ab", T_cube);
+  TwoCameraCubeService cell("rangefit_service_calibrate_rig_one");
+  ScanRequest req = stripe_calibrate("calibrate-ab", cell.T_cube);
   req.sensors = {"stripe", "stripe_b"};
-  const auto both = run(service, req);
+  const auto both = run(cell.service, req);
   req.id = "calibrate-a-again";
   req.sensors.clear();
   req.sensor = "stripe";
   req.target.scans = {"calibrate-ab"};
-  const auto twice = run(service, req);
-  loop.reset();
+  const auto twice = run(cell.service, req);
+  cell.stop();
   ASSERT_TRUE(both && twice);
   ASSERT_TRUE(both->found) << both->reason << " " << both->details.dump();
-  expect_both_cameras_calibrated(*both, config);
+  expect_both_cameras_calibrated(*both, cell.config);
   const auto& files = both->details.at("files");
   for (const char* name : {"raw_sweep_stripe.txt", "raw_sweep_stripe_2.txt"}) {
     SCOPED_TRACE(name);
@@ -414,7 +422,6 @@ TEST(ServiceTeach, TwoCamerasOfOneLaserPlaneCalibrateInOneRequest) {
       std::string::npos);
   EXPECT_FALSE(twice->found);
   EXPECT_NE(twice->reason.find("one sweep per camera"), std::string::npos) << twice->reason;
-  fs::remove_all(dir);
 }
 
 TEST(ServiceTeach, CalibrateRefusesATargetItCannotScanAndASensorOfAnotherKind) {
