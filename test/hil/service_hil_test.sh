@@ -4,10 +4,10 @@
 # driver = "real" devices against the simulated cells on the real transports (rangefit_cell_peer:
 # the CSS as a USB gadget on dummy_hcd, the robot's last joint as a CiA 402 node on vcan0; the
 # stripe cell's ranger on CAN FD on vcan0 and its linear axis' Festo drive as a Modbus TCP server
-# on loopback; the pan-tilt head's two CiA 402 axes and CAN FD ranger on vcan1), and a user's
+# on loopback; the pan-tilt head's two CiA 402 axes and CAN FD rangers on vcan1), and a user's
 # checks run against it: a bore request over DDS, the CSS unplugged mid-scan, an object request on
 # the stripe cell, the axis' server stopped mid-sweep, an object request on the pan-tilt head, its
-# tilt axis silent mid-stroke, the watchdog
+# tilt axis silent mid-stroke, one from both cameras of the head, the watchdog
 # after SIGSTOP, the journal, a broken reload, the sandbox's score, USB devices and writes.
 # Usage (root, in the VM): service_hil_test.sh BUILD_DIR SOURCE_DIR
 set -uo pipefail
@@ -126,8 +126,13 @@ kind = "axis"
 driver = "real"
 transport = "127.0.0.1:$axis_port"
 # The pan-tilt head over the same table top (pan_tilt_checks.sh).
-$(head_device)
+$(head_device head 32)
+# A second camera of the head's laser plane, mirrored to its other side, on the same head.
+$(head_device head_b 33 head)
 $(head_fusion)
+[[fusion.pan_tilt.cameras]]
+name = "head_b"
+baseline_mm = -425
 [[objects]]
 model = "cone.toml"
 TOML
@@ -141,7 +146,9 @@ mkfifo "$work/peer.in"
   --ranger-node 32 --stripe-b "$build/test/hil/cell_peer/table_top_fig5_18_b.profiles" \
   --ranger-b-node 33 \
   --pan-tilt "$build/test/hil/cell_peer/table_top_fig5_18_pan_tilt.profiles" --head-can vcan1 \
-  --pan-half-deg 10 --head-sweep-s 4 --head-rate-hz 25 < "$work/peer.in" > "$work/peer.log" 2>&1 &
+  --pan-tilt-b "$build/test/hil/cell_peer/table_top_fig5_18_pan_tilt_b.profiles" \
+  --head-ranger-b-node 33 --pan-half-deg 10 --head-sweep-s 4 --head-rate-hz 25 \
+  < "$work/peer.in" > "$work/peer.log" 2>&1 &
 peer_pid=$!
 exec 7> "$work/peer.in"
 for _ in $(seq 100); do grep -q "pan-tilt head up" "$work/peer.log" && break; sleep 0.1; done
@@ -270,6 +277,23 @@ check "cone found again within the simulated head's accuracy" head_accurate "$wo
 kill "$watch_pid" 2>/dev/null; wait "$watch_pid" 2>/dev/null
 check "diagnostics reported the head's axes at ERROR while the tilt was silent, then OK" \
   device_diagnostics "$work/watch-head.log" head/angles
+
+# 5c'. Both cameras of the head's laser plane: one pan of the head, each camera's CAN FD profiles
+# fused with its own side of the plane. The second camera is silent until now (its traffic would
+# load the emulated CPUs), as the stripe cell's.
+echo head-camera-b-on >&7
+sleep 2
+log "object request (both cameras of the pan-tilt head)"
+ask_after_recovery two_head_camera_request "$work/head-both.json" head-both \
+  "the head's second camera came on"
+rc=$?
+echo head-camera-b-off >&7
+head -40 "$work/head-both.json" "$work/head-both.json.err"
+check "two-camera pan-tilt object request over DDS answered (exit $rc)" test $rc -eq 0
+check "cone found from both head cameras' real-driver scans within the simulated head's accuracy" \
+  head_accurate "$work/head-both.json"
+check "both head cameras filled the cloud (points per second of scan against one camera's)" \
+  both_head_cameras "$work/head1.json" "$work/head-both.json"
 echo head-off >&7
 
 # 6. Journal: the service's lines with their priorities.

@@ -13,25 +13,29 @@
 // tilt axes (CiA 402 nodes --pan-node, --tilt-node) and its ranger (CAN FD, --head-ranger-node)
 // on their own bus --head-can, the head panning +-(--pan-half-deg) about zero in --head-sweep-s
 // and back, for ever; the profiles those the simulated head casts at each pan (recorded on the
-// host by --record-pan-tilt). Needs root, vcan and the gadget modules (test/hil/run_vm.sh).
+// host by --record-pan-tilt); with --pan-tilt-b, a second camera of the head's laser plane on the
+// other side (its ranger node --head-ranger-b-node on the same bus, silent until
+// head-camera-b-on; recorded with --head-baseline -425). Needs root, vcan and the gadget modules
+// (test/hil/run_vm.sh).
 //   rangefit_cell_peer --frames FILE [--can vcan0] [--node 1] [--scan-s 6] [--vid 0x1d6b]
 //                      [--pid 0x0105] [--udc NAME]
 //                      [--stripe FILE.profiles [--modbus-port 1502] [--ranger-node 0x20]
 //                       [--stripe-b FILE.profiles [--ranger-b-node 0x21]]]
 //                      [--pan-tilt FILE.profiles [--head-can vcan1] [--pan-node 1]
 //                       [--tilt-node 2] [--head-ranger-node 0x20] [--head-rate-hz 25]
-//                       [--pan-half-deg 10] [--head-sweep-s 4]]
+//                       [--pan-half-deg 10] [--head-sweep-s 4]
+//                       [--pan-tilt-b FILE.profiles [--head-ranger-b-node 0x21]]]
 //   rangefit_cell_peer --record FILE --scene bore_plate.toml [--scan-s 6]   (host, no root)
 //   rangefit_cell_peer --record-stripe FILE.profiles --scene table_top_fig5_18.toml
 //                      [--stripe-baseline 300]   (host)
 //   rangefit_cell_peer --record-pan-tilt FILE.profiles --scene table_top_fig5_18.toml
-//                      [--pan-half-deg 10] [--head-points 512]   (host)
+//                      [--pan-half-deg 10] [--head-points 512] [--head-baseline 425]   (host)
 // Then one command per line on stdin: unplug, replug (the CSS), axis-stop, axis-start,
 // axis-stop-past MM (the stripe cell's Modbus server; the last stops it once the table passes MM
 // moving up), tilt-stop, tilt-start, tilt-stop-mid-stroke (the head's tilt axis stops answering;
 // the last once the pan passes zero on a forward stroke), head-off, head-on (the whole head
 // switched off: its devices silent), camera-b-on, camera-b-off (the stripe cell's second camera),
-// status, quit (or end of input).
+// head-camera-b-on, head-camera-b-off (the head's second camera), status, quit (or end of input).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -60,12 +64,13 @@ int usage(const std::string& why) {
 
 struct Args {
   std::string frames, record, scene, can = "vcan0", udc, stripe, stripe_b, record_stripe;
-  std::string pan_tilt, record_pan_tilt, head_can = "vcan1";
+  std::string pan_tilt, pan_tilt_b, record_pan_tilt, head_can = "vcan1";
   double scan_s = 6.0, head_rate_hz = 25.0, pan_half_deg = 10.0, head_sweep_s = 4.0;
   int head_points = 512;  // the head's ranger (hal::PanTiltGeometry)
   unsigned node = 1, vid = 0x1d6b, pid = 0x0105, ranger_node = 0x20, ranger_b_node = 0x21;
   double stripe_baseline_mm = hal::StripeCellGeometry{}.ranger.baseline_mm;
-  unsigned pan_node = 1, tilt_node = 2, head_ranger_node = 0x20;
+  unsigned pan_node = 1, tilt_node = 2, head_ranger_node = 0x20, head_ranger_b_node = 0x21;
+  double head_baseline_mm = hal::PanTiltGeometry{}.ranger.baseline_mm;
   int modbus_port = 1502;
 };
 
@@ -97,6 +102,12 @@ bool parse(int argc, char** argv, Args& a, std::string& why) {
       a.ranger_node = static_cast<unsigned>(std::strtoul(v.c_str(), nullptr, 0));
     } else if (arg == "--pan-tilt") {
       a.pan_tilt = v;
+    } else if (arg == "--pan-tilt-b") {
+      a.pan_tilt_b = v;
+    } else if (arg == "--head-ranger-b-node") {
+      a.head_ranger_b_node = static_cast<unsigned>(std::strtoul(v.c_str(), nullptr, 0));
+    } else if (arg == "--head-baseline") {
+      a.head_baseline_mm = std::strtod(v.c_str(), nullptr);
     } else if (arg == "--record-pan-tilt") {
       a.record_pan_tilt = v;
     } else if (arg == "--head-can") {
@@ -144,12 +155,21 @@ bool parse(int argc, char** argv, Args& a, std::string& why) {
     why = "--stripe-baseline must be a non-zero number of mm";
   }
   if (a.modbus_port < 1 || a.modbus_port > 65535) why = "--modbus-port must be within 1..65535";
-  for (const unsigned n : {a.pan_node, a.tilt_node, a.head_ranger_node}) {
-    if (n < 1 || n > 127) why = "--pan-node, --tilt-node, --head-ranger-node must be within 1..127";
+  for (const unsigned n : {a.pan_node, a.tilt_node, a.head_ranger_node, a.head_ranger_b_node}) {
+    if (n < 1 || n > 127) {
+      why =
+          "--pan-node, --tilt-node, --head-ranger-node, --head-ranger-b-node must be within 1..127";
+    }
   }
   if (a.pan_node == a.tilt_node || a.pan_node == a.head_ranger_node ||
-      a.tilt_node == a.head_ranger_node) {
-    why = "the head's pan, tilt and ranger nodes must differ";
+      a.tilt_node == a.head_ranger_node ||
+      (!a.pan_tilt_b.empty() &&
+       (a.head_ranger_b_node == a.pan_node || a.head_ranger_b_node == a.tilt_node ||
+        a.head_ranger_b_node == a.head_ranger_node))) {
+    why = "the head's pan, tilt and ranger nodes (and its second camera's) must differ";
+  }
+  if (!std::isfinite(a.head_baseline_mm) || a.head_baseline_mm == 0.0) {
+    why = "--head-baseline must be a non-zero number of mm";
   }
   if (a.head_points < 2 || a.head_points > 527) why = "--head-points must be within 2..527";
   if (!(a.head_rate_hz >= 1.0 && a.head_rate_hz <= 200.0)) why = "--head-rate-hz must be 1..200";
@@ -191,8 +211,8 @@ int main(int argc, char** argv) {
     if (a.scene.empty()) return usage("--record-pan-tilt needs --scene");
     hal::PanTiltGeometry head;
     head.ranger.points_per_profile = a.head_points;
-    const hil::StripeProfiles cast(a.scene,
-                                   hil::pan_tilt_sweep(head, a.pan_half_deg * kRadPerDeg));
+    head.ranger.baseline_mm = a.head_baseline_mm;
+    const hil::StripeProfiles cast(a.scene, hil::pan_tilt_sweep(head, a.pan_half_deg * kRadPerDeg));
     if (!cast.error().empty()) return usage(cast.error());
     if (!cast.save(a.record_pan_tilt)) return usage("cannot write " + a.record_pan_tilt);
     std::printf("rangefit_cell_peer: %zu pan-tilt profiles of %s in %s\n", cast.size(),
@@ -237,26 +257,32 @@ int main(int argc, char** argv) {
     if (stripe->second_ranger()) bus.add(stripe->second_ranger());
   }
   // The head on its own bus: its driver is that bus' SYNC master, as the robot joint's is vcan0's.
-  std::unique_ptr<hil::StripeProfiles> head_profiles;
+  std::unique_ptr<hil::StripeProfiles> head_profiles, head_profiles_b;
   std::unique_ptr<hil::PanTiltHeadPeer> head;
   std::unique_ptr<sim::SimCanBus> head_bus;
   if (!a.pan_tilt.empty()) {
     head_profiles = std::make_unique<hil::StripeProfiles>(a.pan_tilt);
     if (!head_profiles->error().empty()) return usage(head_profiles->error());
+    if (!a.pan_tilt_b.empty()) {
+      head_profiles_b = std::make_unique<hil::StripeProfiles>(a.pan_tilt_b);
+      if (!head_profiles_b->error().empty()) return usage(head_profiles_b->error());
+    }
     hil::PanTiltHeadOptions ho;
     ho.pan_node = static_cast<std::uint8_t>(a.pan_node);
     ho.tilt_node = static_cast<std::uint8_t>(a.tilt_node);
     ho.ranger_node = static_cast<std::uint8_t>(a.head_ranger_node);
+    ho.second_ranger_node = static_cast<std::uint8_t>(a.head_ranger_b_node);
     ho.profile_rate_hz = a.head_rate_hz;
     ho.sweep.half_rad = a.pan_half_deg * kRadPerDeg;
     ho.sweep.forward_s = a.head_sweep_s;
-    head = std::make_unique<hil::PanTiltHeadPeer>(*head_profiles, ho,
-                                                  hal::monotonic_now() + std::chrono::seconds(1));
+    head = std::make_unique<hil::PanTiltHeadPeer>(
+        *head_profiles, ho, hal::monotonic_now() + std::chrono::seconds(1), head_profiles_b.get());
     drivers::can::SocketCanConfig hc;
     hc.interface = a.head_can;
     hc.fd = true;
     auto head_transport = std::make_unique<drivers::can::SocketCanTransport>(hc);
-    if (const hal::Status s = head_transport->open(); !s) return usage(a.head_can + ": " + s.message);
+    if (const hal::Status s = head_transport->open(); !s)
+      return usage(a.head_can + ": " + s.message);
     head_bus = std::make_unique<sim::SimCanBus>(std::move(head_transport));
     head->add_to(*head_bus);
     head_bus->start();
@@ -282,11 +308,15 @@ int main(int argc, char** argv) {
         profiles->size(), a.modbus_port, a.ranger_node, a.can.c_str());
   }
   if (head) {
+    const std::string second =
+        head->has_second_camera()
+            ? ", second camera's ranger node " + std::to_string(a.head_ranger_b_node) + " (off)"
+            : "";
     std::printf(
         "rangefit_cell_peer: pan-tilt head up: %zu profiles, pan +-%.1f deg in %.1f s (cycle "
-        "%.1f s), pan node %u, tilt node %u, ranger node %u on %s\n",
+        "%.1f s), pan node %u, tilt node %u, ranger node %u%s on %s\n",
         head_profiles->size(), a.pan_half_deg, a.head_sweep_s, head->cycle_s(), a.pan_node,
-        a.tilt_node, a.head_ranger_node, a.head_can.c_str());
+        a.tilt_node, a.head_ranger_node, second.c_str(), a.head_can.c_str());
   }
   std::fflush(stdout);
   for (std::string line; std::getline(std::cin, line) && line != "quit";) {
@@ -312,6 +342,8 @@ int main(int argc, char** argv) {
       head->set_powered(line == "head-on");
     } else if (head && line == "tilt-stop-mid-stroke") {
       head->stop_tilt_mid_stroke();
+    } else if (head && (line == "head-camera-b-on" || line == "head-camera-b-off")) {
+      head->set_second_camera_on(line == "head-camera-b-on");
     } else if (line != "status") {
       std::fprintf(stderr, "rangefit_cell_peer: unknown command %s\n", line.c_str());
     }
@@ -331,6 +363,9 @@ int main(int argc, char** argv) {
                   static_cast<unsigned long long>(head->profiles_sent()),
                   static_cast<unsigned long long>(head->syncs_answered()),
                   head->tilt_silent() ? " tilt-silent" : "", head->powered() ? "" : " off");
+      if (head->has_second_camera()) {
+        std::printf(" head-camera-b %s", head->second_camera_on() ? "on" : "off");
+      }
     }
     std::printf("\n");
     std::fflush(stdout);

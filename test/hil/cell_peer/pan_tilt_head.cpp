@@ -3,7 +3,7 @@
 namespace rangefit::hil {
 
 PanTiltHeadPeer::PanTiltHeadPeer(const StripeProfiles& profiles, PanTiltHeadOptions options,
-                                 hal::Timestamp origin)
+                                 hal::Timestamp origin, const StripeProfiles* second)
     : options_(options), origin_(origin) {
   sim::SimCia402Config pan;
   pan.node = options_.pan_node;
@@ -12,21 +12,27 @@ PanTiltHeadPeer::PanTiltHeadPeer(const StripeProfiles& profiles, PanTiltHeadOpti
   tilt.node = options_.tilt_node;
   tilt_ = std::make_shared<sim::SimCia402Node>(tilt);
   tilt_->set_angle(options_.tilt_rad);
-  sim::SimRangerConfig rc;
-  rc.node = options_.ranger_node;
-  rc.rate_hz = options_.profile_rate_hz;
-  rc.points = static_cast<std::uint16_t>(profiles.points());
-  rc.units_um = profiles.units_um();
   ranger_ = std::make_shared<sim::SimProfileRanger>(
-      rc, [this, &profiles](std::uint32_t, hal::Timestamp exposure, std::span<std::uint16_t> out) {
+      ranger_config(profiles, options_.ranger_node, options_.profile_rate_hz),
+      [this, &profiles](std::uint32_t, hal::Timestamp exposure, std::span<std::uint16_t> out) {
         profiles.fill(exposed_at(exposure), out);
       });
+  if (second == nullptr) return;
+  // The same laser plane at the same pan, seen from its other side: only the pan at the exposure
+  // (the armed tilt stop is the first camera's).
+  second_ranger_ = std::make_shared<sim::SimProfileRanger>(
+      ranger_config(*second, options_.second_ranger_node, options_.profile_rate_hz),
+      [this, second](std::uint32_t, hal::Timestamp exposure, std::span<std::uint16_t> out) {
+        second->fill(pan_at(exposure), out);
+      });
+  second_ranger_->set_silent(true);
 }
 
 void PanTiltHeadPeer::add_to(sim::SimCanBus& bus) const {
   bus.add(pan_);
   bus.add(tilt_);
   bus.add(ranger_);
+  if (second_ranger_) bus.add(second_ranger_);
 }
 
 double PanTiltHeadPeer::pan_at(hal::Timestamp t) const {
@@ -46,7 +52,14 @@ void PanTiltHeadPeer::set_powered(bool on) {
   pan_->set_silent(!on);
   tilt_->set_silent(!on || tilt_silent_);
   ranger_->set_silent(!on);
+  if (second_ranger_) second_ranger_->set_silent(!on || !second_on_);
   powered_ = on;
+}
+
+void PanTiltHeadPeer::set_second_camera_on(bool on) {
+  if (!second_ranger_) return;
+  second_on_ = on;
+  second_ranger_->set_silent(!on || !powered_);
 }
 
 double PanTiltHeadPeer::exposed_at(hal::Timestamp exposure) {

@@ -7,7 +7,9 @@
 // the profile cast at the pan the head has then (StripeProfiles over the pan), so the service
 // records a sweep as the simulated head (sim::PanTiltHead) casts it. One axis can be made to stop
 // answering (silent: no TPDOs, no heartbeats), also by the peer itself the moment the pan passes
-// the sweep's centre on a forward stroke (a shell under emulation cannot hit a 4 s stroke).
+// the sweep's centre on a forward stroke (a shell under emulation cannot hit a 4 s stroke). A
+// second camera of the head's laser plane (its own ranger on the same bus, the profiles cast
+// from the plane's other side) shows the same pans; it stays silent until switched on.
 
 #include <atomic>
 #include <memory>
@@ -26,6 +28,7 @@ struct PanTiltHeadOptions {
   std::uint8_t pan_node = 1;  // the drivers' defaults (daemon/service/bus_addresses.hpp)
   std::uint8_t tilt_node = 2;
   std::uint8_t ranger_node = 0x20;
+  std::uint8_t second_ranger_node = 0x21;  // the second camera's, when it has profiles
   double profile_rate_hz = 25.0;
   double pan_zero_rad = 0.0;  // encoder zero, as hal::PanTiltGeometry
   double tilt_rad = 0.0;      // held
@@ -38,12 +41,12 @@ struct PanTiltHeadOptions {
 
 class PanTiltHeadPeer {
  public:
-  // profiles (cast over the pan, pan_tilt_sweep) must outlive the peer; the first stroke begins
-  // at origin.
-  PanTiltHeadPeer(const StripeProfiles& profiles, PanTiltHeadOptions options,
-                  hal::Timestamp origin);
+  // profiles (cast over the pan, pan_tilt_sweep; and second, a second camera's, when given)
+  // must outlive the peer; the first stroke begins at origin.
+  PanTiltHeadPeer(const StripeProfiles& profiles, PanTiltHeadOptions options, hal::Timestamp origin,
+                  const StripeProfiles* second = nullptr);
 
-  // The three devices, to add to the head's CAN bus.
+  // The three devices (four with a second camera), to add to the head's CAN bus.
   void add_to(sim::SimCanBus& bus) const;
   // Reported pan (rad, encoder) at host time t.
   double pan_at(hal::Timestamp t) const;
@@ -55,6 +58,11 @@ class PanTiltHeadPeer {
   // answer again, so that its traffic loads the emulated VM only while a test uses the head.
   void set_powered(bool on);
   bool powered() const { return powered_; }
+  // The second camera streams only while on (and the head powered): its CAN FD traffic doubles
+  // the head's, which moves the other streams' stamps under emulation.
+  void set_second_camera_on(bool on);
+  bool has_second_camera() const { return second_ranger_ != nullptr; }
+  bool second_camera_on() const { return second_on_; }
   bool tilt_silent() const { return tilt_silent_; }
   std::uint64_t profiles_sent() const { return ranger_->profiles_sent(); }
   std::uint64_t syncs_answered() const { return pan_->syncs_answered(); }
@@ -66,8 +74,8 @@ class PanTiltHeadPeer {
   PanTiltHeadOptions options_;
   hal::Timestamp origin_;
   std::shared_ptr<sim::SimCia402Node> pan_, tilt_;
-  std::shared_ptr<sim::SimProfileRanger> ranger_;
-  std::atomic<bool> stop_armed_{false}, tilt_silent_{false}, powered_{true};
+  std::shared_ptr<sim::SimProfileRanger> ranger_, second_ranger_;
+  std::atomic<bool> stop_armed_{false}, tilt_silent_{false}, powered_{true}, second_on_{false};
   double last_pan_ = 0.0;  // bus thread only
 };
 

@@ -17,23 +17,15 @@ StripeCellPeer::StripeCellPeer(const StripeProfiles& profiles, StripeCellPeerOpt
                                const StripeProfiles* second)
     : drive_(drive_config(options)),
       server_(drive_, {.host = "127.0.0.1", .port = options.modbus_port}) {
-  const auto config = [&](const StripeProfiles& p, std::uint8_t node) {
-    sim::SimRangerConfig rc;
-    rc.node = node;
-    rc.rate_hz = options.profile_rate_hz;
-    rc.points = static_cast<std::uint16_t>(p.points());
-    rc.units_um = p.units_um();
-    return rc;
-  };
   ranger_ = std::make_shared<sim::SimProfileRanger>(
-      config(profiles, options.ranger_node),
+      ranger_config(profiles, options.ranger_node, options.profile_rate_hz),
       [this, &profiles](std::uint32_t, hal::Timestamp exposure, std::span<std::uint16_t> out) {
         profiles.fill(exposed_at(exposure), out);
       });
   if (second == nullptr) return;
   // The same table under the same laser, seen from the other side: only the drive's position.
   second_ranger_ = std::make_shared<sim::SimProfileRanger>(
-      config(*second, options.second_ranger_node),
+      ranger_config(*second, options.second_ranger_node, options.profile_rate_hz),
       [this, second](std::uint32_t, hal::Timestamp exposure, std::span<std::uint16_t> out) {
         second->fill(drive_.position_at(exposure), out);
       });

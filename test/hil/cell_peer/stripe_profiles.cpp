@@ -120,8 +120,8 @@ void StripeProfiles::load(const std::string& path) {
 bool StripeProfiles::save(const std::string& path) const {
   std::ofstream f(path, std::ios::binary);
   f.precision(17);
-  f << kMagic << ' ' << kVersion << ' ' << points_ << ' ' << size() << ' ' << start_ << ' '
-    << step_ << ' ' << static_cast<int>(units_um_) << '\n';
+  f << kMagic << ' ' << kVersion << ' ' << points_ << ' ' << size() << ' ' << start_ << ' ' << step_
+    << ' ' << static_cast<int>(units_um_) << '\n';
   f.write(reinterpret_cast<const char*>(ranges_.data()),
           static_cast<std::streamsize>(ranges_.size() * sizeof(std::uint16_t)));
   return static_cast<bool>(f);
@@ -132,9 +132,20 @@ void StripeProfiles::fill(double coordinate, std::span<std::uint16_t> out) const
     std::fill(out.begin(), out.end(), drivers::can::ranger::kNoReturn);
     return;
   }
-  const double j = std::clamp(std::round((coordinate - start_) / step_), 0.0, static_cast<double>(size() - 1));
+  const double j =
+      std::clamp(std::round((coordinate - start_) / step_), 0.0, static_cast<double>(size() - 1));
   const std::uint16_t* profile = ranges_.data() + static_cast<std::size_t>(j) * points_;
   std::copy_n(profile, std::min(out.size(), points_), out.begin());
+}
+
+sim::SimRangerConfig ranger_config(const StripeProfiles& profiles, std::uint8_t node,
+                                   double rate_hz) {
+  sim::SimRangerConfig rc;
+  rc.node = node;
+  rc.rate_hz = rate_hz;
+  rc.points = static_cast<std::uint16_t>(profiles.points());
+  rc.units_um = profiles.units_um();
+  return rc;
 }
 
 }  // namespace rangefit::hil

@@ -17,6 +17,7 @@
 
 #include "hal/pan_tilt_geometry.hpp"
 #include "hal/stripe_geometry.hpp"
+#include "test/support/can_profile_ranger.hpp"
 
 namespace rangefit::sim {
 struct Scene;
@@ -73,5 +74,9 @@ class StripeProfiles {
   std::uint8_t units_um_ = 0;
   std::string error_;
 };
+
+// The CAN ranger that streams `profiles`: its node and rate, their points and units.
+sim::SimRangerConfig ranger_config(const StripeProfiles& profiles, std::uint8_t node,
+                                   double rate_hz);
 
 }  // namespace rangefit::hil
