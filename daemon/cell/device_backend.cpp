@@ -99,13 +99,12 @@ ScanOutcome DeviceBackend::scan_views(const ScanRequest& request, const std::ato
     views.push_back(scan(one_request(*devices[k]), cancel, progress));
     if (!views.back().status) break;
   }
-  // A shared sweep's error names the devices already.
-  // A stripe calibration solves each camera on its own sweep: the views go apart too.
-  const bool calibration = request.kind == DetectKind::kCalibrate;
+  // A shared sweep's error names the devices already. A stripe calibration solves each camera
+  // on its own sweep: the views go apart too.
   return fuse_views(views, request.sensors,
                     {.cameras = request.kind == DetectKind::kObject,
                      .named = together,
-                     .keep_apart = calibration});
+                     .keep_apart = request.kind == DetectKind::kCalibrate});
 }
 
 ScanOutcome DeviceBackend::replay(const DeviceConfig& device,

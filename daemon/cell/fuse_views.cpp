@@ -7,7 +7,6 @@ namespace rangefit::daemon {
 
 ScanOutcome fuse_views(std::span<ScanOutcome> views, std::span<const std::string> names,
                        const FuseOptions& options) {
-  const bool cameras = options.cameras;
   ScanOutcome fused;
   for (std::size_t k = 0; k < views.size(); ++k) {
     ScanOutcome& view = views[k];
@@ -26,7 +25,7 @@ ScanOutcome fuse_views(std::span<ScanOutcome> views, std::span<const std::string
                              "\", the first sensor into \"" + fused.cloud.frame_id + "\"");
       return fused;
     }
-    if (k > 0 && cameras) {
+    if (k > 0 && options.cameras) {
       const std::optional<SensorView> both =
           with_second_camera(fused.sensor.view, view.sensor.view);
       if (!both) {
@@ -42,7 +41,7 @@ ScanOutcome fuse_views(std::span<ScanOutcome> views, std::span<const std::string
     fused.acquired_wall_ns = std::max(fused.acquired_wall_ns, view.acquired_wall_ns);
   }
   // Spooled and replayed with the cloud: the cameras' view describes every point of it.
-  if (cameras) fused.cloud.sensor = fused.sensor.view;
+  if (options.cameras) fused.cloud.sensor = fused.sensor.view;
   fused.status = hal::Status::Ok();
   return fused;
 }

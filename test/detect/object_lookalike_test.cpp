@@ -198,10 +198,7 @@ TEST(ObjectLookAlike, FindsTheBoxNotAWiderOneAtHighNoise) {
 // taken for the model. From 1.5 bands on it holds their walls' last millimetres.
 TEST(ObjectLookAlike, ALyingBoxLongerByAFewBandsIsNotTheBox) {
   for (std::uint64_t seed : {379u, 422u}) {
-    sim::VariedSceneOptions so;
-    so.target = sim::VariedTarget::kNone;
-    so.pan_tilt = true;
-    const sim::VariedScene s = sim::make_varied_scene(so, seed);
+    const sim::VariedScene s = test::object_free_scene(seed, true);
     ASSERT_EQ(s.model.name, "box") << "seed " << seed;
     const ObjectDetectResult r = test::detect_in(s, seed);
     EXPECT_FALSE(r.found()) << "seed " << seed << ": " << test::describe_rejections(r);

@@ -13,6 +13,7 @@
 #include "sim/varied_scene.hpp"
 #include "test/detect/object_scenes.hpp"
 #include "test/detect/stripe_scan_fixture.hpp"
+#include "test/detect/varied_target.hpp"
 
 namespace rangefit {
 namespace object_rim_test {
@@ -67,9 +68,7 @@ TEST(ObjectRim, TheCylinderOfVariedScenesIsNotANarrowerStandingCan) {
 // was judged only where the size was open, at one scale.
 TEST(ObjectRim, ObjectFreeScenesWithNarrowerStandingBoxesHaveNoBox) {
   for (std::uint64_t seed : {168u, 195u}) {
-    sim::VariedSceneOptions so;
-    so.target = sim::VariedTarget::kNone;
-    const sim::VariedScene s = sim::make_varied_scene(so, seed);  // the model drawn: the box
+    const sim::VariedScene s = test::object_free_scene(seed);  // the model drawn: the box
     ASSERT_EQ(s.model.parts[0].shape.a3, test::box_model().a3) << "seed " << seed;
     const ObjectDetectResult r = test::detect_in(s, seed);
     EXPECT_FALSE(r.found()) << "seed " << seed << ": " << describe(r);

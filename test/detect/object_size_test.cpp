@@ -133,9 +133,7 @@ TEST(ObjectSize, TellsTheBoxFromLookAlikesAFewPerCentThinnerOrLonger) {
         << "seed " << seed << ": " << why;
   }
   for (std::uint64_t seed : {92u, 99u, 119u, 51u}) {
-    sim::VariedSceneOptions so;
-    so.target = sim::VariedTarget::kNone;  // the seed draws the model
-    const sim::VariedScene s = sim::make_varied_scene(so, seed);
+    const sim::VariedScene s = test::object_free_scene(seed);
     const ObjectDetectResult r = detect(s, seed);
     EXPECT_FALSE(r.found()) << "seed " << seed << ": "
                             << describe(r, {s.factors.scan.triangulation_deg,
@@ -150,10 +148,7 @@ TEST(ObjectSize, TellsTheBoxFromLookAlikesAFewPerCentThinnerOrLonger) {
 // still found.
 TEST(ObjectSize, ABallFlatterAlongALevelAxisIsNotTheBall) {
   for (std::uint64_t seed : {79u, 172u}) {
-    sim::VariedSceneOptions so;
-    so.target = sim::VariedTarget::kNone;
-    so.pan_tilt = true;
-    const sim::VariedScene s = sim::make_varied_scene(so, seed);
+    const sim::VariedScene s = test::object_free_scene(seed, true);
     ASSERT_TRUE(s.model.parts[0].shape.ball()) << "seed " << seed;
     const ObjectDetectResult r = detect(s, seed);
     EXPECT_FALSE(r.found()) << "seed " << seed << ": " << test::describe_rejections(r);

@@ -23,6 +23,14 @@ inline std::string describe_rejections(const ObjectDetectResult& r) {
   return out;
 }
 
+// The object-free varied tuning scene of `seed`: the seed draws the model it is searched for.
+inline sim::VariedScene object_free_scene(std::uint64_t seed, bool pan_tilt = false) {
+  sim::VariedSceneOptions so;
+  so.target = sim::VariedTarget::kNone;
+  so.pan_tilt = pan_tilt;
+  return sim::make_varied_scene(so, seed);
+}
+
 inline void expect_varied_target_found(sim::VariedTarget target, std::uint64_t seed,
                                        bool pan_tilt = false) {
   sim::VariedSceneOptions so;
