@@ -68,6 +68,7 @@ nlohmann::json to_json(const ObjectModel& model, const ObjectDetectResult& r) {
                          {"facing", p.scores.facing},
                          {"size_scale", p.scores.size_scale},
                          {"size_determined", p.scores.size_determined},
+                         {"length_open", p.scores.length_open},
                          {"residual_mm", p.scores.residual_mm}}}});
     }
     instances.push_back({{"parts", parts},

@@ -158,6 +158,17 @@ bool same_place(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, const Su
   return (a.translation() - b.translation()).norm() < 0.05 * sq.min_size();
 }
 
+// A confirmed part with flat ends whose length its points leave open (its ends not both seen):
+// a look-alike a few per cent shorter or longer than the model, its differing end in shadow,
+// passes every check there, while the part itself may stand elsewhere in the scan with both ends
+// seen. Such a part neither ends the search nor is taken before a part whose size the points
+// verify: lying look-alike cans 7 and 14 % off were taken for the cylinder (pan-tilt tuning seeds
+// 166, 268). Balls have no length; tapered parts are not asked (their continuation is not
+// either).
+bool size_unverified(const Superquadric& part, const PartScores& scores) {
+  return scores.length_open && part.eps1 <= kFlatExponent && !part.ball() && !part.has_taper();
+}
+
 // Single-part vote over the evaluated hypotheses: index of the lowest rank sum (or smallest M).
 std::vector<int> part_rank_sums(const std::vector<PartHypothesis>& hyps, Selection selection) {
   std::vector<double> m, in, s;
@@ -220,6 +231,7 @@ std::optional<Rejection> misfit(const HypothesisContext& ctx, const Eigen::Isome
   if (scores) {
     scores->size_determined = e.determined;
     scores->size_scale = e.scale;
+    scores->length_open = !e.along.has_value();
     scores->residual_mm = e.residual_mm;
     scores->below_plane_mm = seen.below_plane_mm;
     scores->height_sigma_mm = sigma;
@@ -537,7 +549,11 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Sup
     const PartScores& ls = valid[lead].scores;
     const bool clean = static_cast<double>(ls.interior) <=
                        kCleanInteriorRatio * static_cast<double>(ls.interior + ls.surface);
-    if (agree < o.confirmations || !clean) continue;
+    // A leader whose length the points leave open does not end the search (size_unverified).
+    if (agree < o.confirmations || !clean ||
+        (!compound && size_unverified(part, judged.back().scores))) {
+      continue;
+    }
     // One more place established: a single-part model stops once it has its K instances.
     if (!compound && ++established >= static_cast<std::size_t>(o.instances)) break;
     set_aside.push_back({part, T});
@@ -1260,6 +1276,9 @@ void select_instances(const HypothesisContext& ctx, const ObjectModel& model,
   const ObjectDetectOptions& options = *ctx.options;
   const std::vector<Combination> combos = vote(model, hyps.plausible, options);
   std::vector<std::vector<Eigen::Vector3d>> rejected, accepted;
+  // Confirmed single parts whose size the points leave unverified (size_unverified), in rank
+  // order: they fill the instances still wanted once every combination has been judged.
+  std::vector<std::pair<std::vector<Eigen::Vector3d>, DetectedInstance>> unverified;
   const auto overlaps = [&](const std::vector<Eigen::Vector3d>& a,
                             const std::vector<Eigen::Vector3d>& b, bool any) {
     bool all_same = true, any_same = false;
@@ -1302,8 +1321,21 @@ void select_instances(const HypothesisContext& ctx, const ObjectModel& model,
     } else {
       settle_along_wall(ctx, model, cover, noise_mm, inst);
     }
+    if (model.parts.size() == 1 && size_unverified(model.parts[0].shape, inst.parts[0].scores)) {
+      unverified.push_back({{inst.parts[0].center()}, std::move(inst)});
+      continue;
+    }
     for (std::size_t p = 0; p < model.parts.size(); ++p) centres.push_back(inst.parts[p].center());
     accepted.push_back(std::move(centres));
+    result.instances.push_back(std::move(inst));
+  }
+  for (auto& [centres, inst] : unverified) {
+    if (static_cast<int>(result.instances.size()) >= options.instances) break;
+    const auto clash = [&](const std::vector<Eigen::Vector3d>& x) {
+      return overlaps(centres, x, true);
+    };
+    if (std::any_of(accepted.begin(), accepted.end(), clash)) continue;
+    accepted.push_back(centres);
     result.instances.push_back(std::move(inst));
   }
 }

@@ -242,6 +242,9 @@ struct PartScores {
   double height_sigma_mm = 0.0;  // standard deviation of its lowest point's height (pose fit)
   bool size_determined = false;  // the points determine the part's size (size_evidence)
   double size_scale = 1.0;       // the scale of the model they want
+  // The points leave the length of a part with flat ends open (its ends not both seen): its
+  // size is not verified along its axis.
+  bool length_open = false;
   double residual_mm = 0.0;      // robust spread of their distances from the surface
   double continuation = 0.0;     // share of them the scan carries on past (object_continuation)
 };
