@@ -1153,16 +1153,18 @@ const Judged* judged_before(const ObjectModel& model, const Hypotheses& hyps,
   return nullptr;
 }
 
-// A single part rejected for carrying on past a flat face, for an open end, for a cap whose
-// rim reaches past the face the scan shows or for space the sensor saw through (all four: posed
-// off along its wall; a box beside an overhang's leg stood 14 mm along its axis, its end where
-// the laser saw the table), slid along its wall (slid_along_wall) and confirmed there: `inst` is
-// moved to the slid pose and true is returned.
+// The checks a single part fails when it is posed off (along or across its wall, or turned about
+// the table's normal) rather than absent: slide_to_confirm and turn_to_confirm answer them.
 bool posed_off(Check failed) {
   return failed == Check::kContinues || failed == Check::kOpenEnd || failed == Check::kOpenRim ||
          failed == Check::kSeenThrough;
 }
 
+// A single part rejected for carrying on past a flat face, for an open end, for a cap whose
+// rim reaches past the face the scan shows or for space the sensor saw through (all four: posed
+// off along its wall; a box beside an overhang's leg stood 14 mm along its axis, its end where
+// the laser saw the table), slid along its wall (slid_along_wall) and confirmed there: `inst` is
+// moved to the slid pose and true is returned.
 bool slide_to_confirm(const HypothesisContext& ctx, const ObjectModel& model,
                       const CoverageOptions& cover, double noise_mm, Check failed,
                       DetectedInstance& inst) {
