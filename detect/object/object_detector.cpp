@@ -1331,14 +1331,14 @@ void select_instances(const HypothesisContext& ctx, const ObjectModel& model,
     accepted.push_back(std::move(centres));
     result.instances.push_back(std::move(inst));
   }
-  for (auto& [centres, inst] : unverified) {
+  for (auto& held : unverified) {
     if (static_cast<int>(result.instances.size()) >= options.instances) break;
     const auto clash = [&](const std::vector<Eigen::Vector3d>& x) {
-      return overlaps(centres, x, true);
+      return overlaps(held.first, x, true);
     };
     if (std::any_of(accepted.begin(), accepted.end(), clash)) continue;
-    accepted.push_back(centres);
-    result.instances.push_back(std::move(inst));
+    accepted.push_back(held.first);
+    result.instances.push_back(std::move(held.second));
   }
 }
 
