@@ -1160,6 +1160,20 @@ bool posed_off(Check failed) {
          failed == Check::kSeenThrough;
 }
 
+// `inst`, a single part, moved to pose T with the fit scores there (its vote's rank kept) when it
+// is confirmed there: true, and `inst` is the moved one; false, and `inst` is as it was.
+bool move_if_confirmed(const HypothesisContext& ctx, const ObjectModel& model,
+                       const CoverageOptions& cover, double noise_mm, const Eigen::Isometry3d& T,
+                       const PartScores& scores, DetectedInstance& inst) {
+  DetectedInstance moved = inst;
+  moved.parts[0].T_world_part = T;
+  moved.parts[0].scores = scores;
+  moved.parts[0].scores.rank_sum = inst.parts[0].scores.rank_sum;
+  if (confirm(ctx, model, cover, noise_mm, nullptr, moved)) return false;
+  inst = std::move(moved);
+  return true;
+}
+
 // A single part rejected for carrying on past a flat face, for an open end, for a cap whose
 // rim reaches past the face the scan shows or for space the sensor saw through (all four: posed
 // off along its wall; a box beside an overhang's leg stood 14 mm along its axis, its end where
@@ -1198,14 +1212,9 @@ bool slide_to_confirm(const HypothesisContext& ctx, const ObjectModel& model,
   }
   for (const Eigen::Vector3d& way : prefer) {
     const std::optional<PartHypothesis> h = slid_along_wall(ctx, part, T, way);
-    if (!h) continue;
-    DetectedInstance slid = inst;
-    slid.parts[0].T_world_part = h->T_world_part;
-    slid.parts[0].scores = h->scores;
-    slid.parts[0].scores.rank_sum = inst.parts[0].scores.rank_sum;
-    if (confirm(ctx, model, cover, noise_mm, nullptr, slid)) continue;
-    inst = std::move(slid);
-    return true;
+    if (h && move_if_confirmed(ctx, model, cover, noise_mm, h->T_world_part, h->scores, inst)) {
+      return true;
+    }
   }
   return false;
 }
@@ -1238,14 +1247,8 @@ bool turn_to_confirm(const HypothesisContext& ctx, const ObjectModel& model,
     if (!(scores.measure < to_beat)) continue;
     best = PartHypothesis{true, turned, scores};
   }
-  if (!best) return false;
-  DetectedInstance moved = inst;
-  moved.parts[0].T_world_part = best->T_world_part;
-  moved.parts[0].scores = best->scores;
-  moved.parts[0].scores.rank_sum = inst.parts[0].scores.rank_sum;
-  if (confirm(ctx, model, cover, noise_mm, nullptr, moved)) return false;
-  inst = std::move(moved);
-  return true;
+  return best &&
+         move_if_confirmed(ctx, model, cover, noise_mm, best->T_world_part, best->scores, inst);
 }
 
 // A confirmed single part with flat ends whose wall's points run past one end and stop short of
@@ -1260,12 +1263,7 @@ void settle_along_wall(const HypothesisContext& ctx, const ObjectModel& model,
   constexpr double kMinMoveMm = 0.5;
   const Eigen::Isometry3d along = slide_along_axis(ctx, part, T, Eigen::Vector3d::Zero());
   if ((along.translation() - T.translation()).norm() < kMinMoveMm) return;
-  DetectedInstance slid = inst;
-  slid.parts[0].T_world_part = along;
-  slid.parts[0].scores = verify_pose(ctx, part, along);
-  slid.parts[0].scores.rank_sum = inst.parts[0].scores.rank_sum;
-  if (confirm(ctx, model, cover, noise_mm, nullptr, slid)) return;
-  inst = std::move(slid);
+  move_if_confirmed(ctx, model, cover, noise_mm, along, verify_pose(ctx, part, along), inst);
 }
 
 // Selection: the ranked vote's combinations (5.1.2, extended by the links, 5.1.3) confirmed in

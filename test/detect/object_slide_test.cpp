@@ -90,8 +90,8 @@ TEST(ObjectSlide, FindsAPanTiltStandingBoxFittedAcrossItsHalfSeenTop) {
 // overhang (14 % hidden, 17 deg, 0.51 mm noise, seed 225), behind walls (29 and 30 %, 0.36 and
 // 0.99 mm, seeds 195, 197). Their best candidates lay turned about the table's normal by 11, 20
 // and 90 deg, where their refinement had settled from a start on the top face, and failed the
-// open-end or continuation checks. Turned by an eighth or a quarter and fitted
-// again, they came to the box.
+// open-end or continuation checks. Turned by an eighth or a quarter and fitted again, they came
+// to the box.
 TEST(ObjectSlide, FindsAPanTiltLyingBoxFittedTurnedOnItsTopFace) {
   for (std::uint64_t seed : {225u, 195u, 197u})
     expect_varied_target_found(sim::VariedTarget::kBox, seed, true);
