@@ -62,9 +62,12 @@ struct CoverageOptions {
 };
 
 struct SurfaceCoverage {
-  int facing = 0;               // samples facing every eye (the rest are in the part's own shadow)
+  int facing = 0;               // samples facing every eye (the rest are in the part's own shadow
+                                // or grazed), and the grazed ones below
   int measurable = 0;           // of them, the ones no measured surface hides: the sensor could
                                 // have measured them
+  int grazed = 0;               // of them, seen too obliquely to judge (~75-87 deg) but with a scan
+                                // point on them: evidence the part is there, in no share below
   double covered = 0.0;         // share of them with a scan point near them
   double seen_through = 0.0;    // share of them the sensor saw past: free space
   double open_end = 0.0;        // of the measurable samples by a flat end whose side wall the

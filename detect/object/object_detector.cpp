@@ -109,11 +109,13 @@ std::optional<Rejection> unconfirmed(const SurfaceCoverage& c, const ObjectDetec
                               sensor_known ? o.min_coverage : o.min_coverage_unknown_sensor)
       : sensor_known ? o.min_coverage
                      : o.min_coverage_unknown_sensor;
-  if (c.measurable < o.min_measurable_samples) {
-    return Rejection{0, Check::kHidden, static_cast<double>(c.measurable),
+  // Enough of it seen to judge: the measurable samples, and the grazed ones with points on them.
+  const int evidence = c.measurable + c.grazed;
+  if (evidence < o.min_measurable_samples) {
+    return Rejection{0, Check::kHidden, static_cast<double>(evidence),
                      static_cast<double>(o.min_measurable_samples), Eigen::Vector3d::Zero()};
   }
-  const double share = c.facing > 0 ? static_cast<double>(c.measurable) / c.facing : 0.0;
+  const double share = c.facing > 0 ? static_cast<double>(evidence) / c.facing : 0.0;
   // Less of it measurable, more of that must be there: below min_measurable_share only a part
   // whose measurable surface is (nearly) all covered is judged on.
   const bool all_there = share >= o.min_measurable_share_covered &&
@@ -1102,7 +1104,7 @@ std::optional<Rejection> confirm(const HypothesisContext& ctx, const ObjectModel
   if (std::optional<Rejection> why = refined_links(model, inst, noise_mm)) return why;
   double lowest = INFINITY, lowest_size = 0.0;
   std::size_t lowest_part = 0;
-  int facing = 0, measurable = 0;
+  int facing = 0, measurable = 0, evidence = 0;  // evidence: with the grazed samples
   double covered = 0.0;  // measurable samples with scan points, over all parts
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
     DetectedPart& part = inst.parts[p];
@@ -1121,12 +1123,12 @@ std::optional<Rejection> confirm(const HypothesisContext& ctx, const ObjectModel
       lowest = seen.lowest_mm, lowest_size = model.parts[p].shape.max_size(), lowest_part = p;
     }
     facing += seen.facing, measurable += seen.measurable;
+    evidence += seen.measurable + seen.grazed;
     covered += seen.covered * seen.measurable;
   }
   if (single) return std::nullopt;
-  if (measurable < options.min_measurable_share * facing) {
-    return Rejection{0, Check::kHidden,
-                     facing > 0 ? static_cast<double>(measurable) / facing : 0.0,
+  if (evidence < options.min_measurable_share * facing) {
+    return Rejection{0, Check::kHidden, facing > 0 ? static_cast<double>(evidence) / facing : 0.0,
                      options.min_measurable_share, inst.parts[0].center()};
   }
   const double min_cover = cover.sensor.kind != SensorView::Kind::kUnknown

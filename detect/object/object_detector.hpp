@@ -97,7 +97,8 @@ struct ObjectDetectOptions {
   // And it shows the sensor at least this many of the coverage's surface samples, and this share
   // of those facing it (a part hidden behind others, under the table or inside a measured
   // object leaves too little to judge it by), and it does not reach farther than the table
-  // margin through the removed plane (parts rest on the table, they do not sink into it).
+  // margin through the removed plane (parts rest on the table, they do not sink into it). Grazed
+  // samples with scan points on them count towards both (object_coverage.hpp grazed).
   int min_measurable_samples = 10;
   // Parts rest on the removed plane (the table): the lowest point of a single part, or of a
   // compound object's parts together, is within the table margin of it. Off for scenes of
@@ -211,8 +212,9 @@ enum class Check {
                    // reaches past the face the scan shows
   kSize,           // |size the points want - 1| > max_size_deviation
   kResidual,       // the points' spread about the surface (mm) above the scan's noise allows
-  kHidden,         // fewer measurable samples than min_measurable_samples (value: the count),
-                   // or less than min_measurable_share of the facing ones (value: the share)
+  kHidden,         // fewer measurable (or grazed, with points) samples than
+                   // min_measurable_samples (value: the count), or less than
+                   // min_measurable_share of the facing ones (value: the share)
   kBelowPlane,     // reaches through the removed plane by more than the table margin, or than
                    // its points' uncertainty allows (sink_floor_mm; mm)
   kFloating,       // rest_on_plane: its lowest point is higher above the plane than the rest
