@@ -442,7 +442,7 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
       return sigma <= kMaxScaleSigma &&
              std::abs(scale - 1.0) - sigmas * sigma > o.max_size_deviation;
     };
-    bool first = true, across_off = false, along_off = false;  // as the first fit found them
+    bool across_off = false, along_off = false;  // as the previous fit found them
     for (const SizeCheck& check : kSizeChecks) {
       SizeFitOptions so;
       so.free_rotation = free_rotation;
@@ -463,11 +463,10 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
       // across by the first and left at the fit's bound (1.45 +- 0.03) by the second. Each was
       // taken for the model. (A scale the first placed only because the model misfits, the second
       // may leave open: the fig. 5.18 box at 20 deg, its edge artefacts read as 19 % longer.)
-      if (!first && ((across_off && w.across_open) || (along_off && !w.along))) break;
+      if ((across_off && w.across_open) || (along_off && !w.along)) break;
       across_off = off(free.across, free.across_sigma);
       along_off = off(free.along, free.along_sigma);
       v = w;
-      first = false;
       if (v.within(o.max_size_deviation)) break;
     }
     return std::optional<SizeVerdict>(v);
