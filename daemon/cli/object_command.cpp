@@ -14,7 +14,7 @@
 #include "daemon/cli/option_checks.hpp"
 #include "daemon/cli/png_output.hpp"
 #include "daemon/service/detection_adapter.hpp"
-#include "daemon/service/json_codec.hpp"
+#include "daemon/service/object_result_json.hpp"
 #include "detect/object/object_detector.hpp"
 #include "io/cloud_io.hpp"
 #include "io/object_model_file.hpp"
@@ -34,67 +34,15 @@ struct ObjectArgs {
   std::string png;
 };
 
-using daemon::json_vec;
-
+// The service's result details (object_result_json), with the verdict and the best instance's
+// parts at the top level.
 nlohmann::json to_json(const ObjectModel& model, const ObjectDetectResult& r) {
   nlohmann::json j;
   j["object"] = model.name;
   j["found"] = r.found();
   j["reason"] = to_string(r.reason);
-  j["hypotheses_evaluated"] = r.hypotheses_evaluated;
-  if (r.plane.plane.valid) {
-    j["plane"] = {{"removed", r.plane.removed()},
-                  {"point", json_vec(r.plane.plane.point)},
-                  {"normal", json_vec(r.plane.plane.normal)},
-                  {"points", r.plane.plane_points}};
-  }
-  nlohmann::json instances = nlohmann::json::array();
-  for (const DetectedInstance& inst : r.instances) {
-    nlohmann::json parts = nlohmann::json::array();
-    for (const DetectedPart& p : inst.parts) {
-      const Eigen::Quaterniond q = p.rotation();
-      parts.push_back({{"name", p.name},
-                       {"center", json_vec(p.center())},
-                       {"z_axis", json_vec(p.z_axis())},
-                       {"quaternion", {q.w(), q.x(), q.y(), q.z()}},
-                       {"scores",
-                        {{"M", p.scores.measure},
-                         {"I", p.scores.interior},
-                         {"S", p.scores.surface},
-                         {"rank_sum", p.scores.rank_sum},
-                         {"coverage", p.scores.coverage},
-                         {"seen_through", p.scores.seen_through},
-                         {"measurable", p.scores.measurable},
-                         {"facing", p.scores.facing},
-                         {"size_scale", p.scores.size_scale},
-                         {"size_determined", p.scores.size_determined},
-                         {"length_open", p.scores.length_open},
-                         {"residual_mm", p.scores.residual_mm}}}});
-    }
-    instances.push_back({{"parts", parts},
-                         {"rank_sum", inst.rank_sum},
-                         {"link_angle_error_rad", inst.link_angle_error_rad},
-                         {"link_distance_error_mm", inst.link_distance_error_mm},
-                         {"link_bearing_error_rad", inst.link_bearing_error_rad}});
-  }
-  // parts[] of the best instance at the top level; all instances listed as well.
-  j["parts"] = r.instances.empty() ? nlohmann::json::array() : instances[0]["parts"];
-  j["instances"] = instances;
-  // Not found: which check each candidate failed, its value and the limit it missed.
-  nlohmann::json rejections = nlohmann::json::array();
-  for (const Rejection& x : r.rejections) {
-    rejections.push_back({{"part", model.parts[x.part].name},
-                          {"check", to_string(x.check)},
-                          {"value", x.value},
-                          {"limit", x.limit},
-                          {"center", json_vec(x.centre)}});
-  }
-  j["rejections"] = rejections;
-  j["time_ms"] = {{"plane", r.time.plane_ms},
-                  {"search_index", r.time.search_index_ms},
-                  {"hypotheses", r.time.hypotheses_ms},
-                  {"vote", r.time.vote_ms},
-                  {"total", r.time.total_ms}};
+  j.update(daemon::object_result_json(model, r));
+  j["parts"] = r.instances.empty() ? nlohmann::json::array() : j["instances"][0]["parts"];
   return j;
 }
 

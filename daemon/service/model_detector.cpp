@@ -10,6 +10,7 @@
 #include "daemon/service/calibrate_request.hpp"
 #include "daemon/service/detection_adapter.hpp"
 #include "daemon/service/learn_request.hpp"
+#include "daemon/service/object_result_json.hpp"
 #include "detect/bore/bore_detector.hpp"
 #include "detect/object/object_detector.hpp"
 
@@ -106,6 +107,9 @@ DetectionResult ModelDetector::detect_object_request(const PointCloud& cloud,
   const ObjectDetectResult r = detect_object(cfg->model, cloud.points, options);
   DetectionResult out;
   out.found = r.found();
+  // What `rangefit object --json` says beyond the poses: scores, and when not found which check
+  // each candidate failed and by how much.
+  out.details = object_result_json(cfg->model, r);
   if (!out.found) {
     out.reason = to_string(r.reason);
     return out;

@@ -354,6 +354,7 @@ std::optional<Rejection> judge_at(const HypothesisContext& ctx, const Superquadr
   if (scores) {
     scores->facing = c.facing;
     scores->measurable = c.measurable;
+    scores->grazed = c.grazed;
     scores->coverage = c.covered;
     scores->seen_through = c.seen_through;
     scores->open_end = c.open_end;

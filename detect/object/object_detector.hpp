@@ -235,6 +235,7 @@ struct PartScores {
   int rank_sum = 0;              // sum of this part's ranks in the vote
   int facing = 0;                // surface samples facing the sensor (object_coverage)
   int measurable = 0;            // of them, the ones not hidden behind measured surface
+  int grazed = 0;                // of them, seen too obliquely to judge, with scan points on them
   double coverage = 0.0;         // share of them with scan points
   double seen_through = 0.0;     // share of them the sensor saw past
   double open_end = 0.0;         // share of the side wall by a flat end with no scan points

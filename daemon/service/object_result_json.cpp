@@ -1,0 +1,71 @@
+#include "daemon/service/object_result_json.hpp"
+
+#include "daemon/service/json_codec.hpp"
+
+namespace rangefit::daemon {
+namespace {
+
+nlohmann::json scores_json(const PartScores& s) {
+  return {{"M", s.measure},
+          {"I", s.interior},
+          {"S", s.surface},
+          {"rank_sum", s.rank_sum},
+          {"coverage", s.coverage},
+          {"seen_through", s.seen_through},
+          {"measurable", s.measurable},
+          {"grazed", s.grazed},
+          {"facing", s.facing},
+          {"size_scale", s.size_scale},
+          {"size_determined", s.size_determined},
+          {"length_open", s.length_open},
+          {"residual_mm", s.residual_mm}};
+}
+
+}  // namespace
+
+nlohmann::json object_result_json(const ObjectModel& model, const ObjectDetectResult& r) {
+  nlohmann::json j;
+  j["hypotheses_evaluated"] = r.hypotheses_evaluated;
+  if (r.plane.plane.valid) {
+    j["plane"] = {{"removed", r.plane.removed()},
+                  {"point", json_vec(r.plane.plane.point)},
+                  {"normal", json_vec(r.plane.plane.normal)},
+                  {"points", r.plane.plane_points}};
+  }
+  nlohmann::json instances = nlohmann::json::array();
+  for (const DetectedInstance& inst : r.instances) {
+    nlohmann::json parts = nlohmann::json::array();
+    for (const DetectedPart& p : inst.parts) {
+      const Eigen::Quaterniond q = p.rotation();
+      parts.push_back({{"name", p.name},
+                       {"center", json_vec(p.center())},
+                       {"z_axis", json_vec(p.z_axis())},
+                       {"quaternion", {q.w(), q.x(), q.y(), q.z()}},
+                       {"scores", scores_json(p.scores)}});
+    }
+    instances.push_back({{"parts", parts},
+                         {"rank_sum", inst.rank_sum},
+                         {"link_angle_error_rad", inst.link_angle_error_rad},
+                         {"link_distance_error_mm", inst.link_distance_error_mm},
+                         {"link_bearing_error_rad", inst.link_bearing_error_rad}});
+  }
+  j["instances"] = instances;
+  // Not found: which check each candidate failed, its value and the limit it missed.
+  nlohmann::json rejections = nlohmann::json::array();
+  for (const Rejection& x : r.rejections) {
+    rejections.push_back({{"part", model.parts[x.part].name},
+                          {"check", to_string(x.check)},
+                          {"value", x.value},
+                          {"limit", x.limit},
+                          {"center", json_vec(x.centre)}});
+  }
+  j["rejections"] = rejections;
+  j["time_ms"] = {{"plane", r.time.plane_ms},
+                  {"search_index", r.time.search_index_ms},
+                  {"hypotheses", r.time.hypotheses_ms},
+                  {"vote", r.time.vote_ms},
+                  {"total", r.time.total_ms}};
+  return j;
+}
+
+}  // namespace rangefit::daemon
