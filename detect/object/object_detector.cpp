@@ -536,13 +536,21 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Sup
     const std::size_t lead =
         static_cast<std::size_t>(std::min_element(sums.begin(), sums.end()) - sums.begin());
     const Eigen::Isometry3d& T = valid[lead].T_world_part;
-    Judged j{T, valid[lead].scores, std::nullopt, T};
-    j.why = judge_part(ctx, part, j.passed_at, {}, cover, noise_mm, !compound, &j.scores);
-    const bool rejected = j.why.has_value();
-    judged.push_back(std::move(j));
-    if (rejected) {
+    // A leader that passed at an earlier batch's end and still leads is the same hypothesis,
+    // waiting to be found again: its verdict stands (a rejected one was set aside).
+    const std::size_t before = static_cast<std::size_t>(
+        std::find_if(judged.begin(), judged.end(),
+                     [&](const Judged& j) { return !j.why && j.T.matrix() == T.matrix(); }) -
+        judged.begin());
+    if (before == judged.size()) {
+      Judged j{T, valid[lead].scores, std::nullopt, T};
+      j.why = judge_part(ctx, part, j.passed_at, {}, cover, noise_mm, !compound, &j.scores);
+      judged.push_back(std::move(j));
+    }
+    const Judged& verdict = judged[before];
+    if (verdict.why) {
       set_aside.push_back({part, T});
-      if (!near_miss(*judged.back().why)) seeds_aside.push_back({part, T});
+      if (!near_miss(*verdict.why)) seeds_aside.push_back({part, T});
       continue;
     }
     int agree = 0;
@@ -554,7 +562,7 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Sup
                        kCleanInteriorRatio * static_cast<double>(ls.interior + ls.surface);
     // A leader whose length the points leave open does not end the search (size_unverified).
     if (agree < o.confirmations || !clean ||
-        (!compound && size_unverified(part, judged.back().scores))) {
+        (!compound && size_unverified(part, verdict.scores))) {
       continue;
     }
     // One more place established: a single-part model stops once it has its K instances.
