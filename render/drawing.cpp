@@ -48,6 +48,11 @@ Drawing bore_drawing(const BoreResult& r) {
   return d;
 }
 
+std::string scores_line(const PartScores& s) {
+  return legend_format("      M %.4f  I %zu  S %zu  coverage %.2f  seen through %.2f", s.measure,
+                       s.interior, s.surface, s.coverage, s.seen_through);
+}
+
 Drawing object_drawing(const ObjectModel& model, const ObjectDetectResult& r) {
   Drawing d;
   d.legend.push_back(
@@ -63,9 +68,7 @@ Drawing object_drawing(const ObjectModel& model, const ObjectDetectResult& r) {
       d.parts.push_back({p.name, shape, p.T_world_part});
       d.legend.push_back(legend_format("[%zu] ", i) + p.name + "  centre " +
                          vec(p.center(), "%.2f") + " mm, z-axis " + vec(p.z_axis()));
-      d.legend.push_back(legend_format(
-          "      M %.4f  I %zu  S %zu  coverage %.2f  seen through %.2f", p.scores.measure,
-          p.scores.interior, p.scores.surface, p.scores.coverage, p.scores.seen_through));
+      d.legend.push_back(scores_line(p.scores));
     }
   }
   return d;

@@ -50,4 +50,8 @@ std::string shape_line(const BoreShape& shape);
 // Every part of every instance found, each with its pose and scores, and the time.
 Drawing object_drawing(const ObjectModel& model, const ObjectDetectResult& result);
 
+// One part's fit scores as every legend prints them: M, I, S (eq. 5.2-5.4), the share of what the
+// sensor could have measured that the scan covers, and the share it saw through.
+std::string scores_line(const PartScores& s);
+
 }  // namespace rangefit::render

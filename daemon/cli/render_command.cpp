@@ -13,6 +13,7 @@
 #include "daemon/cli/commands.hpp"
 #include "daemon/service/bore_shape_json.hpp"
 #include "daemon/service/json_codec.hpp"
+#include "daemon/service/object_result_json.hpp"
 #include "daemon/service/result_picture.hpp"
 #include "io/cloud_io.hpp"
 #include "io/object_model_file.hpp"
@@ -101,10 +102,7 @@ render::Drawing object_json(const nlohmann::json& j, const std::optional<ObjectM
       d.legend.push_back(legend_format("[%zu] ", i) + part.name + "  centre " +
                          legend_vector(part.T_world_part.translation()) + " mm, z-axis " +
                          legend_vector(part.T_world_part.linear().col(2)));
-      d.legend.push_back(legend_format(
-          "      M %.4f  I %zu  S %zu  coverage %.2f  seen through %.2f", s.value("M", 0.0),
-          s.value("I", std::size_t{0}), s.value("S", std::size_t{0}), s.value("coverage", 0.0),
-          s.value("seen_through", 0.0)));
+      d.legend.push_back(render::scores_line(daemon::part_scores_from_json(s)));
     }
   }
   return d;

@@ -1,5 +1,7 @@
 #include "daemon/service/object_result_json.hpp"
 
+#include <type_traits>
+
 #include "daemon/service/json_codec.hpp"
 
 namespace rangefit::daemon {
@@ -21,7 +23,42 @@ nlohmann::json scores_json(const PartScores& s) {
           {"residual_mm", s.residual_mm}};
 }
 
+template <class T>
+void read(const nlohmann::json& j, const char* key, T& out) {
+  const auto it = j.find(key);
+  if (it == j.end()) return;
+  if constexpr (std::is_same_v<T, bool>) {
+    if (it->is_boolean()) out = it->get<bool>();
+  } else if (it->is_number()) {
+    const double v = it->get<double>();
+    if constexpr (std::is_integral_v<T>) {
+      if (v >= 0.0 && v <= 1e15) out = static_cast<T>(v);
+    } else {
+      out = v;
+    }
+  }
+}
+
 }  // namespace
+
+PartScores part_scores_from_json(const nlohmann::json& scores) {
+  PartScores s;
+  if (!scores.is_object()) return s;
+  read(scores, "M", s.measure);
+  read(scores, "I", s.interior);
+  read(scores, "S", s.surface);
+  read(scores, "rank_sum", s.rank_sum);
+  read(scores, "coverage", s.coverage);
+  read(scores, "seen_through", s.seen_through);
+  read(scores, "measurable", s.measurable);
+  read(scores, "grazed", s.grazed);
+  read(scores, "facing", s.facing);
+  read(scores, "size_scale", s.size_scale);
+  read(scores, "size_determined", s.size_determined);
+  read(scores, "length_open", s.length_open);
+  read(scores, "residual_mm", s.residual_mm);
+  return s;
+}
 
 nlohmann::json object_result_json(const ObjectModel& model, const ObjectDetectResult& r) {
   nlohmann::json j;

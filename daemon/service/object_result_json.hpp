@@ -15,4 +15,8 @@ namespace rangefit::daemon {
 
 nlohmann::json object_result_json(const ObjectModel& model, const ObjectDetectResult& r);
 
+// A part's "scores" as object_result_json writes them; what is missing or not a number stays at
+// its default (a result file from an older build, or edited by hand).
+PartScores part_scores_from_json(const nlohmann::json& scores);
+
 }  // namespace rangefit::daemon

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "daemon/service/bore_shape_json.hpp"
+#include "daemon/service/object_result_json.hpp"
 #include "render/legend_text.hpp"
 #include "render/render.hpp"
 
@@ -33,6 +34,23 @@ Superquadric learnt_shape(const DetectionResult& r, const std::string& name) {
             k.at(1).get<double>()};
   }
   throw std::invalid_argument("part \"" + name + "\" is not in the learnt model");
+}
+
+// An object part's scores in the details (object_result_json): its instance's part of that name.
+std::optional<PartScores> object_scores(const DetectionResult& r, const PartPose& p) {
+  if (!r.details.is_object()) return {};
+  const auto instances = r.details.find("instances");
+  if (instances == r.details.end() || !instances->is_array() || p.instance >= instances->size()) {
+    return {};
+  }
+  const nlohmann::json& inst = (*instances)[p.instance];
+  const auto parts = inst.is_object() ? inst.find("parts") : inst.end();
+  if (parts == inst.end() || !parts->is_array()) return {};
+  for (const nlohmann::json& part : *parts) {
+    if (!part.is_object() || part.value("name", nlohmann::json()) != p.name) continue;
+    return part_scores_from_json(part.value("scores", nlohmann::json()));
+  }
+  return {};
 }
 
 // A pipe's outer wall (walls = both) has its own radius in the details.
@@ -77,6 +95,9 @@ render::Drawing result_drawing(const DetectionResult& r, const ObjectModel* mode
       d.legend.push_back(legend_format("[%u] ", p.instance) + p.name + "  centre " +
                          legend_vector(c) + " mm, z-axis " + legend_vector(z) +
                          legend_format(", score %.3f", p.score));
+      if (const std::optional<PartScores> s = object_scores(r, p)) {
+        d.legend.push_back(render::scores_line(*s));
+      }
     }
   }
   d.legend.push_back(

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include <numbers>
 
 #include "daemon/service/bore_shape_json.hpp"
+#include "daemon/service/object_result_json.hpp"
 #include "daemon/service/spool.hpp"
 #include "render/render.hpp"
 #include "test/render/picture_checks.hpp"
@@ -93,7 +95,10 @@ TEST(ResultPicture, ShapeStandardErrorsReadBackUnderTheirUnitsAndTheOldKeys) {
     EXPECT_EQ(back->sigma_cylinder_radius, 0.05);
   };
   check(j);
-  j["sigma"] = {{"radius", 0.01}, {"entrance", 0.02}, {"axis", 0.003}, {"half_angle", 0.004},
+  j["sigma"] = {{"radius", 0.01},
+                {"entrance", 0.02},
+                {"axis", 0.003},
+                {"half_angle", 0.004},
                 {"cylinder_radius", 0.05}};
   check(j);
 }
@@ -149,6 +154,53 @@ TEST(ResultPicture, ObjectPartsNeedTheirModel) {
   EXPECT_NE(error.find("model"), std::string::npos) << error;
   ObjectModel other{"mallet", {{"shaft", Superquadric{}}}, {}};
   EXPECT_THROW(result_drawing(r, &other), std::invalid_argument);
+}
+
+// The service's picture of an object result prints each part's scores from the result's
+// details, in the line `rangefit object --png` prints for the same detection; details that are
+// not what the service writes leave the line out and throw nothing.
+TEST(ResultPicture, AnObjectPartsScoresComeFromTheDetailsAsTheCliPrintsThem) {
+  const ObjectModel model{
+      "mallet",
+      {{"head", Superquadric{20, 20, 30, 0.1, 1.0}}, {"shaft", Superquadric{6, 6, 70, 0.1, 1.0}}},
+      {}};
+  ObjectDetectResult found;
+  DetectedInstance inst;
+  for (const char* name : {"head", "shaft"}) {
+    DetectedPart part;
+    part.name = name;
+    part.T_world_part.translation() = Eigen::Vector3d(10, 20, 30);
+    part.scores.measure = name[0] == 'h' ? 0.0412 : 0.0733;
+    part.scores.interior = 3;
+    part.scores.surface = name[0] == 'h' ? 812 : 451;
+    part.scores.coverage = 0.87;
+    part.scores.seen_through = 0.01;
+    inst.parts.push_back(part);
+  }
+  found.instances.push_back(inst);
+  DetectionResult r;
+  r.kind = DetectKind::kObject;
+  r.found = true;
+  for (const DetectedPart& part : inst.parts)
+    r.parts.push_back({part.name, part.T_world_part, 1.0, 0});
+  r.details = object_result_json(model, found);
+
+  const std::vector<std::string> cli = render::object_drawing(model, found).legend;
+  const std::vector<std::string> service = result_drawing(r, &model).legend;
+  for (const DetectedPart& part : inst.parts) {
+    const std::string line = render::scores_line(part.scores);
+    EXPECT_NE(std::find(cli.begin(), cli.end(), line), cli.end()) << line;
+    EXPECT_NE(std::find(service.begin(), service.end(), line), service.end()) << line;
+  }
+
+  for (const nlohmann::json& bad :
+       {nlohmann::json("instances"), nlohmann::json{{"instances", 7}},
+        nlohmann::json{{"instances", {{{"parts", {{{"name", 3}}}}}}}},
+        nlohmann::json{
+            {"instances", {{{"parts", {{{"name", "head"}, {"scores", {{"M", "x"}}}}}}}}}}}) {
+    r.details = bad;
+    EXPECT_NO_THROW(result_drawing(r, &model)) << bad.dump();
+  }
 }
 
 class SpoolPictures : public ::testing::Test {
