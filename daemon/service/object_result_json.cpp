@@ -7,22 +7,31 @@
 namespace rangefit::daemon {
 namespace {
 
-nlohmann::json scores_json(const PartScores& s) {
-  return {{"M", s.measure},
-          {"I", s.interior},
-          {"S", s.surface},
-          {"rank_sum", s.rank_sum},
-          {"coverage", s.coverage},
-          {"seen_through", s.seen_through},
-          {"measurable", s.measurable},
-          {"grazed", s.grazed},
-          {"facing", s.facing},
-          {"size_scale", s.size_scale},
-          {"size_determined", s.size_determined},
-          {"length_open", s.length_open},
-          {"residual_mm", s.residual_mm}};
+// Every score with its key, the one list both directions use.
+template <class Scores, class F>
+void for_each_score(Scores& s, F&& f) {
+  f("M", s.measure);
+  f("I", s.interior);
+  f("S", s.surface);
+  f("rank_sum", s.rank_sum);
+  f("coverage", s.coverage);
+  f("seen_through", s.seen_through);
+  f("measurable", s.measurable);
+  f("grazed", s.grazed);
+  f("facing", s.facing);
+  f("size_scale", s.size_scale);
+  f("size_determined", s.size_determined);
+  f("length_open", s.length_open);
+  f("residual_mm", s.residual_mm);
 }
 
+nlohmann::json scores_json(const PartScores& s) {
+  nlohmann::json j = nlohmann::json::object();
+  for_each_score(s, [&](const char* key, const auto& value) { j[key] = value; });
+  return j;
+}
+
+// A number (a count within range) or a boolean as `out`'s type; anything else leaves it.
 template <class T>
 void read(const nlohmann::json& j, const char* key, T& out) {
   const auto it = j.find(key);
@@ -44,19 +53,7 @@ void read(const nlohmann::json& j, const char* key, T& out) {
 PartScores part_scores_from_json(const nlohmann::json& scores) {
   PartScores s;
   if (!scores.is_object()) return s;
-  read(scores, "M", s.measure);
-  read(scores, "I", s.interior);
-  read(scores, "S", s.surface);
-  read(scores, "rank_sum", s.rank_sum);
-  read(scores, "coverage", s.coverage);
-  read(scores, "seen_through", s.seen_through);
-  read(scores, "measurable", s.measurable);
-  read(scores, "grazed", s.grazed);
-  read(scores, "facing", s.facing);
-  read(scores, "size_scale", s.size_scale);
-  read(scores, "size_determined", s.size_determined);
-  read(scores, "length_open", s.length_open);
-  read(scores, "residual_mm", s.residual_mm);
+  for_each_score(s, [&](const char* key, auto& value) { read(scores, key, value); });
   return s;
 }
 
