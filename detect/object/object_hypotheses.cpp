@@ -81,16 +81,16 @@ double sinks_by(const Superquadric& part, const Eigen::Isometry3d& T, const pca:
          table.normal.dot(T.translation() - table.point);
 }
 
-// How far the posed part's lowest point stands above the table (< 0: below it), by its own
-// support (with its taper: a cone lying on its flank, standing on its base or hung from its
-// apex); nullopt for pinched (eps > 1) parts, which it does not bound. Unlike sinks_by's
-// inscribed ellipsoid, a box tilted onto an edge (the fig. 5.18 box, 20 deg) rests.
+}  // namespace
+
 std::optional<double> lowest_above(const Superquadric& part, const Eigen::Isometry3d& T,
                                    const pca::Plane& table) {
   if (part.eps1 > 1.0 || part.eps2 > 1.0) return std::nullopt;
   return table.normal.dot(T.translation() - table.point) -
          tapered_support(part, T.linear().transpose() * -table.normal);
 }
+
+namespace {
 
 // The part slid within the plane of the patch it was started on (which does not place it along
 // itself) until its lowest point touches the table, where it stands square on it (on a face, or

@@ -47,6 +47,13 @@ struct HypothesisContext {
 // for the RANSAC trials, the below-plane check and the rest-on-plane check.
 double table_margin_mm(const ObjectDetectOptions& options, double min_size_mm, double noise_mm);
 
+// How far the posed part's lowest point stands above the table (< 0: below it), by its own
+// support (with its taper: a cone lying on its flank, standing on its base or hung from its
+// apex); nullopt for pinched (eps > 1) parts, which it does not bound. Unlike sinks_by's
+// inscribed ellipsoid, a box tilted onto an edge (the fig. 5.18 box, 20 deg) rests.
+std::optional<double> lowest_above(const Superquadric& part, const Eigen::Isometry3d& T,
+                                   const pca::Plane& table);
+
 // How far a confirmed part's lowest point may be from the table (ObjectDetectOptions::
 // rest_noise_factor): the scan's noise and a small share of the part's largest size (its tilt).
 double rest_tolerance_mm(const ObjectDetectOptions& options, double max_size_mm, double noise_mm);

@@ -11,8 +11,10 @@
 //   object_benchmark --varied [--seeds N] [--per-factor] [--pan-tilt] [--two-cameras]
 //                    [--no-sensor] [--held-out] [--target TARGET] [--failures] [--first N]
 //                    [--detector-seeds K]
-//                                         TP, wrong, missed and false positives on seeded varied
-//                                         stripe scans (object_varied_report.hpp), per target
+//                                         TP, wrong, missed, false positives, median time
+//                                         and the true positives' median centre error on
+//                                         seeded varied stripe scans
+//                                         (object_varied_report.hpp), per target
 //                                         (or one) and per factor; tuning seeds (from the N-th,
 //                                         default 1), or the held-out ones; --failures lists
 //                                         the failing seeds; --detector-seeds K detects each

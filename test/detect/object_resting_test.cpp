@@ -4,6 +4,7 @@
 // standing through the table or on the wrong side of the face.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -171,6 +172,27 @@ TEST(ObjectResting, AShorterBoxOrCanLyingAlongTheSweepIsNotTakenForTheModel) {
 TEST(ObjectResting, APanTiltConesRestingStartsWinOverStartsOffTheTable) {
   for (std::uint64_t seed : {131u, 274u, 289u}) {
     test::expect_varied_target_found(sim::VariedTarget::kCone, seed, true);
+  }
+}
+
+// A part confirmed standing square on the table is reported set down on it: the table's plane
+// places its height better than the part's own points. Pan-tilt tuning cones 148 and 206
+// (0.9-1.0 mm noise, 38-43 % under an overhang, the lower flank hidden) were fitted 2.8 mm and
+// more above the table and came out over 3 mm off; set down, each is within a millimetre in
+// height.
+TEST(ObjectResting, APanTiltConeFittedAboveTheTableIsReportedStandingOnIt) {
+  for (std::uint64_t seed : {148u, 206u}) {
+    sim::VariedSceneOptions so;
+    so.target = sim::VariedTarget::kCone;
+    so.pan_tilt = true;
+    const sim::VariedScene s = sim::make_varied_scene(so, seed);
+    const ObjectDetectResult r = test::detect_in(s, seed);
+    ASSERT_TRUE(r.found()) << "seed " << seed << ": " << test::describe_rejections(r);
+    const Eigen::Isometry3d& T = r.instances[0].parts[0].T_world_part;
+    const sim::ScenePart& truth = s.parts[static_cast<std::size_t>(s.target_parts[0])];
+    EXPECT_TRUE(test::true_positive(T, truth, true)) << "seed " << seed;
+    EXPECT_LT(std::abs(T.translation().z() - truth.T_world_part.translation().z()), 1.0)
+        << "seed " << seed << ": " << T.translation().transpose();
   }
 }
 
