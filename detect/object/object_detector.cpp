@@ -1359,21 +1359,16 @@ void select_instances(const HypothesisContext& ctx, const ObjectModel& model,
 // half is hidden. A tilted part may lean on something else (the fig. 5.18 box and cylinder): left
 // as fitted. The checks judged the fitted pose; they allowed it this far off the table.
 void set_on_table(const ObjectModel& model, const pca::Plane& table, DetectedInstance& inst) {
-  constexpr double kSquareCos = 0.985;
   std::optional<double> lowest;
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
     const Eigen::Isometry3d& T = inst.parts[p].T_world_part;
-    if (!model.parts[p].shape.ball() &&
-        (T.linear().transpose() * table.normal).cwiseAbs().maxCoeff() < kSquareCos) {
-      return;
-    }
+    if (!model.parts[p].shape.ball() && !stands_square(T, table)) return;
     const std::optional<double> above = lowest_above(model.parts[p].shape, T, table);
     if (above && (!lowest || *above < *lowest)) lowest = above;
   }
   if (!lowest) return;
   for (DetectedPart& part : inst.parts) part.T_world_part.translation() -= *lowest * table.normal;
 }
-
 
 // Why nothing was found, the failed checks named (thesis 5.1: a reason for every answer).
 void explain_not_found(const ObjectModel& model, const ObjectDetectOptions& options,

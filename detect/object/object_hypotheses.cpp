@@ -90,6 +90,11 @@ std::optional<double> lowest_above(const Superquadric& part, const Eigen::Isomet
          tapered_support(part, T.linear().transpose() * -table.normal);
 }
 
+bool stands_square(const Eigen::Isometry3d& T, const pca::Plane& table) {
+  constexpr double kSquareCos = 0.985;  // an axis within ~10 deg of the table's normal
+  return (T.linear().transpose() * table.normal).cwiseAbs().maxCoeff() >= kSquareCos;
+}
+
 namespace {
 
 // The part slid within the plane of the patch it was started on (which does not place it along
@@ -100,13 +105,11 @@ namespace {
 // lowest_above does not judge the part.
 Eigen::Isometry3d settled(const Superquadric& part, const Eigen::Isometry3d& T,
                           const Eigen::Vector3d& patch_normal, const pca::Plane& table) {
-  constexpr double kMinInPlane = 0.3;   // |table normal within the patch's plane|: ~17 deg tilt
-  constexpr double kSquareCos = 0.985;  // an axis within ~10 deg of the table's normal
+  constexpr double kMinInPlane = 0.3;  // |table normal within the patch's plane|: ~17 deg tilt
   const Eigen::Vector3d along = table.normal - table.normal.dot(patch_normal) * patch_normal;
   const double rise = along.norm();  // height gained per mm moved along `along`
   const std::optional<double> above = lowest_above(part, T, table);
-  const bool square = (T.linear().transpose() * table.normal).cwiseAbs().maxCoeff() >= kSquareCos;
-  if (rise < kMinInPlane || !above || !square) return T;
+  if (rise < kMinInPlane || !above || !stands_square(T, table)) return T;
   Eigen::Isometry3d out = T;
   out.translation() -= (*above / rise) * (along / rise);
   return out;
@@ -294,6 +297,16 @@ struct SizeVerdict {
   double scale = 1.0, allowance = 0.0;
   std::optional<double> across, along;  // the scales it places
   double across_allowance = 0.0;
+  // For each scale its own standard error places (not only the model's misfit): how far it stands
+  // from 1 beyond its allowance.
+  std::optional<double> across_excess, along_excess;
+  // Such a scale off the model's by more than `max_deviation`.
+  bool across_off(double max_deviation) const {
+    return across_excess && *across_excess > max_deviation;
+  }
+  bool along_off(double max_deviation) const {
+    return along_excess && *along_excess > max_deviation;
+  }
   // How far the scale it judges by stands from 1 beyond its allowance.
   double excess() const { return std::abs(scale - 1.0) - allowance; }
   // No scale placed, or none farther from 1 than `max_deviation` beyond its allowance.
@@ -304,22 +317,23 @@ struct SizeVerdict {
 // may have an open one).
 SizeVerdict size_verdict(const SizeFit& free, double noise, double sigmas) {
   SizeVerdict v;
-  const auto farthest = [&v, sigmas](double s, double sigma) {
+  // Places scale s: its allowance, and its excess where its own standard error places it.
+  const auto farthest = [&v, sigmas](double s, double sigma, std::optional<double>& excess) {
     const double allowance = sigmas * std::min(sigma, kMaxScaleSigma);
-    if (!v.determined || std::abs(s - 1.0) - allowance > v.excess()) {
-      v.scale = s, v.allowance = allowance;
-    }
+    const double beyond = std::abs(s - 1.0) - allowance;
+    if (!v.determined || beyond > v.excess()) v.scale = s, v.allowance = allowance;
     v.determined = true;
+    if (sigma <= kMaxScaleSigma) excess = beyond;
     return allowance;
   };
   const bool clear_misfit =
       free.model_rms_mm > kMisfitNoises * noise && free.rms_mm < kClearlyBetter * free.model_rms_mm;
   if (clear_misfit || free.across_sigma <= kMaxScaleSigma) {
-    v.across_allowance = farthest(free.across, free.across_sigma);
+    v.across_allowance = farthest(free.across, free.across_sigma, v.across_excess);
     v.across_open = false, v.across = free.across;
   }
   if (clear_misfit || free.along_sigma <= kMaxScaleSigma) {
-    farthest(free.along, free.along_sigma), v.along = free.along;
+    farthest(free.along, free.along_sigma, v.along_excess), v.along = free.along;
   }
   return v;
 }
@@ -437,12 +451,6 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
   const auto verdict = [&](const Eigen::Isometry3d& start, bool free_rotation) {
     const TableBound bound = table_bound(ctx, part, start, explained);
     SizeVerdict v;
-    // A scale placed by its standard error, and off the model's by more than the detector allows.
-    const auto off = [&](double scale, double sigma) {
-      return sigma <= kMaxScaleSigma &&
-             std::abs(scale - 1.0) - sigmas * sigma > o.max_size_deviation;
-    };
-    bool across_off = false, along_off = false;  // as the previous fit found them
     for (const SizeCheck& check : kSizeChecks) {
       SizeFitOptions so;
       so.free_rotation = free_rotation;
@@ -463,9 +471,8 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
       // across by the first and left at the fit's bound (1.45 +- 0.03) by the second. Each was
       // taken for the model. (A scale the first placed only because the model misfits, the second
       // may leave open: the fig. 5.18 box at 20 deg, its edge artefacts read as 19 % longer.)
-      if ((across_off && w.across_open) || (along_off && !w.along)) break;
-      across_off = off(free.across, free.across_sigma);
-      along_off = off(free.along, free.along_sigma);
+      const double max = o.max_size_deviation;
+      if ((v.across_off(max) && w.across_open) || (v.along_off(max) && !w.along)) break;
       v = w;
       if (v.within(o.max_size_deviation)) break;
     }

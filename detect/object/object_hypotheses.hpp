@@ -54,6 +54,10 @@ double table_margin_mm(const ObjectDetectOptions& options, double min_size_mm, d
 std::optional<double> lowest_above(const Superquadric& part, const Eigen::Isometry3d& T,
                                    const pca::Plane& table);
 
+// The posed part stands square on the table: one of its axes within ~10 deg of the table's
+// normal (on a face, a base or a flank).
+bool stands_square(const Eigen::Isometry3d& T, const pca::Plane& table);
+
 // How far a confirmed part's lowest point may be from the table (ObjectDetectOptions::
 // rest_noise_factor): the scan's noise and a small share of the part's largest size (its tilt).
 double rest_tolerance_mm(const ObjectDetectOptions& options, double max_size_mm, double noise_mm);
