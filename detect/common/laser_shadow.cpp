@@ -54,6 +54,7 @@ LaserShadow::LaserShadow(std::span<const Eigen::Vector3d> points, const SensorVi
   ahead -= ahead.dot(at_mid.plane_normal) * at_mid.plane_normal;
   if (!(ahead.norm() > 1e-9)) return;
   ahead_ = ahead.normalized();
+  mid_apex_from_pivot_ = at_mid.apex - view.pivot;
   across_ = at_mid.plane_normal.cross(ahead_);
 
   // Bins about bin_mm wide at the points' typical range (and, turning, distance from the axis).
@@ -118,11 +119,16 @@ std::optional<LaserShadow::Ray> LaserShadow::ray_of(const Eigen::Vector3d& p) co
     if (!(forward > 1e-9)) return std::nullopt;
     return Ray{s, v.dot(across_) / forward, v.norm()};
   }
-  // A rotary sweep: turned back into the fan's frame at mid_.
+  // A rotary sweep: turned back into the fan's frame at mid_. The apex turns about the pivot
+  // with the fan, so p less the apex at s, turned by mid_ - s, is p turned about the pivot less
+  // the apex at mid_ (Rodrigues' formula: one sine and cosine per ray).
   const std::optional<double> s = sweep_position(view_, p);
   if (!s) return std::nullopt;
+  const Eigen::Vector3d& a = view_.direction;
+  const Eigen::Vector3d q = p - view_.pivot;
+  const double c = std::cos(mid_ - *s), sn = std::sin(mid_ - *s);
   const Eigen::Vector3d v =
-      Eigen::AngleAxisd(mid_ - *s, view_.direction) * (p - sweep_pose(view_, *s).apex);
+      c * q + sn * a.cross(q) + (1.0 - c) * a.dot(q) * a - mid_apex_from_pivot_;
   const double forward = v.dot(ahead_);
   if (!(forward > 1e-9)) return std::nullopt;
   return Ray{*s, v.dot(across_) / forward, v.norm()};

@@ -54,6 +54,7 @@ class LaserShadow {
   SensorView view_;
   double mid_ = 0.0;                // the sweep position the fan's basis is taken at
   Eigen::Vector3d across_, ahead_;  // the fan's plane at mid_: across it, and towards the points
+  Eigen::Vector3d mid_apex_from_pivot_ = Eigen::Vector3d::Zero();  // a rotary sweep's, at mid_
   double s0_ = 0.0, u0_ = 0.0, ds_ = 1.0, du_ = 1.0;
   std::size_t ns_ = 0, nu_ = 0;
   Eigen::Vector3d lo_ = Eigen::Vector3d::Zero(), hi_ = Eigen::Vector3d::Zero();

@@ -34,6 +34,11 @@ OccupancyGrid::OccupancyGrid(std::span<const Eigen::Vector3d> points, double cel
   ny_ = static_cast<std::size_t>(std::floor(extent.y() / cell)) + 1;
   nz_ = static_cast<std::size_t>(std::floor(extent.z() / cell)) + 1;
   bits_.assign((nx_ * ny_ * nz_ + 63) / 64, 0);
+  const auto blocks = [](std::size_t cells_along) {
+    return ((cells_along - 1) >> kBlockShift) + 1;
+  };
+  bx_ = blocks(nx_), by_ = blocks(ny_);
+  blocks_.assign(bx_ * by_ * blocks(nz_), 0);
   for (const Eigen::Vector3d& p : points) {
     if (!p.allFinite()) continue;
     const Eigen::Vector3d q = (p - lo_) / cell_;
@@ -43,6 +48,7 @@ OccupancyGrid::OccupancyGrid(std::span<const Eigen::Vector3d> points, double cel
     const std::size_t b = index(static_cast<std::int64_t>(i), static_cast<std::int64_t>(j),
                                 static_cast<std::int64_t>(k));
     bits_[b >> 6] |= std::uint64_t{1} << (b & 63);
+    blocks_[block(i, j, k)] = 1;
   }
 }
 
@@ -70,8 +76,39 @@ double OccupancyGrid::first_hit(const Eigen::Vector3d& from, const Eigen::Vector
   const std::optional<BoxWalk> w = walk_in_box(from, to, skip_mm, lo_, hi);
   if (!w) return -1.0;
   const double step = 0.5 * cell_;
-  for (double t = w->begin; t <= w->end; t += step) {
-    if (occupied(from + t * w->u)) return t;
+  const double block_mm = cell_ * static_cast<double>(1 << kBlockShift);
+  double t = w->begin;
+  while (t <= w->end) {
+    const Eigen::Vector3d p = from + t * w->u;
+    const Eigen::Vector3d q = (p - lo_) / cell_;
+    const double fx = std::floor(q.x()), fy = std::floor(q.y()), fz = std::floor(q.z());
+    if (fx < 0.0 || fy < 0.0 || fz < 0.0 || fx >= static_cast<double>(nx_) ||
+        fy >= static_cast<double>(ny_) || fz >= static_cast<double>(nz_)) {
+      t += step;
+      continue;
+    }
+    const auto i = static_cast<std::size_t>(fx), j = static_cast<std::size_t>(fy),
+               k = static_cast<std::size_t>(fz);
+    if (blocks_[block(i, j, k)]) {
+      const std::size_t b = index(static_cast<std::int64_t>(i), static_cast<std::int64_t>(j),
+                                  static_cast<std::int64_t>(k));
+      if ((bits_[b >> 6] >> (b & 63)) & 1u) return t;
+      t += step;
+      continue;
+    }
+    // An empty block: on to the first step at or past where the line leaves it (less a hair,
+    // so that a step on its face is still looked at).
+    const Eigen::Vector3d corner =
+        lo_ + block_mm * Eigen::Vector3d(static_cast<double>(i >> kBlockShift),
+                                         static_cast<double>(j >> kBlockShift),
+                                         static_cast<double>(k >> kBlockShift));
+    double leave = INFINITY;
+    for (int a = 0; a < 3; ++a) {
+      if (w->u[a] > 0.0) leave = std::min(leave, (corner[a] + block_mm - p[a]) / w->u[a]);
+      if (w->u[a] < 0.0) leave = std::min(leave, (corner[a] - p[a]) / w->u[a]);
+    }
+    const double steps = std::ceil((leave - 1e-6 * cell_) / step);
+    t += step * std::max(1.0, steps);
   }
   return -1.0;
 }

@@ -458,7 +458,7 @@ std::array<double, 2> open_rim(const Superquadric& sq, const CoverageOptions& o,
 
 SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d& T,
                                  std::span<const Eigen::Vector3d> points, const KdTree& tree,
-                                 const CoverageOptions& o) {
+                                 const CoverageOptions& o, CoverageMeasures measures) {
   if (!sq.valid() || points.empty() || o.samples < 1) return {};
   const SuperquadricMetric m(sq);
   const double tol = std::max(o.tolerance_mm, o.tolerance_of_min_size * sq.min_size());
@@ -469,7 +469,7 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
   SampleJudge judge(m, T, points, tree, o, tol, far);
   const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
   int facing = 0, measured = 0, covered = 0, seen_through = 0, grazed = 0;
-  for (int i = 0; i < o.samples; ++i) {
+  for (int i = 0; measures.surface && i < o.samples; ++i) {
     // Fibonacci sphere, stretched by the sizes: even in the normalised coordinates.
     const double z = 1.0 - (2.0 * i + 1.0) / o.samples;
     const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
@@ -483,11 +483,13 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
     grazed += v == Sample::kGrazed;
   }
   std::array<bool, 2> end_hidden{};
-  const std::array<double, 4> open_at = open_ends(sq, o, judge, end_hidden);
-  const std::array<double, 2> rim = open_rim(sq, o, judge);
+  const std::array<double, 4> open_at =
+      measures.ends ? open_ends(sq, o, judge, end_hidden) : std::array<double, 4>{};
+  const std::array<double, 2> rim =
+      measures.rims ? open_rim(sq, o, judge) : std::array<double, 2>{};
   SurfaceCoverage c;
   double below = 0.0, lowest = INFINITY;
-  if (o.removed_plane && o.removed_plane->valid) {
+  if (measures.surface && o.removed_plane && o.removed_plane->valid) {
     // Sinking is judged on the model itself and standing above the table on its sharp hull: a
     // flat-faced part's rounded edges (eps 0.1) lie a few per cent inside the real object's
     // edges, so a box tilted onto an edge rests on the table while its model stands ~3 mm above.
@@ -514,6 +516,17 @@ SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d
   c.covered = static_cast<double>(covered) / measured;
   c.seen_through = static_cast<double>(seen_through) / measured;
   return c;
+}
+
+void take_edges(SurfaceCoverage& c, const SurfaceCoverage& edges) {
+  c.open_end = edges.open_end;
+  for (std::size_t end = 0; end < 2; ++end) {
+    c.open_end_at[end] = edges.open_end_at[end];
+    c.open_end_far_at[end] = edges.open_end_far_at[end];
+    c.end_hidden[end] = edges.end_hidden[end];
+  }
+  c.open_rim = edges.open_rim;
+  c.open_rim_far = edges.open_rim_far;
 }
 
 }  // namespace rangefit

@@ -96,10 +96,28 @@ struct SurfaceCoverage {
   double max_size_mm = 0.0;     // and its largest
 };
 
+// Which of the coverage's measures to take; the others are left at their defaults. `surface`:
+// the samples over the whole surface (facing, measurable, grazed, covered, seen_through) and the
+// part's place against the removed plane (below_plane_mm, lowest_mm, deepest_part); `ends`: the
+// rings by its flat ends (open_end*, end_hidden); `rims`: its flat caps' rims (open_rim*). A check
+// that needs only some of them pays only for those: a box's rims are ~6 times as many samples
+// as its surface.
+struct CoverageMeasures {
+  bool surface = true, ends = true, rims = true;
+};
+inline constexpr CoverageMeasures kSurfaceOnly{.surface = true, .ends = false, .rims = false};
+inline constexpr CoverageMeasures kEndsOnly{.surface = false, .ends = true, .rims = false};
+inline constexpr CoverageMeasures kEndsAndRims{.surface = false, .ends = true, .rims = true};
+
 // Samples are spread over the surface evenly in the part's normalised coordinates (exactly even
 // for a sphere). Shares are 0 when no sample was measurable.
 SurfaceCoverage surface_coverage(const Superquadric& sq, const Eigen::Isometry3d& T_world_part,
                                  std::span<const Eigen::Vector3d> points, const KdTree& tree,
-                                 const CoverageOptions& options = {});
+                                 const CoverageOptions& options = {},
+                                 CoverageMeasures measures = {});
+
+// `c` with the ends' and rims' measures of `edges` (a coverage of the same part and pose taken
+// with `surface` off).
+void take_edges(SurfaceCoverage& c, const SurfaceCoverage& edges);
 
 }  // namespace rangefit

@@ -1,11 +1,13 @@
 #include "detect/object/object_detector.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <iterator>
 #include <numbers>
 #include <optional>
+#include <vector>
 
 #include "detect/common/kdtree.hpp"
 #include "detect/common/occupancy_grid.hpp"
@@ -97,9 +99,10 @@ bool plausible(const PartHypothesis& h, const ObjectDetectOptions& o) {
   return h.valid && !implausible(h, o);
 }
 
-// Confirmation by the surface evidence (see ObjectDetectOptions::min_coverage).
-// For a part of a compound object the measurable share is judged over the whole object (its
-// siblings hide some of it: the head hides the end of the shaft), and its open ends not at all.
+// Confirmation by the surface evidence (see ObjectDetectOptions::min_coverage): the samples over
+// the surface and the part's place against the table, not its ends (open_ended). For a part of
+// a compound object the measurable share is judged over the whole object (its siblings hide
+// some of it: the head hides the end of the shaft).
 std::optional<Rejection> unconfirmed(const SurfaceCoverage& c, const ObjectDetectOptions& o,
                                      bool sensor_known, bool judge_share, double noise_mm) {
   // A compound object's part is held to the whole object's coverage (detect_object) and alone
@@ -133,9 +136,14 @@ std::optional<Rejection> unconfirmed(const SurfaceCoverage& c, const ObjectDetec
   }
   if (!(c.covered >= min_cover))
     return Rejection{0, Check::kCoverage, c.covered, min_cover, Eigen::Vector3d::Zero()};
-  // Single parts only: a compound object's parts end by their siblings (a mallet's shaft by its
-  // head), and on the tuning scenes the check cost two true mallets.
-  if (judge_share && c.open_end > o.max_open_end)
+  return std::nullopt;
+}
+
+// The open-end check (see ObjectDetectOptions::max_open_end), of single parts only: a compound
+// object's parts end by their siblings (a mallet's shaft by its head), and on the tuning scenes
+// the check cost two true mallets.
+std::optional<Rejection> open_ended(const SurfaceCoverage& c, const ObjectDetectOptions& o) {
+  if (c.open_end > o.max_open_end)
     return Rejection{0, Check::kOpenEnd, c.open_end, o.max_open_end, Eigen::Vector3d::Zero()};
   return std::nullopt;
 }
@@ -334,21 +342,30 @@ std::optional<Rejection> judge_at(const HypothesisContext& ctx, const Superquadr
                                   const CoverageOptions& cover, double noise_mm, bool alone,
                                   PartScores* scores, SurfaceCoverage* seen) {
   const ObjectDetectOptions& o = *ctx.options;
-  // The coverage, the size fit and the continuation do not depend on one another. With more
-  // than one thread they are measured at once (a judge is otherwise the one thing running between
-  // two batches of hypotheses; what a failed check leaves unused was measured on a core that
-  // would have waited); on one thread each only when the checks before it pass.
-  SurfaceCoverage c;
+  const bool known = cover.sensor.kind != SensorView::Kind::kUnknown;
+  // The samples over the surface alone decide most rejections (hidden, sunk, seen through, not
+  // covered) at a fraction of the cost of the rest: a box's rims are ~6 times as many samples.
+  // Only a part that passes them has its ends and rims, size and continuation measured. Those do
+  // not depend on one another: with more than one thread they are measured at once (a judge is
+  // otherwise the one thing running between two batches of hypotheses; what a failed check leaves
+  // unused was measured on a core that would have waited); on one thread each only when the
+  // checks before it pass.
+  SurfaceCoverage c = surface_coverage(part, T, ctx.points, *ctx.tree, cover, kSurfaceOnly);
+  std::optional<Rejection> why = unconfirmed(c, o, known, alone, noise_mm);
   std::optional<SizeEvidence> size;
   std::optional<Continuation> continuation;
-  if (thread_count(o.threads) > 1) {
-    parallel_for(3, o.threads, [&](std::size_t k) {
-      if (k == 0) c = surface_coverage(part, T, ctx.points, *ctx.tree, cover);
-      if (k == 1) size = size_evidence(ctx, part, T, others);
-      if (k == 2) continuation = continuation_of(ctx, part, T, others, noise_mm);
-    });
-  } else {
-    c = surface_coverage(part, T, ctx.points, *ctx.tree, cover);
+  if (!why) {
+    SurfaceCoverage edges;
+    if (thread_count(o.threads) > 1) {
+      parallel_for(3, o.threads, [&](std::size_t k) {
+        if (k == 0) edges = surface_coverage(part, T, ctx.points, *ctx.tree, cover, kEndsAndRims);
+        if (k == 1) size = size_evidence(ctx, part, T, others);
+        if (k == 2) continuation = continuation_of(ctx, part, T, others, noise_mm);
+      });
+    } else {
+      edges = surface_coverage(part, T, ctx.points, *ctx.tree, cover, kEndsAndRims);
+    }
+    take_edges(c, edges);
   }
   if (seen) *seen = c;
   if (scores) {
@@ -361,8 +378,7 @@ std::optional<Rejection> judge_at(const HypothesisContext& ctx, const Superquadr
     scores->open_rim = c.open_rim;
     scores->lowest_mm = c.lowest_mm;
   }
-  std::optional<Rejection> why =
-      unconfirmed(c, o, cover.sensor.kind != SensorView::Kind::kUnknown, alone, noise_mm);
+  if (!why && alone) why = open_ended(c, o);
   if (!why && alone) {
     why = floating(c.lowest_mm, part.max_size(), cover.removed_plane.has_value(), noise_mm, o);
   }
@@ -605,7 +621,7 @@ std::vector<PartHypothesis> seen_as_claimed(const HypothesisContext& ctx, const 
   std::vector<std::optional<Rejection>> verdict(first_of.size());
   parallel_for(first_of.size(), o.threads, [&](std::size_t k) {
     const Eigen::Isometry3d& T = hyps[first_of[k]].T_world_part;
-    const SurfaceCoverage c = surface_coverage(part, T, ctx.points, *ctx.tree, cover);
+    const SurfaceCoverage c = surface_coverage(part, T, ctx.points, *ctx.tree, cover, kSurfaceOnly);
     verdict[k] =
         unconfirmed(c, o, cover.sensor.kind != SensorView::Kind::kUnknown, false, noise_mm);
     if (verdict[k]) {
@@ -810,7 +826,8 @@ void refine_jointly(const HypothesisContext& ctx, const ObjectModel& model,
     const Eigen::Isometry3d linked =
         prefer.isZero() ? least : slide_pose(ctx, shape, T, prefer, others);
     const auto open_at = [&](const Eigen::Isometry3d& at) {
-      const SurfaceCoverage c = surface_coverage(shape, at, ctx.points, *ctx.tree, cover);
+      const SurfaceCoverage c =
+          surface_coverage(shape, at, ctx.points, *ctx.tree, cover, kEndsOnly);
       return std::array<double, 2>{c.open_end_at[0], c.open_end_at[1]};
     };
     const auto open = [](const std::array<double, 2>& a) { return std::max(a[0], a[1]); };
@@ -1207,7 +1224,7 @@ bool slide_to_confirm(const HypothesisContext& ctx, const ObjectModel& model,
   // tuning seed 86).
   std::vector<Eigen::Vector3d> prefer{Eigen::Vector3d::Zero()};
   if (failed == Check::kOpenEnd) {
-    const SurfaceCoverage c = surface_coverage(part, T, ctx.points, *ctx.tree, cover);
+    const SurfaceCoverage c = surface_coverage(part, T, ctx.points, *ctx.tree, cover, kEndsOnly);
     const double minus = std::max(c.open_end_at[0], c.open_end_far_at[0]);
     const double plus = std::max(c.open_end_at[1], c.open_end_far_at[1]);
     prefer[0].z() = plus > minus ? -part.a3 : part.a3;
@@ -1221,10 +1238,18 @@ bool slide_to_confirm(const HypothesisContext& ctx, const ObjectModel& model,
       }
     }
   }
-  for (const Eigen::Vector3d& way : prefer) {
-    const std::optional<PartHypothesis> h = slid_along_wall(ctx, part, T, way);
-    if (h && move_if_confirmed(ctx, model, cover, noise_mm, h->T_world_part, h->scores, inst)) {
-      return true;
+  // Slid and refined as many at once as there are threads, then judged in order: the first that
+  // is confirmed is taken, as when each was slid in turn.
+  const std::size_t batch = thread_count(ctx.options->threads);
+  for (std::size_t first = 0; first < prefer.size(); first += batch) {
+    std::vector<std::optional<PartHypothesis>> slid(std::min(batch, prefer.size() - first));
+    parallel_for(slid.size(), ctx.options->threads, [&](std::size_t k) {
+      slid[k] = slid_along_wall(ctx, part, T, prefer[first + k]);
+    });
+    for (const std::optional<PartHypothesis>& h : slid) {
+      if (h && move_if_confirmed(ctx, model, cover, noise_mm, h->T_world_part, h->scores, inst)) {
+        return true;
+      }
     }
   }
   return false;
@@ -1245,18 +1270,24 @@ bool turn_to_confirm(const HypothesisContext& ctx, const ObjectModel& model,
   const Superquadric& part = model.parts[0].shape;
   if (part.ball()) return false;
   const Eigen::Isometry3d& T = inst.parts[0].T_world_part;
+  constexpr std::array<double, 3> kTurnsDeg{45.0, -45.0, 90.0};
+  std::array<PartHypothesis, 3> turned;  // each turn refined, on all threads
+  parallel_for(kTurnsDeg.size(), ctx.options->threads, [&](std::size_t k) {
+    Eigen::Isometry3d at = T;
+    at.linear() = Eigen::AngleAxisd(kTurnsDeg[k] * std::numbers::pi / 180.0, ctx.table->normal)
+                      .toRotationMatrix() *
+                  T.linear();
+    at = refine_pose(ctx, part, at);
+    turned[k].T_world_part = at;
+    turned[k].valid = !same_place(at, T, part);
+    if (turned[k].valid) turned[k].scores = verify_pose(ctx, part, at);
+  });
   std::optional<PartHypothesis> best;
-  for (double deg : {45.0, -45.0, 90.0}) {
-    Eigen::Isometry3d turned = T;
-    turned.linear() =
-        Eigen::AngleAxisd(deg * std::numbers::pi / 180.0, ctx.table->normal).toRotationMatrix() *
-        T.linear();
-    turned = refine_pose(ctx, part, turned);
-    if (same_place(turned, T, part)) continue;
-    const PartScores scores = verify_pose(ctx, part, turned);
+  for (const PartHypothesis& h : turned) {
+    if (!h.valid) continue;
     const double to_beat = best ? best->scores.measure : inst.parts[0].scores.measure;
-    if (!(scores.measure < to_beat)) continue;
-    best = PartHypothesis{true, turned, scores};
+    if (!(h.scores.measure < to_beat)) continue;
+    best = h;
   }
   return best &&
          move_if_confirmed(ctx, model, cover, noise_mm, best->T_world_part, best->scores, inst);

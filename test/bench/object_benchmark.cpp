@@ -13,7 +13,9 @@
 //                    [--detector-seeds K]
 //                                         TP, wrong, missed, false positives, median time
 //                                         and the true positives' median centre error on
-//                                         seeded varied stripe scans
+//                                         seeded varied stripe scans; object-free scenes per
+//                                         model searched for, their time beside the time that
+//                                         model takes where it is found (when both ran)
 //                                         (object_varied_report.hpp), per target
 //                                         (or one) and per factor; tuning seeds (from the N-th,
 //                                         default 1), or the held-out ones; --failures lists

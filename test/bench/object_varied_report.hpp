@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -28,6 +29,7 @@ struct VariedCase {
   bool found = false, tp = false;
   double ms = 0.0;
   double centre_mm = 0.0;  // a true positive's largest centre error over the target's parts
+  std::string model;       // the model searched for (on an object-free scene, the absent one)
 };
 
 // A detection is a true positive when every part of the target is (thesis: centre < 3 mm, axis
@@ -89,6 +91,7 @@ inline VariedCase run_varied_case(const VariedRun& run, sim::VariedTarget target
   c.repetition = repetition;
   c.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   c.factors = s.factors;
+  c.model = s.model.name;
   c.found = r.found();
   c.tp = all_parts_true(r, s);
   for (std::size_t p = 0; c.tp && p < s.target_parts.size(); ++p) {
@@ -220,6 +223,7 @@ inline void print_varied_block(const char* title, std::uint64_t first, const Var
                                        sim::VariedTarget::kBox,    sim::VariedTarget::kCone,
                                        sim::VariedTarget::kMallet, sim::VariedTarget::kThreeSpheres,
                                        sim::VariedTarget::kNone};
+  std::map<std::string, double> found_ms;  // per model: the true positives' median time
   for (sim::VariedTarget target : targets) {
     if (run.only && target != *run.only) continue;
     std::vector<VariedCase> cases;
@@ -248,6 +252,36 @@ inline void print_varied_block(const char* title, std::uint64_t first, const Var
     // the cases where every part still shows 60 % of what the sensor would see of it.
     if (!absent) row("occlusion <= 40 %", light);
     if (!absent) row("each part lost <= 40 %", seen);
+    if (!absent) {
+      Tally found;
+      for (const VariedCase& c : cases) {
+        if (c.tp) found.add(c);
+      }
+      // The first target of a model: the lone sphere, not the three spheres.
+      if (found.n) found_ms.emplace(cases.front().model, found.median_ms());
+    } else {
+      // An object-free scene searches for one of the models: its time beside the time the same
+      // model takes where it is found (the true positives' median, when that target ran too).
+      std::vector<std::string> models;
+      for (const VariedCase& c : cases) {
+        if (std::find(models.begin(), models.end(), c.model) == models.end()) {
+          models.push_back(c.model);
+        }
+      }
+      std::sort(models.begin(), models.end());
+      for (const std::string& m : models) {
+        Tally t;
+        for (const VariedCase& c : cases) {
+          if (c.model == m) t.add(c);
+        }
+        print_tally_row("searching " + m, t, true);
+        const auto it = found_ms.find(m);
+        if (it != found_ms.end() && it->second > 0.0) {
+          std::printf("  %-28s %.2f x its found median (%.1f ms)\n", "", t.median_ms() / it->second,
+                      it->second);
+        }
+      }
+    }
     if (run.list_failures) {
       // The seeds to look at with --varied-case: what went wrong, and how hidden the target was.
       for (const VariedCase& c : cases) {

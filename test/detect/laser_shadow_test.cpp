@@ -52,6 +52,34 @@ TEST(LaserShadow, SpaceUnderAGrazedWallsTopIsInShadow) {
   EXPECT_LT(shadow.first_shadowed(from, {0, -300, 600}, 2.0, 1.0, 3.0), 0.0);
 }
 
+// A pan-tilt head: its laser fan, apex at the pivot 600 mm above the table, turns about the
+// y-axis from -0.3 to 0.3 rad, its camera 300 mm off the fan's plane. Over the same table and
+// wall, space under the wall's top is in shadow wherever along the turn it is.
+TEST(LaserShadow, ATurningFansShadowUnderAGrazedWall) {
+  SensorView head;
+  head.kind = SensorView::Kind::kRotarySweep;
+  head.pivot = head.origin = {0, 0, 600};
+  head.direction = Eigen::Vector3d::UnitY();
+  head.plane_normal = Eigen::Vector3d::UnitX();
+  head.camera_offset = {-300, 0, 0};
+  head.sweep_min = -0.3, head.sweep_max = 0.3;
+  const std::vector<Eigen::Vector3d> pts = table_and_wall_top();  // the shadow borrows them
+  // Bins of 3 mm: the wall's top, 100 mm nearer the apex than the table, holds two returns in each.
+  const LaserShadow shadow(pts, head, 3.0);
+  ASSERT_FALSE(shadow.empty());
+  for (double x : {-80.0, 0.0, 60.0}) {
+    // (x, 58, 50) seen from the apex lies behind the wall's top (y 52.7 at z = 100).
+    EXPECT_TRUE(shadow.shadowed({x, 58, 50}, 3.0)) << x;
+    EXPECT_FALSE(shadow.shadowed({x, 58, 110}, 3.0)) << x;
+    EXPECT_FALSE(shadow.shadowed({x, 0, 50}, 3.0)) << x;
+  }
+  const Eigen::Vector3d from(30, 20, 0), to(30, 300, 600);
+  const double t = shadow.first_shadowed(from, to, 2.0, 1.0, 3.0);
+  ASSERT_GT(t, 0.0);
+  EXPECT_NEAR((from + t * (to - from).normalized()).y(), 50.0, 3.0);
+  EXPECT_LT(shadow.first_shadowed(from, {30, -300, 600}, 2.0, 1.0, 3.0), 0.0);
+}
+
 // A lone return in the air before the surface (an outlier along its ray) casts no shadow column:
 // a bin's shadow starts at its second nearest return.
 TEST(LaserShadow, ALoneOutlierCastsNoShadow) {

@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "detect/common/kdtree.hpp"
@@ -39,6 +41,50 @@ TEST(OccupancyGrid, LinesOfSightMeetTheMeasuredSurface) {
   EXPECT_LT(grid.first_hit({600, 0, 0}, {600, 0, 500}, 5.0), 0.0);
   // The first cells are skipped: a point on the wall does not hide itself.
   EXPECT_LT(grid.first_hit({10, 20, 0}, kEye, 5.0), 0.0);
+}
+
+// The walk passes empty blocks of cells in one go. It must meet what a walk of every half
+// cell meets: the same first hit, or none, on lines of sight through a sparse scene (a table,
+// two small objects and loose points far apart, so that most blocks are empty and a line
+// enters and leaves occupied ones many times).
+TEST(OccupancyGrid, SkippingEmptySpaceMeetsWhatEveryStepMeets) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-150.0, 150.0), h(0.0, 120.0);
+  std::vector<Eigen::Vector3d> pts;
+  for (double x = -150; x <= 150; x += 1.5) {
+    for (double y = -150; y <= 150; y += 1.5) pts.emplace_back(x, y, 0.0);
+  }
+  for (int i = 0; i < 4000; ++i) {  // a ball and a rod
+    const Eigen::Vector3d d = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+    pts.push_back(Eigen::Vector3d(40, -30, 40) + 25.0 * d);
+    pts.emplace_back(-60 + 0.02 * u(rng), 50 + 0.02 * u(rng), 0.4 * h(rng));
+  }
+  for (int i = 0; i < 300; ++i) pts.emplace_back(u(rng), u(rng), h(rng));  // loose points
+  const OccupancyGrid grid(pts, 1.3);
+  const auto every_step = [&](const Eigen::Vector3d& from, const Eigen::Vector3d& to, double skip) {
+    const Eigen::Vector3d d = (to - from).normalized();
+    for (double t = std::max(0.0, skip); t <= (to - from).norm(); t += 0.5 * grid.cell_mm()) {
+      if (grid.occupied(from + t * d)) return t;
+    }
+    return -1.0;
+  };
+  int hits = 0, clear = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Eigen::Vector3d from(u(rng), u(rng), h(rng));
+    const Eigen::Vector3d to =
+        i % 2 ? Eigen::Vector3d(u(rng), u(rng), 900.0) : Eigen::Vector3d(u(rng), u(rng), -50.0);
+    const double fast = grid.first_hit(from, to, 2.0);
+    const double slow = every_step(from, to, 2.0);
+    ASSERT_EQ(fast < 0.0, slow < 0.0) << "ray " << i;
+    if (slow >= 0.0) {
+      EXPECT_NEAR(fast, slow, 1e-6) << "ray " << i;
+      ++hits;
+    } else {
+      ++clear;
+    }
+  }
+  EXPECT_GT(hits, 1000);  // both kinds of lines of sight were walked
+  EXPECT_GT(clear, 300);
 }
 
 TEST(OccupancyGrid, ACoarseGridStaysWithinItsBudget) {
@@ -84,6 +130,47 @@ TEST(SurfaceCoverage, SeenThroughSeparatesAPartFromFreeSpace) {
   EXPECT_GT(away.seen_through, 0.8);
   o.occupancy = nullptr;  // without the scan's cells nothing is counted as seen through
   EXPECT_EQ(surface_coverage(ball, floating, pts, tree, o).seen_through, 0.0);
+}
+
+// The detector takes the surface samples first and the ends and rims only for a part that passes
+// them: taken apart, the measures are those taken at once. The fig. 5.18 box where it is and slid
+// 20 mm along its axis, off the end of its points, where its ends and rims stand open.
+TEST(SurfaceCoverage, MeasuresTakenApartAreThoseTakenAtOnce) {
+  const test::Scene s = test::fig_5_18_scene(0.0, 1, 0.6);
+  const std::vector<Eigen::Vector3d>& pts = s.rendered.cloud.points;
+  const KdTree tree(pts);
+  const OccupancyGrid grid(pts, 3.0);
+  CoverageOptions o;
+  o.sensor.kind = SensorView::Kind::kPoint;
+  o.sensor.origin = s.eye;
+  o.occupancy = &grid;
+  const Superquadric box = test::box_model();
+  Eigen::Isometry3d slid = s.parts[1].T_world_part;
+  slid.translation() += 20.0 * slid.linear().col(2);
+  double open = 0.0;
+  for (const Eigen::Isometry3d& T : {s.parts[1].T_world_part, slid}) {
+    const SurfaceCoverage whole = surface_coverage(box, T, pts, tree, o);
+    SurfaceCoverage c = surface_coverage(box, T, pts, tree, o, kSurfaceOnly);
+    EXPECT_EQ(c.open_rim, 0.0);  // not measured
+    EXPECT_EQ(c.open_end, 0.0);
+    EXPECT_EQ(c.facing, whole.facing);
+    EXPECT_EQ(c.covered, whole.covered);
+    EXPECT_EQ(c.seen_through, whole.seen_through);
+    EXPECT_EQ(c.lowest_mm, whole.lowest_mm);
+    take_edges(c, surface_coverage(box, T, pts, tree, o, kEndsAndRims));
+    EXPECT_EQ(c.open_end, whole.open_end);
+    EXPECT_EQ(c.open_rim, whole.open_rim);
+    EXPECT_EQ(c.open_rim_far, whole.open_rim_far);
+    for (int end = 0; end < 2; ++end) {
+      EXPECT_EQ(c.open_end_at[end], whole.open_end_at[end]);
+      EXPECT_EQ(c.open_end_far_at[end], whole.open_end_far_at[end]);
+      EXPECT_EQ(c.end_hidden[end], whole.end_hidden[end]);
+      EXPECT_EQ(surface_coverage(box, T, pts, tree, o, kEndsOnly).open_end_at[end],
+                whole.open_end_at[end]);
+    }
+    open = std::max({open, whole.open_end, whole.open_rim});
+  }
+  EXPECT_GT(open, 0.3);  // the slid box's ends or rims were measured open
 }
 
 // A stripe ranger's camera shadow: the surface of a part that faces the laser but that its camera
