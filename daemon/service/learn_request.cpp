@@ -4,6 +4,7 @@
 #include <exception>
 #include <numbers>
 #include <sstream>
+#include <utility>
 
 #include "daemon/service/json_codec.hpp"
 #include "io/object_model_file.hpp"
@@ -27,19 +28,17 @@ nlohmann::json learn_json(const LearnResult& r, std::size_t points, std::size_t 
   }
   nlohmann::json parts = nlohmann::json::array();
   for (const LearntPart& p : r.parts) {
-    const Eigen::Quaterniond q(p.T_world_part.linear());
-    parts.push_back({{"name", p.name},
-                     {"size", {p.shape.a1, p.shape.a2, p.shape.a3}},
-                     {"shape", {p.shape.eps1, p.shape.eps2}},
-                     {"taper", {p.shape.kx, p.shape.ky}},
-                     {"center", json_vec(p.T_world_part.translation())},
-                     {"z_axis", json_vec(p.T_world_part.linear().col(2))},
-                     {"quaternion", {q.w(), q.x(), q.y(), q.z()}},
-                     {"points", p.points},
-                     {"M", p.measure},
-                     {"residual_mm", p.residual_mm},
-                     {"visible_share", p.visible_share},
-                     {"iterations", p.iterations}});
+    nlohmann::json part = pose_json(p.T_world_part);
+    part.update({{"name", p.name},
+                 {"size", {p.shape.a1, p.shape.a2, p.shape.a3}},
+                 {"shape", {p.shape.eps1, p.shape.eps2}},
+                 {"taper", {p.shape.kx, p.shape.ky}},
+                 {"points", p.points},
+                 {"M", p.measure},
+                 {"residual_mm", p.residual_mm},
+                 {"visible_share", p.visible_share},
+                 {"iterations", p.iterations}});
+    parts.push_back(std::move(part));
   }
   j["parts"] = parts;
   nlohmann::json links = nlohmann::json::array();

@@ -1,6 +1,7 @@
 #include "daemon/service/object_result_json.hpp"
 
 #include <type_traits>
+#include <utility>
 
 #include "daemon/service/json_codec.hpp"
 
@@ -70,12 +71,10 @@ nlohmann::json object_result_json(const ObjectModel& model, const ObjectDetectRe
   for (const DetectedInstance& inst : r.instances) {
     nlohmann::json parts = nlohmann::json::array();
     for (const DetectedPart& p : inst.parts) {
-      const Eigen::Quaterniond q = p.rotation();
-      parts.push_back({{"name", p.name},
-                       {"center", json_vec(p.center())},
-                       {"z_axis", json_vec(p.z_axis())},
-                       {"quaternion", {q.w(), q.x(), q.y(), q.z()}},
-                       {"scores", scores_json(p.scores)}});
+      nlohmann::json part = pose_json(p.T_world_part);
+      part["name"] = p.name;
+      part["scores"] = scores_json(p.scores);
+      parts.push_back(std::move(part));
     }
     instances.push_back({{"parts", parts},
                          {"rank_sum", inst.rank_sum},
