@@ -364,8 +364,11 @@ inline void print_varied_case(const VariedRun& run, sim::VariedTarget target, st
                                      (s.parts[best].T_world_part.translation() - c).norm())) +
                                  " mm";
   };
-  std::printf("  result: %s, tp %d, %d hypotheses, %.1f ms\n", to_string(r.reason),
-              all_parts_true(r, s) ? 1 : 0, r.hypotheses_evaluated, r.time.total_ms);
+  std::printf(
+      "  result: %s, tp %d, %d hypotheses, %.1f ms (plane %.1f, index %.1f, hypotheses %.1f, "
+      "vote and confirmation %.1f)\n",
+      to_string(r.reason), all_parts_true(r, s) ? 1 : 0, r.hypotheses_evaluated, r.time.total_ms,
+      r.time.plane_ms, r.time.search_index_ms, r.time.hypotheses_ms, r.time.vote_ms);
   for (const DetectedInstance& inst : r.instances) {
     for (std::size_t l = 0; l < inst.link_angle_error_rad.size(); ++l) {
       std::printf("  link %zu: A %.3f rad D %.1f mm B %.3f rad\n", l, inst.link_angle_error_rad[l],
