@@ -106,58 +106,63 @@ TEST(OccupancyGrid, EmptyOrNonFiniteInputHoldsNothing) {
   EXPECT_LT(grid.first_hit({0, 0, 100}, {std::nan(""), 0, 0}, 0.0), 0.0);
 }
 
+// Figure 5.18 (at 0.6 of its resolution) as a coverage judges it: its points, their search
+// tree and occupancy, seen from the scene's eye.
+struct Fig518 {
+  const test::Scene s = test::fig_5_18_scene(0.0, 1, 0.6);
+  const std::vector<Eigen::Vector3d>& pts = s.rendered.cloud.points;
+  const KdTree tree{pts};
+  const OccupancyGrid grid{pts, 3.0};
+  CoverageOptions o = options();
+
+ private:
+  CoverageOptions options() const {
+    CoverageOptions c;
+    c.sensor.kind = SensorView::Kind::kPoint;
+    c.sensor.origin = s.eye;
+    c.occupancy = &grid;
+    return c;
+  }
+};
+
 // The sphere of figure 5.18 where it is, and moved to the empty table in front of the objects:
 // the first covers its visible surface and hides nothing the sensor saw; the second claims
 // surface exactly where the sensor saw the table.
 TEST(SurfaceCoverage, SeenThroughSeparatesAPartFromFreeSpace) {
-  const test::Scene s = test::fig_5_18_scene(0.0, 1, 0.6);
-  const std::vector<Eigen::Vector3d>& pts = s.rendered.cloud.points;
-  const KdTree tree(pts);
-  const OccupancyGrid grid(pts, 3.0);
-  CoverageOptions o;
-  o.sensor.kind = SensorView::Kind::kPoint;
-  o.sensor.origin = s.eye;
-  o.occupancy = &grid;
+  Fig518 f;
   const Superquadric ball = test::sphere_model();
-  const Eigen::Isometry3d here = s.parts[2].T_world_part;
+  const Eigen::Isometry3d here = f.s.parts[2].T_world_part;
   Eigen::Isometry3d floating = here;
   floating.translation() = Eigen::Vector3d(40, 0, 80);  // above the empty front of the table
-  const SurfaceCoverage at = surface_coverage(ball, here, pts, tree, o);
-  const SurfaceCoverage away = surface_coverage(ball, floating, pts, tree, o);
+  const SurfaceCoverage at = surface_coverage(ball, here, f.pts, f.tree, f.o);
+  const SurfaceCoverage away = surface_coverage(ball, floating, f.pts, f.tree, f.o);
   EXPECT_GT(at.covered, 0.9);
   EXPECT_LT(at.seen_through, 0.02);
   EXPECT_LT(away.covered, 0.1);
   EXPECT_GT(away.seen_through, 0.8);
-  o.occupancy = nullptr;  // without the scan's cells nothing is counted as seen through
-  EXPECT_EQ(surface_coverage(ball, floating, pts, tree, o).seen_through, 0.0);
+  f.o.occupancy = nullptr;  // without the scan's cells nothing is counted as seen through
+  EXPECT_EQ(surface_coverage(ball, floating, f.pts, f.tree, f.o).seen_through, 0.0);
 }
 
 // The detector takes the surface samples first and the ends and rims only for a part that passes
 // them: taken apart, the measures are those taken at once. The fig. 5.18 box where it is and slid
 // 20 mm along its axis, off the end of its points, where its ends and rims stand open.
 TEST(SurfaceCoverage, MeasuresTakenApartAreThoseTakenAtOnce) {
-  const test::Scene s = test::fig_5_18_scene(0.0, 1, 0.6);
-  const std::vector<Eigen::Vector3d>& pts = s.rendered.cloud.points;
-  const KdTree tree(pts);
-  const OccupancyGrid grid(pts, 3.0);
-  CoverageOptions o;
-  o.sensor.kind = SensorView::Kind::kPoint;
-  o.sensor.origin = s.eye;
-  o.occupancy = &grid;
+  Fig518 f;
   const Superquadric box = test::box_model();
-  Eigen::Isometry3d slid = s.parts[1].T_world_part;
+  Eigen::Isometry3d slid = f.s.parts[1].T_world_part;
   slid.translation() += 20.0 * slid.linear().col(2);
   double open = 0.0;
-  for (const Eigen::Isometry3d& T : {s.parts[1].T_world_part, slid}) {
-    const SurfaceCoverage whole = surface_coverage(box, T, pts, tree, o);
-    SurfaceCoverage c = surface_coverage(box, T, pts, tree, o, kSurfaceOnly);
+  for (const Eigen::Isometry3d& T : {f.s.parts[1].T_world_part, slid}) {
+    const SurfaceCoverage whole = surface_coverage(box, T, f.pts, f.tree, f.o);
+    SurfaceCoverage c = surface_coverage(box, T, f.pts, f.tree, f.o, kSurfaceOnly);
     EXPECT_EQ(c.open_rim, 0.0);  // not measured
     EXPECT_EQ(c.open_end, 0.0);
     EXPECT_EQ(c.facing, whole.facing);
     EXPECT_EQ(c.covered, whole.covered);
     EXPECT_EQ(c.seen_through, whole.seen_through);
     EXPECT_EQ(c.lowest_mm, whole.lowest_mm);
-    take_edges(c, surface_coverage(box, T, pts, tree, o, kEndsAndRims));
+    take_edges(c, surface_coverage(box, T, f.pts, f.tree, f.o, kEndsAndRims));
     EXPECT_EQ(c.open_end, whole.open_end);
     EXPECT_EQ(c.open_rim, whole.open_rim);
     EXPECT_EQ(c.open_rim_far, whole.open_rim_far);
@@ -165,7 +170,7 @@ TEST(SurfaceCoverage, MeasuresTakenApartAreThoseTakenAtOnce) {
       EXPECT_EQ(c.open_end_at[end], whole.open_end_at[end]);
       EXPECT_EQ(c.open_end_far_at[end], whole.open_end_far_at[end]);
       EXPECT_EQ(c.end_hidden[end], whole.end_hidden[end]);
-      EXPECT_EQ(surface_coverage(box, T, pts, tree, o, kEndsOnly).open_end_at[end],
+      EXPECT_EQ(surface_coverage(box, T, f.pts, f.tree, f.o, kEndsOnly).open_end_at[end],
                 whole.open_end_at[end]);
     }
     open = std::max({open, whole.open_end, whole.open_rim});
