@@ -52,18 +52,28 @@ OccupancyGrid::OccupancyGrid(std::span<const Eigen::Vector3d> points, double cel
   }
 }
 
-bool OccupancyGrid::occupied(const Eigen::Vector3d& p) const {
-  if (bits_.empty() || !p.allFinite()) return false;
+std::optional<OccupancyGrid::Cell> OccupancyGrid::cell_of(const Eigen::Vector3d& p) const {
+  if (bits_.empty() || !p.allFinite()) return std::nullopt;
   const Eigen::Vector3d q = (p - lo_) / cell_;
-  if (q.x() < 0.0 || q.y() < 0.0 || q.z() < 0.0) return false;
+  if (q.x() < 0.0 || q.y() < 0.0 || q.z() < 0.0) return std::nullopt;
   const double fx = std::floor(q.x()), fy = std::floor(q.y()), fz = std::floor(q.z());
   if (fx >= static_cast<double>(nx_) || fy >= static_cast<double>(ny_) ||
       fz >= static_cast<double>(nz_)) {
-    return false;
+    return std::nullopt;
   }
-  const std::size_t b = index(static_cast<std::int64_t>(fx), static_cast<std::int64_t>(fy),
-                              static_cast<std::int64_t>(fz));
+  return Cell{static_cast<std::size_t>(fx), static_cast<std::size_t>(fy),
+              static_cast<std::size_t>(fz)};
+}
+
+bool OccupancyGrid::holds(const Cell& c) const {
+  const std::size_t b = index(static_cast<std::int64_t>(c.i), static_cast<std::int64_t>(c.j),
+                              static_cast<std::int64_t>(c.k));
   return (bits_[b >> 6] >> (b & 63)) & 1u;
+}
+
+bool OccupancyGrid::occupied(const Eigen::Vector3d& p) const {
+  const std::optional<Cell> c = cell_of(p);
+  return c && holds(*c);
 }
 
 double OccupancyGrid::first_hit(const Eigen::Vector3d& from, const Eigen::Vector3d& to,
@@ -80,28 +90,18 @@ double OccupancyGrid::first_hit(const Eigen::Vector3d& from, const Eigen::Vector
   double t = w->begin;
   while (t <= w->end) {
     const Eigen::Vector3d p = from + t * w->u;
-    const Eigen::Vector3d q = (p - lo_) / cell_;
-    const double fx = std::floor(q.x()), fy = std::floor(q.y()), fz = std::floor(q.z());
-    if (fx < 0.0 || fy < 0.0 || fz < 0.0 || fx >= static_cast<double>(nx_) ||
-        fy >= static_cast<double>(ny_) || fz >= static_cast<double>(nz_)) {
-      t += step;
-      continue;
-    }
-    const auto i = static_cast<std::size_t>(fx), j = static_cast<std::size_t>(fy),
-               k = static_cast<std::size_t>(fz);
-    if (blocks_[block(i, j, k)]) {
-      const std::size_t b = index(static_cast<std::int64_t>(i), static_cast<std::int64_t>(j),
-                                  static_cast<std::int64_t>(k));
-      if ((bits_[b >> 6] >> (b & 63)) & 1u) return t;
+    const std::optional<Cell> c = cell_of(p);
+    if (!c || blocks_[block(c->i, c->j, c->k)]) {
+      if (c && holds(*c)) return t;
       t += step;
       continue;
     }
     // An empty block: on to the first step at or past where the line leaves it (less a hair,
     // so that a step on its face is still looked at).
     const Eigen::Vector3d corner =
-        lo_ + block_mm * Eigen::Vector3d(static_cast<double>(i >> kBlockShift),
-                                         static_cast<double>(j >> kBlockShift),
-                                         static_cast<double>(k >> kBlockShift));
+        lo_ + block_mm * Eigen::Vector3d(static_cast<double>(c->i >> kBlockShift),
+                                         static_cast<double>(c->j >> kBlockShift),
+                                         static_cast<double>(c->k >> kBlockShift));
     double leave = INFINITY;
     for (int a = 0; a < 3; ++a) {
       if (w->u[a] > 0.0) leave = std::min(leave, (corner[a] + block_mm - p[a]) / w->u[a]);

@@ -44,6 +44,11 @@ class OccupancyGrid {
   double first_hit(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double skip_mm) const;
 
  private:
+  struct Cell {
+    std::size_t i = 0, j = 0, k = 0;
+  };
+  std::optional<Cell> cell_of(const Eigen::Vector3d& p) const;  // nullopt: outside the grid
+  bool holds(const Cell& c) const;                              // a scan point lies in it
   static constexpr int kBlockShift = 3;  // blocks of 8 x 8 x 8 cells
   std::size_t block(std::size_t i, std::size_t j, std::size_t k) const {  // of cell (i, j, k)
     return ((k >> kBlockShift) * by_ + (j >> kBlockShift)) * bx_ + (i >> kBlockShift);
