@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "detect/common/levenberg_marquardt.hpp"
+#include "detect/learn/learn_surface.hpp"
 
 namespace rangefit {
 namespace {
@@ -79,13 +80,26 @@ double volume_factor(const Superquadric& s, const ShapeFitOptions& o) {
   return std::sqrt(1.0 + o.volume_weight * s.a1 * s.a2 * s.a3 / o.reference_volume);
 }
 
-// The residual of one point from |q| and G(q): the radial distance (mm, positive outside) or
-// the metric F^eps1 - 1.
-double residual(double g, double q_norm, bool radial) {
-  if (!radial) return g - 1.0;
-  constexpr double kTinyG =
-      1e-12;  // the centre itself: inside by about its distance to the surface
-  return q_norm * (1.0 - 1.0 / std::sqrt(std::max(g, kTinyG)));
+// The residual of one point from G(q) and dG/dq (FitResidual), with its gradient in q. `scale`
+// is the distance's 1 / |df/dq| (learn_surface.hpp), 1 for the others.
+struct PointResidual {
+  double r = 0.0, scale = 1.0;
+  Eigen::Vector3d dr_dq = Eigen::Vector3d::Zero();
+};
+PointResidual point_residual(double g, const Eigen::Vector3d& dg_dq, const Eigen::Vector3d& q,
+                             FitResidual kind) {
+  if (kind == FitResidual::kMetric) return {g - 1.0, 1.0, dg_dq};
+  const RadialDistance d = radial_distance(g, dg_dq, q);
+  const double scale = kind == FitResidual::kDistance ? d.normalising() : 1.0;
+  return {d.f * scale, scale, d.df_dq * scale};
+}
+
+// The same point's residual for a nudged model (a Jacobian column by differences), from the
+// nudged G, with the distance's scale of the current model. Holding that factor fixed within
+// one linearisation (as iteratively reweighted least squares does) leaves the point's distance
+// as the quantity minimised, at no second gradient per nudge.
+double nudged_residual(double g, double q_norm, double scale, FitResidual kind) {
+  return kind == FitResidual::kMetric ? g - 1.0 : scale * radial_distance(g, q_norm);
 }
 
 // The point of the part farthest along `u` (unit, part frame): where the normal of the untapered
@@ -149,22 +163,17 @@ struct Problem {
       Eigen::Vector3d grad;
       const double g = m.value_and_gradient(q, grad);
       const double qn = q.norm();
-      const double r = w * residual(g, qn, o.radial);
-      // dr/dq: grad for the metric; for the radial distance d = |q| - |q| G^-1/2,
-      // dd/dq = (1 - G^-1/2) q / |q| + |q| G^-3/2 grad / 2.
-      Eigen::Vector3d dq = grad;
-      if (o.radial) {
-        const double gs = std::max(g, 1e-12), inv_sqrt = 1.0 / std::sqrt(gs);
-        dq = 0.5 * qn * inv_sqrt / gs * grad;
-        if (qn > 0.0) dq += (1.0 - inv_sqrt) / qn * q;
-      }
-      jrow.head<3>() = -w * (R * dq);
-      jrow.segment<3>(3) = w * dq.cross(q);
+      const PointResidual p = point_residual(g, grad, q, o.residual);
+      const double r = w * p.r;
+      jrow.head<3>() = -w * (R * p.dr_dq);
+      jrow.segment<3>(3) = w * p.dr_dq.cross(q);
       jrow.tail<kModel>().setZero();
       for (int j = 0; j < model_params(); ++j) {
-        jrow[6 + j] = step[j] != 0.0
-                          ? (w_nudged[j] * residual(g_nudged[j][i], qn, o.radial) - r) / step[j]
-                          : 0.0;
+        jrow[6 + j] =
+            step[j] != 0.0
+                ? (w_nudged[j] * nudged_residual(g_nudged[j][i], qn, p.scale, o.residual) - r) /
+                      step[j]
+                : 0.0;
       }
       lin.cost += 0.5 * r * r;
       lin.jtj.selfadjointView<Eigen::Upper>().rankUpdate(jrow);

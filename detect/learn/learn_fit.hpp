@@ -3,14 +3,18 @@
 // taper kx ky and the pose, thirteen parameters, by Levenberg-Marquardt
 // (detect/levenberg_marquardt.hpp, the loop the pose fit runs) on the residuals
 //
-//   r_i = sqrt(1 + lambda a1 a2 a3 / V0) d_i,   d_i = |q_i| (1 - G(q_i)^-1/2)
+//   r_i = sqrt(1 + lambda a1 a2 a3 / V0) d_i,   d_i = f_i / |df_i/dq|,
+//   f_i = |q_i| (1 - G(q_i)^-1/2)
 //
-// d_i is the radial distance of the point q_i (part frame) from the surface, from the metric
+// f_i is the radial distance of the point q_i (part frame) from the surface, from the metric
 // G = F^eps1 of eq. 5.1 (thesis 2.2.1: the radial Euclidean distance fits better than the
-// algebraic one). The volume term after Solina and Bajcsy [116] (the note under eq. 5.1) prefers
-// the smaller of the superquadrics that explain the points equally, which keeps a single-view
-// fit from growing into the unseen side. It is 1 + lambda V / V0 rather than Solina's V / V0
-// because with a true distance that factor alone would let a part shrink to nothing (V -> 0
+// algebraic one); d_i, f_i over its gradient's length, is the distance along the normal to first
+// order (detect/learn/learn_surface.hpp: f alone inflates the noise near a tapered part's narrow
+// end many times over, and a fit on it blunts a pyramid's tip). The factor 1 / |df/dq| is held
+// within one linearisation. The volume term after Solina and Bajcsy [116] (the note under eq. 5.1)
+// prefers the smaller of the superquadrics that explain the points equally, which keeps a
+// single-view fit from growing into the unseen side. It is 1 + lambda V / V0 rather than Solina's V
+// / V0 because with a true distance that factor alone would let a part shrink to nothing (V -> 0
 // drives every residual to 0). V0 is common to all starts, so their costs compare. Sizes move
 // in log steps, shape and taper additively, clamped to their valid ranges; the pose by
 // R <- R exp([w]x) as in the pose fit. The pose columns of the Jacobian are analytic (the
@@ -30,17 +34,25 @@ struct PosedSuperquadric {
   Eigen::Isometry3d T_world_part = Eigen::Isometry3d::Identity();
 };
 
+// What each point contributes to the fit. The metric F^eps1 - 1 shrinks with the distance of a
+// point from the centre, so from one view it prefers parts whose centre lies far behind the
+// seen surface (a sphere's cap is fitted by an elongated egg with a smaller M); the distances do
+// not. The radial distance f_i pulls a start far from the points into place as surely as the
+// distance d_i (a mug's handle started from its moments reaches its shape on f_i, and stops in a
+// wrong shape on d_i), but it biases the end of the fit where it overstates the distance.
+enum class FitResidual {
+  kMetric,    // F^eps1 - 1
+  kRadial,    // f_i, mm
+  kDistance,  // d_i, mm
+};
+
 struct ShapeFitOptions {
   int max_iterations = 100;
   double step_tolerance = 1e-6;   // eq. 2.64, relative to the centre's distance from the origin
   double reference_volume = 1.0;  // V0 of the residual, mm^3 (> 0)
   double volume_weight = 0.05;    // lambda: r_i x sqrt(1 + lambda a1 a2 a3 / V0); 0: no volume term
   bool fit_taper = true;          // false: kx, ky stay as given
-  // Residual: the radial distance |q| (1 - G^-1/2) (mm; exact for untapered parts) instead of
-  // F^eps1 - 1. The metric shrinks with the distance of a point from the centre, so from one
-  // view it prefers parts whose centre lies far behind the seen surface (a sphere's cap is fitted
-  // by an elongated egg with a smaller M); the radial distance does not.
-  bool radial = true;
+  FitResidual residual = FitResidual::kDistance;
   double min_eps = 0.1, max_eps = 2.0;
   double max_taper = 1.0;  // |kx|, |ky| at most this
   double min_size_mm = 0.5;

@@ -1,5 +1,6 @@
 #include "detect/learn/learn_surface.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -8,16 +9,47 @@
 
 namespace rangefit {
 
-double radial_rms_mm(const Superquadric& sq, const Eigen::Isometry3d& T_world_part,
-                     std::span<const Eigen::Vector3d> points) {
+double RadialDistance::normalising() const {
+  // |df/dq| is 1 along the ray on an untapered part and larger elsewhere; the floor only keeps
+  // a degenerate gradient (the centre of a part) finite.
+  constexpr double kMinGradient = 1e-9;
+  return 1.0 / std::max(df_dq.norm(), kMinGradient);
+}
+
+namespace {
+// The centre itself (G = 0) is inside by about its distance to the surface.
+constexpr double kTinyG = 1e-12;
+}  // namespace
+
+double radial_distance(double g, double q_norm) {
+  return q_norm * (1.0 - 1.0 / std::sqrt(std::max(g, kTinyG)));
+}
+
+RadialDistance radial_distance(double g, const Eigen::Vector3d& dg_dq, const Eigen::Vector3d& q) {
+  // df/dq = (1 - G^-1/2) q / |q| + |q| G^-3/2 dG/dq / 2.
+  const double gs = std::max(g, kTinyG), inv_sqrt = 1.0 / std::sqrt(gs), qn = q.norm();
+  RadialDistance r;
+  r.f = radial_distance(g, qn);
+  r.df_dq = 0.5 * qn * inv_sqrt / gs * dg_dq;
+  if (qn > 0.0) r.df_dq += (1.0 - inv_sqrt) / qn * q;
+  return r;
+}
+
+double radial_surface_distance(const SuperquadricMetric& metric, const Eigen::Vector3d& q) {
+  Eigen::Vector3d grad;
+  const double g = metric.value_and_gradient(q, grad);
+  const RadialDistance r = radial_distance(g, grad, q);
+  return r.f * r.normalising();
+}
+
+double surface_rms_mm(const Superquadric& sq, const Eigen::Isometry3d& T_world_part,
+                      std::span<const Eigen::Vector3d> points) {
   if (points.empty()) return 0.0;
   const SuperquadricMetric m(sq);
   const Eigen::Isometry3d inv = T_world_part.inverse();
   double sum = 0.0;
   for (const Eigen::Vector3d& p : points) {
-    const Eigen::Vector3d q = inv * p;
-    const double g = m.value(q);
-    const double d = g > 0.0 ? q.norm() * std::abs(1.0 - 1.0 / std::sqrt(g)) : 0.0;
+    const double d = radial_surface_distance(m, inv * p);
     sum += d * d;
   }
   return std::sqrt(sum / static_cast<double>(points.size()));

@@ -69,6 +69,23 @@ TEST(LearnDaily, TheSphereFromOneViewIsNotAnEgg) {
   }
 }
 
+// A pyramid from one oblique view (tuning seeds 12 and 17): its tip is 1.6 mm wide on a 30 mm
+// base. Fitted on the radial distance, which reads the noise near the tip many times over, the
+// fits blunted the tip to 7 mm across and widened the middle by 32 % (seed 12), or turned the
+// square section into a diamond (seed 17, eps2 1.94); on the distance from the surface the
+// learnt pyramid is the true one.
+TEST(LearnDaily, APyramidsTipIsNotBluntedByTheNoiseAroundIt) {
+  const sim::DailyObject pyramid = sim::daily_life_objects()[3];
+  ASSERT_EQ(pyramid.name, "pyramid");
+  for (std::uint64_t seed : {12u, 17u}) {
+    const test::DailyLearnt l = test::learn_daily(pyramid, seed, 1);
+    print(pyramid, 1, l);
+    ASSERT_TRUE(l.result.learnt()) << seed << ": " << to_string(l.result.reason);
+    EXPECT_LE(l.size, 0.02) << seed;
+    EXPECT_LE(l.shape, 0.1) << seed;
+  }
+}
+
 }  // namespace learn_daily_test
 }  // namespace rangefit
 

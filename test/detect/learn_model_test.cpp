@@ -63,19 +63,16 @@ struct ThesisCase {
   double size_two, shape_two;  // what two views reach (the goal: 1 %, 0.05)
 };
 
-// The goals are met except for the cone from two views, 1.3 % (the limit below; 1.8 % from one
-// view). Its a3 is short, the taper -0.975 and the centre 0.5 mm low with the base on the table:
-// near the apex the surface has next to no area and next to no points (the highest point seen is
-// 78.5 mm of 80), so the sides fix where they meet (a3 / |k|) but a3 and the taper slide along
-// that valley; with the 0.05 mm noise the points near the tip prefer a blunted tip clearly
-// enough that a refit with the taper on its bound costs more (model_learning.cpp keeps that refit
-// only when the points cannot tell: on other yaws it brings two views to 0.1 %). Noise-free,
-// both views give the exact cone; twice the rays per view still leave it 1-2 % short.
+// Every goal is met, the cone's too. Near its apex the surface has next to no area and next to
+// no points (the highest point seen is 1.5 mm below the tip), so the sides fix where they meet
+// (a3 / |k|) but a3 and the taper slide along that valley; with the 0.05 mm noise the fit
+// prefers a blunted tip (a3 1.9 % short from two views), and the refit with the taper on its
+// bound is kept when the points do not show the blunted tip clearly (model_learning.cpp).
 const ThesisCase kThesis[] = {
     {"cylinder", sim::cylinder_model(), 0.02, 0.1, 0.01, 0.05},
     {"box", sim::box_model(), 0.02, 0.1, 0.01, 0.05},
     {"sphere", sim::sphere_model(), 0.02, 0.1, 0.01, 0.05},
-    {"cone", sim::cone_model(), 0.02, 0.1, 0.015, 0.05},
+    {"cone", sim::cone_model(), 0.02, 0.1, 0.01, 0.05},
 };
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -91,10 +88,12 @@ TEST(LearnModel, LearnsTheThesisObjectsFromOneView) {
     ASSERT_TRUE(l.result.learnt()) << c.name << ": " << describe(l);
     EXPECT_LE(l.error.size, c.size_one) << c.name << ": " << describe(l);
     EXPECT_LE(l.error.shape, c.shape_one) << c.name << ": " << describe(l);
-    // A single view sees well under all of the surface, and the points lie on the fit.
+    // A single view sees well under all of the surface, and the points lie on the fit: their
+    // rms distance from it is the scan's noise (the radial distance read the cone's 0.05 mm
+    // noise as 0.1 mm).
     EXPECT_GT(l.result.parts[0].visible_share, 0.25) << c.name;
     EXPECT_LT(l.result.parts[0].visible_share, 0.65) << c.name;
-    EXPECT_LT(l.result.parts[0].residual_mm, 3.0 * kNoise) << c.name;
+    EXPECT_LT(l.result.parts[0].residual_mm, 1.3 * kNoise) << c.name;
   }
 }
 
