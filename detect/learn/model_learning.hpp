@@ -50,8 +50,8 @@ struct LearnOptions {
   double support_weight = 0.1;
   FitResidual residual = FitResidual::kDistance;  // of the fits (ShapeFitOptions)
   // Of the rough fits that compare the cuts of a compound object into two parts: the radial
-  // distance leads the few short fits from the moments into the parts' shapes more surely (with
-  // the distance, 3 of 20 two-view mugs lost their handle's shape to a wrong cut).
+  // distance leads the few short fits from the moments into the parts' shapes more surely (on
+  // the distance, 2 more of 20 two-view mugs lost their handle's shape to a wrong cut).
   FitResidual rough_residual = FitResidual::kRadial;
   bool fit_taper = true;
   double max_taper = 1.0;
