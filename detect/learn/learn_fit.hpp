@@ -11,12 +11,12 @@
 // algebraic one); d_i, f_i over its gradient's length, is the distance along the normal to first
 // order (detect/learn/learn_surface.hpp: f alone inflates the noise near a tapered part's narrow
 // end many times over, and a fit on it blunts a pyramid's tip). The factor 1 / |df/dq| is held
-// within one linearisation. The volume term after Solina and Bajcsy [116] (the note under eq. 5.1)
-// prefers the smaller of the superquadrics that explain the points equally, which keeps a
-// single-view fit from growing into the unseen side. It is 1 + lambda V / V0 rather than Solina's V
-// / V0 because with a true distance that factor alone would let a part shrink to nothing (V -> 0
-// drives every residual to 0). V0 is common to all starts, so their costs compare. Sizes move
-// in log steps, shape and taper additively, clamped to their valid ranges; the pose by
+// within one linearisation. The volume term after Solina and Bajcsy [116] (the note under
+// eq. 5.1) prefers the smaller of the superquadrics that explain the points equally, which keeps
+// a single-view fit from growing into the unseen side. It is 1 + lambda V / V0 rather than
+// Solina's V / V0 because with a true distance that factor alone would let a part shrink to
+// nothing (V -> 0 drives every residual to 0). V0 is common to all starts, so their costs compare.
+// Sizes move in log steps, shape and taper additively, clamped to their valid ranges; the pose by
 // R <- R exp([w]x) as in the pose fit. The pose columns of the Jacobian are analytic (the
 // metric's gradient), the seven model columns forward differences through the vectorised
 // metric (SuperquadricMetric::values).

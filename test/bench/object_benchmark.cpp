@@ -186,17 +186,23 @@ void detect_each_iteration(benchmark::State& state, const ObjectModel& model, co
   state.counters["vote_ms"] = vote_ms / runs;
 }
 
-void BM_DetectFig518(benchmark::State& state) {
-  const Scene& s = fig_scene();
+// A whole detection per iteration: in milliseconds, five repetitions, their aggregates only.
+void detection_runs(benchmark::internal::Benchmark* b) {
+  b->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
+}
+
+// Figure 5.18's four objects, the argument saying which, each as detection_runs.
+void fig518_objects(benchmark::internal::Benchmark* b) { detection_runs(b->DenseRange(0, 3)); }
+
+// Figure 5.18's object state.range(0) searched for in `s`, labelled with `what` and the points.
+void detect_fig518_object(benchmark::State& state, const Scene& s, const std::string& what) {
   const ObjectModel model = fig_model(static_cast<int>(state.range(0)));
   detect_each_iteration(state, model, s);
-  state.SetLabel(model.name + ", " + std::to_string(s.rendered.cloud.size()) + " points");
+  state.SetLabel(model.name + what + ", " + std::to_string(s.rendered.cloud.size()) + " points");
 }
-BENCHMARK(BM_DetectFig518)
-    ->DenseRange(0, 3)
-    ->Unit(benchmark::kMillisecond)
-    ->Repetitions(5)
-    ->ReportAggregatesOnly(true);
+
+void BM_DetectFig518(benchmark::State& state) { detect_fig518_object(state, fig_scene(), ""); }
+BENCHMARK(BM_DetectFig518)->Apply(fig518_objects);
 
 // Figure 5.18 without object i, the other three where they are, searched for object i: a scene
 // without the object, beside BM_DetectFig518/i where it is found (the goal: at most twice that
@@ -214,16 +220,9 @@ const Scene& fig_scene_without(int i) {
   return scenes[static_cast<std::size_t>(i)];
 }
 void BM_DetectFig518Absent(benchmark::State& state) {
-  const Scene& s = fig_scene_without(static_cast<int>(state.range(0)));
-  const ObjectModel model = fig_model(static_cast<int>(state.range(0)));
-  detect_each_iteration(state, model, s);
-  state.SetLabel(model.name + " absent, " + std::to_string(s.rendered.cloud.size()) + " points");
+  detect_fig518_object(state, fig_scene_without(static_cast<int>(state.range(0))), " absent");
 }
-BENCHMARK(BM_DetectFig518Absent)
-    ->DenseRange(0, 3)
-    ->Unit(benchmark::kMillisecond)
-    ->Repetitions(5)
-    ->ReportAggregatesOnly(true);
+BENCHMARK(BM_DetectFig518Absent)->Apply(fig518_objects);
 
 // Baseline in the same run: the thesis's method C (10 hypotheses x 10 trials, ranked vote).
 void BM_DetectFig518MethodC(benchmark::State& state) {
@@ -236,21 +235,14 @@ void BM_DetectFig518MethodC(benchmark::State& state) {
   }
   state.SetLabel(model.name + ", method C");
 }
-BENCHMARK(BM_DetectFig518MethodC)
-    ->DenseRange(0, 3)
-    ->Unit(benchmark::kMillisecond)
-    ->Repetitions(5)
-    ->ReportAggregatesOnly(true);
+BENCHMARK(BM_DetectFig518MethodC)->Apply(fig518_objects);
 
 void BM_DetectMallet(benchmark::State& state) {
   const Scene& s = mallet_scene();
   detect_each_iteration(state, test::mallet_model(), s);
   state.SetLabel(std::to_string(s.rendered.cloud.size()) + " points");
 }
-BENCHMARK(BM_DetectMallet)
-    ->Unit(benchmark::kMillisecond)
-    ->Repetitions(5)
-    ->ReportAggregatesOnly(true);
+BENCHMARK(BM_DetectMallet)->Apply(detection_runs);
 
 // In-run baseline: 24 hypotheses per part over the whole scan and none seeded by the links (the
 // defaults before the linked search; 18 + the linked ones now).
@@ -262,10 +254,7 @@ void BM_DetectMalletWithoutLinkedSearch(benchmark::State& state) {
   });
   state.SetLabel("24 per part, no linked search");
 }
-BENCHMARK(BM_DetectMalletWithoutLinkedSearch)
-    ->Unit(benchmark::kMillisecond)
-    ->Repetitions(5)
-    ->ReportAggregatesOnly(true);
+BENCHMARK(BM_DetectMalletWithoutLinkedSearch)->Apply(detection_runs);
 
 // The hardest realistic mallet input the benchmark knows: varied two-camera tuning scene 301
 // (149,000 points), a wall in front of the mallet whose flat patches a lying can fits better
@@ -302,18 +291,12 @@ void detect_walled_mallet(benchmark::State& state, bool linked) {
 }
 
 void BM_DetectMalletBehindAWall(benchmark::State& state) { detect_walled_mallet(state, true); }
-BENCHMARK(BM_DetectMalletBehindAWall)
-    ->Unit(benchmark::kMillisecond)
-    ->Repetitions(5)
-    ->ReportAggregatesOnly(true);
+BENCHMARK(BM_DetectMalletBehindAWall)->Apply(detection_runs);
 
 void BM_DetectMalletBehindAWallWithoutLinkedSearch(benchmark::State& state) {
   detect_walled_mallet(state, false);
 }
-BENCHMARK(BM_DetectMalletBehindAWallWithoutLinkedSearch)
-    ->Unit(benchmark::kMillisecond)
-    ->Repetitions(5)
-    ->ReportAggregatesOnly(true);
+BENCHMARK(BM_DetectMalletBehindAWallWithoutLinkedSearch)->Apply(detection_runs);
 
 void BM_DetectMalletMethodC(benchmark::State& state) {
   const Scene& s = mallet_scene();
@@ -324,10 +307,7 @@ void BM_DetectMalletMethodC(benchmark::State& state) {
   }
   state.SetLabel("method C");
 }
-BENCHMARK(BM_DetectMalletMethodC)
-    ->Unit(benchmark::kMillisecond)
-    ->Repetitions(5)
-    ->ReportAggregatesOnly(true);
+BENCHMARK(BM_DetectMalletMethodC)->Apply(detection_runs);
 
 // --- statistics modes ---------------------------------------------------------------------
 
