@@ -28,6 +28,10 @@ struct VariedCase {
   sim::VariedScene::Factors factors;
   bool found = false, tp = false;
   double ms = 0.0;
+  // Where the time went: the search for hypotheses, and the vote with the confirmation of its
+  // candidates (slides and turns of rejected ones included); and how many hypotheses ran.
+  double search_ms = 0.0, confirm_ms = 0.0;
+  int hypotheses = 0;
   double centre_mm = 0.0;  // a true positive's largest centre error over the target's parts
   std::string model;       // the model searched for (on an object-free scene, the absent one)
 };
@@ -90,6 +94,9 @@ inline VariedCase run_varied_case(const VariedRun& run, sim::VariedTarget target
   c.seed = seed;
   c.repetition = repetition;
   c.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  c.search_ms = r.time.hypotheses_ms;
+  c.confirm_ms = r.time.vote_ms;
+  c.hypotheses = r.hypotheses_evaluated;
   c.factors = s.factors;
   c.model = s.model.name;
   c.found = r.found();
@@ -111,10 +118,14 @@ inline double median_of(std::vector<double> v) {
 struct Tally {
   int n = 0, tp = 0, wrong = 0, missed = 0;
   std::vector<double> ms, centre_mm;  // every case's time; the true positives' centre errors
+  std::vector<double> search_ms, confirm_ms, hypotheses;  // every case's
   void add(const VariedCase& c) {
     ++n;
     c.tp ? ++tp : c.found ? ++wrong : ++missed;
     ms.push_back(c.ms);
+    search_ms.push_back(c.search_ms);
+    confirm_ms.push_back(c.confirm_ms);
+    hypotheses.push_back(c.hypotheses);
     if (c.tp) centre_mm.push_back(c.centre_mm);
   }
   double median_ms() const { return median_of(ms); }
@@ -223,7 +234,7 @@ inline void print_varied_block(const char* title, std::uint64_t first, const Var
                                        sim::VariedTarget::kBox,    sim::VariedTarget::kCone,
                                        sim::VariedTarget::kMallet, sim::VariedTarget::kThreeSpheres,
                                        sim::VariedTarget::kNone};
-  std::map<std::string, double> found_ms;  // per model: the true positives' median time
+  std::map<std::string, Tally> found;  // per model: its true positives
   for (sim::VariedTarget target : targets) {
     if (run.only && target != *run.only) continue;
     std::vector<VariedCase> cases;
@@ -253,12 +264,12 @@ inline void print_varied_block(const char* title, std::uint64_t first, const Var
     if (!absent) row("occlusion <= 40 %", light);
     if (!absent) row("each part lost <= 40 %", seen);
     if (!absent) {
-      Tally found;
+      Tally tp;
       for (const VariedCase& c : cases) {
-        if (c.tp) found.add(c);
+        if (c.tp) tp.add(c);
       }
       // The first target of a model: the lone sphere, not the three spheres.
-      if (found.n) found_ms.emplace(cases.front().model, found.median_ms());
+      if (tp.n) found.emplace(cases.front().model, tp);
     } else {
       // An object-free scene searches for one of the models: its time beside the time the same
       // model takes where it is found (the true positives' median, when that target ran too).
@@ -275,10 +286,18 @@ inline void print_varied_block(const char* title, std::uint64_t first, const Var
           if (c.model == m) t.add(c);
         }
         print_tally_row("searching " + m, t, true);
-        const auto it = found_ms.find(m);
-        if (it != found_ms.end() && it->second > 0.0) {
-          std::printf("  %-28s %.2f x its found median (%.1f ms)\n", "", t.median_ms() / it->second,
-                      it->second);
+        const auto it = found.find(m);
+        if (it != found.end() && it->second.median_ms() > 0.0) {
+          const Tally& f = it->second;
+          std::printf("  %-28s %.2f x its found median (%.1f ms)\n", "",
+                      t.median_ms() / f.median_ms(), f.median_ms());
+          // The two stages beside those of the true positives (medians): an absent part runs every
+          // hypothesis and judges every candidate the vote offers.
+          std::printf(
+              "  %-28s search %.1f ms (%.0f hypotheses) and confirmation %.1f ms, against "
+              "%.1f ms (%.0f) and %.1f ms found\n",
+              "", median_of(t.search_ms), median_of(t.hypotheses), median_of(t.confirm_ms),
+              median_of(f.search_ms), median_of(f.hypotheses), median_of(f.confirm_ms));
         }
       }
     }
