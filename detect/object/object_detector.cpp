@@ -69,8 +69,9 @@ bool options_ok(const ObjectDetectOptions& o) {
          o.max_settle_rad >= 0.0 && o.confirmations >= 1 && o.refine_trim >= 0.0 &&
          o.max_measure > 0.0 && o.max_interior_ratio >= 0.0 && o.min_coverage >= 0.0 &&
          o.min_coverage_unknown_sensor >= 0.0 && o.min_coverage_compound_part >= 0.0 &&
-         o.max_seen_through >= 0.0 && o.max_open_end >= 0.0 && o.max_open_end_compound >= 0.0 &&
-         o.max_open_rim >= 0.0 && o.min_measurable_share_covered >= 0.0 && o.full_coverage >= 0.0 &&
+         o.max_seen_through >= 0.0 && o.compound_screen_slack >= 1.0 && o.max_open_end >= 0.0 &&
+         o.max_open_end_compound >= 0.0 && o.max_open_rim >= 0.0 &&
+         o.min_measurable_share_covered >= 0.0 && o.full_coverage >= 0.0 &&
          o.max_size_deviation > 0.0 && o.size_deviation_sigmas >= 0.0 && o.max_candidates >= 1 &&
          o.min_measurable_samples >= 0 && o.min_measurable_share >= 0.0 &&
          o.max_continuation >= 0.0 && o.plane_margin_mm >= 0.0 && o.rest_noise_factor >= 0.0 &&
@@ -618,12 +619,14 @@ std::vector<PartHypothesis> seen_as_claimed(const HypothesisContext& ctx, const 
     place_of[i] = static_cast<std::size_t>(it - first_of.begin());
     if (it == first_of.end()) first_of.push_back(i);
   }
+  ObjectDetectOptions screen = o;  // the hypothesis's own pose: see compound_screen_slack
+  screen.max_seen_through *= o.compound_screen_slack;
   std::vector<std::optional<Rejection>> verdict(first_of.size());
   parallel_for(first_of.size(), o.threads, [&](std::size_t k) {
     const Eigen::Isometry3d& T = hyps[first_of[k]].T_world_part;
     const SurfaceCoverage c = surface_coverage(part, T, ctx.points, *ctx.tree, cover, kSurfaceOnly);
     verdict[k] =
-        unconfirmed(c, o, cover.sensor.kind != SensorView::Kind::kUnknown, false, noise_mm);
+        unconfirmed(c, screen, cover.sensor.kind != SensorView::Kind::kUnknown, false, noise_mm);
     if (verdict[k]) {
       verdict[k]->part = part_index;
       verdict[k]->centre = T.translation();

@@ -109,10 +109,11 @@ TEST(AxialSlide, ANeighboursFaceAGapPastALongPartsEndDoesNotCarryItOn) {
 // wrongly: seed 7, a head lying with its caps along the sweep, fitted 4 mm short of its wall's
 // end and rejected as continuing past it; seed 28, its shaft 3-4 mm off along its axis; seed 15,
 // a shaft rolled about its axis. Both parts must be the true ones (centre < 3 mm, axis < 5 deg).
-void expect_mallet_found(std::uint64_t seed, bool two_cameras = false) {
+void expect_mallet_found(std::uint64_t seed, bool two_cameras = false, bool pan_tilt = false) {
   sim::VariedSceneOptions so;
   so.target = sim::VariedTarget::kMallet;
   so.two_camera_probability = two_cameras ? 1.0 : 0.0;
+  so.pan_tilt = pan_tilt;
   const sim::VariedScene s = sim::make_varied_scene(so, seed);
   ObjectDetectOptions o;
   o.seed = seed;
@@ -166,6 +167,15 @@ TEST(ObjectMallet, AHeadMissedOverTheWholeScanIsFoundWhereItsShaftPutsIt) {
 // shaft's wall run on, and the shaft stayed 7.5 mm off along its axis, away from the head.
 TEST(ObjectMallet, AShaftIsNotHeldOffItsWallByANeighbourPastItsEnd) {
   expect_mallet_found(377, true);
+}
+
+// Pan-tilt varied scenes (tuning seeds) with the mallet mostly hidden (0.68-0.76 of a part lost):
+// the head's hypotheses were screened at their own poses before the parts were linked, and on
+// seed 133 the true head's showed 0.056 of its surface seen through against the confirmation's
+// 0.05; on seeds 178 and 181 the vote was left with no linked pair. The screen allows more than
+// the confirmation of the linked object does (compound_screen_slack).
+TEST(ObjectMallet, AHeadFittedALittleOffIsNotScreenedOutBeforeItIsLinked) {
+  for (std::uint64_t seed : {133u, 178u, 181u}) expect_mallet_found(seed, false, true);
 }
 
 // Seed 148: a look-alike mallet 10 % smaller, fitted to the model, sinks 6 mm into the table
