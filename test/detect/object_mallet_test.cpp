@@ -169,7 +169,7 @@ TEST(ObjectMallet, AShaftIsNotHeldOffItsWallByANeighbourPastItsEnd) {
   expect_mallet_found(377, true);
 }
 
-// Pan-tilt varied scenes (tuning seeds) with the mallet mostly hidden (0.68-0.76 of a part lost):
+// Pan-tilt varied scenes (tuning seeds) with the mallet mostly hidden (0.68-0.82 of a part lost):
 // the head's hypotheses were screened at their own poses before the parts were linked, and on
 // seed 133 the true head's showed 0.056 of its surface seen through against the confirmation's
 // 0.05; on seeds 178 and 181 the vote was left with no linked pair. The screen allows more than
