@@ -90,6 +90,9 @@ std::optional<std::chrono::nanoseconds> join_stamp(double hi, double lo) {
   return std::chrono::nanoseconds(static_cast<std::int64_t>(bits));
 }
 
+namespace {
+
+// writable_cells's check of the cloud's arrays and grid.
 std::vector<std::int32_t> checked_cells(const std::filesystem::path& file,
                                         const PointCloud& cloud) {
   const std::size_t n = cloud.size();
@@ -144,6 +147,19 @@ void check_precision(const std::filesystem::path& file, const PointCloud& cloud,
   };
   check(cloud.points, "point");
   check(cloud.normals, "normal of point");
+}
+
+}  // namespace
+
+std::vector<std::int32_t> writable_cells(const std::filesystem::path& file, const PointCloud& cloud,
+                                         Precision precision) {
+  std::vector<std::int32_t> cells = checked_cells(file, cloud);
+  check_precision(file, cloud, precision);
+  if (!cloud.frame_id.empty() && !is_safe_frame_id(cloud.frame_id)) {
+    throw IoError(
+        file, "cannot write: frame_id " + printable(cloud.frame_id) + " is not one printable word");
+  }
+  return cells;
 }
 
 std::size_t max_grid_cells(std::size_t file_bytes) {

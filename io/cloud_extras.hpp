@@ -28,15 +28,16 @@ StampWords split_stamp(std::chrono::nanoseconds stamp);
 // nullopt when the words are not integers in their types' ranges.
 std::optional<std::chrono::nanoseconds> join_stamp(double hi, double lo);
 
-// Checks that a cloud handed to a writer is consistent (normals/stamps sized like the points, grid
-// cells within range and each point in at most one cell); throws IoError naming `file` otherwise.
+// Checks that a cloud handed to a writer can be written at `precision`; throws IoError naming
+// `file` otherwise:
+// - it is consistent: normals and stamps sized like the points, grid cells within range and each
+//   point in at most one cell;
+// - with kFloat32, no finite coordinate or normal component is beyond float's range (converting
+//   it would be undefined, not infinite);
+// - its frame id, if any, is one printable word (is_safe_frame_id).
 // Returns the cell of each point (-1 when it is in none), empty for an unorganised cloud.
-std::vector<std::int32_t> checked_cells(const std::filesystem::path& file, const PointCloud& cloud);
-
-// Throws IoError naming `file` when `precision` is kFloat32 and a finite coordinate or normal
-// component is beyond float's range (converting it would be undefined, not infinite).
-void check_precision(const std::filesystem::path& file, const PointCloud& cloud,
-                     Precision precision);
+std::vector<std::int32_t> writable_cells(const std::filesystem::path& file, const PointCloud& cloud,
+                                         Precision precision);
 
 // Largest grid a file of `file_bytes` may declare: the index is allocated before the points are
 // read, so it is bounded by the file size (with a floor for sparse scans in small files).

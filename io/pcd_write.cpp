@@ -13,12 +13,7 @@ namespace rangefit::io {
 
 void write_pcd(const std::filesystem::path& path, const PointCloud& cloud, PcdEncoding encoding,
                Precision precision) {
-  const std::vector<std::int32_t> cells = detail::checked_cells(path, cloud);
-  detail::check_precision(path, cloud, precision);
-  if (!cloud.frame_id.empty() && !detail::is_safe_frame_id(cloud.frame_id)) {
-    throw IoError(path, "cannot write: frame_id " + detail::printable(cloud.frame_id) +
-                            " is not one printable word");
-  }
+  const std::vector<std::int32_t> cells = detail::writable_cells(path, cloud, precision);
   for (std::size_t i = 0; i < cells.size(); ++i) {
     if (cells[i] < 0) {
       throw IoError(path, "cannot write: point " + std::to_string(i) +
@@ -62,7 +57,7 @@ void write_pcd(const std::filesystem::path& path, const PointCloud& cloud, PcdEn
   const double nan = std::numeric_limits<double>::quiet_NaN();
   auto put = [&](double value) {
     if (f32) {
-      const auto single = static_cast<float>(value);  // in range: check_precision
+      const auto single = static_cast<float>(value);  // in range: writable_cells
       if (!ascii) return detail::append_raw(out, single, false);
       detail::append_number(out, single);  // "nan" for empty cells, as PCL writes them
     } else {

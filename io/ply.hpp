@@ -31,7 +31,7 @@ enum class PlyEncoding { kAscii, kBinaryLittleEndian, kBinaryBigEndian };
 // Throws IoError when the file cannot be read or is malformed, truncated or hostile.
 PointCloud read_ply(const std::filesystem::path& path, CloudReadReport* report = nullptr);
 
-// Throws IoError when the cloud is inconsistent (see detail::checked_cells), holds a value float
+// Throws IoError when the cloud is inconsistent (see detail::writable_cells), holds a value float
 // cannot (kFloat32) or on write failure.
 void write_ply(const std::filesystem::path& path, const PointCloud& cloud,
                PlyEncoding encoding = PlyEncoding::kBinaryLittleEndian,

@@ -12,12 +12,7 @@ namespace rangefit::io {
 
 void write_ply(const std::filesystem::path& path, const PointCloud& cloud, PlyEncoding encoding,
                Precision precision) {
-  const std::vector<std::int32_t> cells = detail::checked_cells(path, cloud);
-  detail::check_precision(path, cloud, precision);
-  if (!cloud.frame_id.empty() && !detail::is_safe_frame_id(cloud.frame_id)) {
-    throw IoError(path, "cannot write: frame_id " + detail::printable(cloud.frame_id) +
-                            " is not one printable word");
-  }
+  const std::vector<std::int32_t> cells = detail::writable_cells(path, cloud, precision);
   const bool normals = cloud.has_normals();
   const bool stamps = cloud.has_stamps();
   const bool grid = cloud.organised();
@@ -52,7 +47,7 @@ void write_ply(const std::filesystem::path& path, const PointCloud& cloud, PlyEn
   out.reserve(out.size() + cloud.size() * (ascii ? 80 : 60));
   auto put_double = [&](double value, bool last) {
     if (f32) {
-      const auto single = static_cast<float>(value);  // in range: check_precision
+      const auto single = static_cast<float>(value);  // in range: writable_cells
       if (!ascii) return detail::append_raw(out, single, big);
       detail::append_number(out, single);
     } else {
