@@ -74,9 +74,9 @@ bool options_ok(const ObjectDetectOptions& o) {
          o.min_measurable_share_covered >= 0.0 && o.full_coverage >= 0.0 &&
          o.max_size_deviation > 0.0 && o.size_deviation_sigmas >= 0.0 && o.max_candidates >= 1 &&
          o.min_measurable_samples >= 0 && o.min_measurable_share >= 0.0 &&
-         o.max_continuation >= 0.0 && o.plane_margin_mm >= 0.0 && o.rest_noise_factor >= 0.0 &&
-         o.rest_size_share >= 0.0 && o.sink_floor_mm >= 0.0 && o.sink_noise_factor >= 0.0 &&
-         o.sink_sigma_factor >= 0.0 && valid(o.sensor);
+         o.max_continuation >= 0.0 && o.max_section_ratio >= 1.0 && o.plane_margin_mm >= 0.0 &&
+         o.rest_noise_factor >= 0.0 && o.rest_size_share >= 0.0 && o.sink_floor_mm >= 0.0 &&
+         o.sink_noise_factor >= 0.0 && o.sink_sigma_factor >= 0.0 && valid(o.sensor);
 }
 
 // The check of eq. 5.2-5.4 that a hypothesis fails (see ObjectDetectOptions::max_measure).
@@ -334,6 +334,17 @@ bool tapered(const Superquadric& part) {
   return std::max(std::abs(part.kx), std::abs(part.ky)) >= kMinTaper;
 }
 
+// A part that the other cross-section fits better (ObjectDetectOptions::max_section_ratio).
+std::optional<Rejection> other_section_fits(const HypothesisContext& ctx, const Superquadric& part,
+                                            const Eigen::Isometry3d& T,
+                                            const ObjectDetectOptions& o) {
+  const SectionEvidence e = section_evidence(ctx, part, T);
+  if (!e.asked || !(e.other_rms_mm > 0.0)) return std::nullopt;
+  const double ratio = e.model_rms_mm / e.other_rms_mm;
+  if (ratio <= o.max_section_ratio) return std::nullopt;
+  return Rejection{0, Check::kSection, ratio, o.max_section_ratio, T.translation()};
+}
+
 // Every check a posed part must pass beyond eq. 5.2-5.4, at one pose (judge_part). `alone`: a
 // part of a single-part model, whose measurable share and rest on the table are judged here; a
 // part of a compound object is judged on those together with its siblings (detect_object). The
@@ -399,6 +410,8 @@ std::optional<Rejection> judge_at(const HypothesisContext& ctx, const Superquadr
     if (!continuation) continuation = continuation_of(ctx, part, T, others, noise_mm);
     why = continues(*continuation, T, o, scores);
   }
+  // Last: two more size fits, for a part that passed everything else.
+  if (!why && alone) why = other_section_fits(ctx, part, T, o);
   if (why) why->centre = T.translation();
   return why;
 }
@@ -1466,6 +1479,8 @@ const char* to_string(Check check) {
       return "topples";
     case Check::kContinues:
       return "continues";
+    case Check::kSection:
+      return "section";
     case Check::kLink:
       return "link";
   }

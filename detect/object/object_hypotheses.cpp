@@ -408,6 +408,19 @@ TableBound table_bound(const HypothesisContext& ctx, const Superquadric& part,
   return b;
 }
 
+// The size fit of one SizeCheck on points whose robust spread about the surface is `residual_mm`,
+// held above the table by `bound`.
+SizeFitOptions size_fit_options(const SizeCheck& check, double residual_mm,
+                                const TableBound& bound) {
+  SizeFitOptions so;
+  so.rounds = check.rounds;
+  so.cauchy_mm = std::max(check.cauchy_mm, check.cauchy_sigmas * residual_mm);
+  so.support_plane = bound.plane;
+  so.support_below_mm = bound.below_mm;
+  so.support_above_mm = bound.above_mm;
+  return so;
+}
+
 }  // namespace
 
 Eigen::Isometry3d polish_pose(const HypothesisContext& ctx, const Superquadric& part,
@@ -452,13 +465,8 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
     const TableBound bound = table_bound(ctx, part, start, explained);
     SizeVerdict v;
     for (const SizeCheck& check : kSizeChecks) {
-      SizeFitOptions so;
+      SizeFitOptions so = size_fit_options(check, e.residual_mm, bound);
       so.free_rotation = free_rotation;
-      so.rounds = check.rounds;
-      so.cauchy_mm = std::max(check.cauchy_mm, check.cauchy_sigmas * e.residual_mm);
-      so.support_plane = bound.plane;
-      so.support_below_mm = bound.below_mm;
-      so.support_above_mm = bound.above_mm;
       const SizeFit free =
           fit_size(part, points_within(n, std::max(check.band_mm, kSizeBandSigmas * e.residual_mm)),
                    start, so);
@@ -509,6 +517,34 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
   e.determined = v->determined, e.scale = v->scale, e.allowance = v->allowance;
   e.across_open = v->across_open;
   e.across = v->across, e.along = v->along, e.across_allowance = v->across_allowance;
+  return e;
+}
+
+SectionEvidence section_evidence(const HypothesisContext& ctx, const Superquadric& part,
+                                 const Eigen::Isometry3d& T,
+                                 std::span<const PlacedPart> explained) {
+  constexpr double kRoundExponent = 0.8;  // a section this round or rounder is a can's
+  SectionEvidence e;
+  if (part.has_taper() || part.eps1 > kFlatExponent ||
+      (part.eps2 > kFlatExponent && part.eps2 < kRoundExponent)) {
+    return e;
+  }
+  Superquadric other = part;
+  other.eps2 = part.eps2 <= kFlatExponent ? 1.0 : 0.1;
+  const NearSurface n = near_surface(ctx, part, T, explained);
+  if (n.points.size() < 3 * kMinPatchPoints) return e;
+  // The first size check's band and weights (size_evidence), the same for both sections.
+  const SizeCheck& check = kSizeChecks[0];
+  const double residual = 1.4826 * n.median;
+  const SizeFitOptions so = size_fit_options(check, residual, table_bound(ctx, part, T, explained));
+  const std::vector<Eigen::Vector3d> near =
+      points_within(n, std::max(check.band_mm, kSizeBandSigmas * residual));
+  const SizeFit own = fit_size(part, near, T, so);
+  const SizeFit alt = fit_size(other, near, T, so);
+  if (!own.ok || !alt.ok) return e;
+  e.asked = true;
+  e.model_rms_mm = own.rms_mm;
+  e.other_rms_mm = alt.rms_mm;
   return e;
 }
 

@@ -125,6 +125,19 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
                            const Eigen::Isometry3d& T_world_part,
                            std::span<const PlacedPart> explained = {});
 
+// The points near a part with flat ends fitted with its size let free (size_fit.hpp), and the
+// same with the other cross-section: a box's round (eps2 1), a can's square (eps2 0.1). A can and
+// a box of about the same size each fit the other's points at the scan's noise where little of
+// them is seen, but where their side walls show, the wrong section's rms stands out.
+struct SectionEvidence {
+  bool asked = false;         // false: the part has no such section, or too few points
+  double model_rms_mm = 0.0;  // the model's section
+  double other_rms_mm = 0.0;  // the other one
+};
+SectionEvidence section_evidence(const HypothesisContext& ctx, const Superquadric& part,
+                                 const Eigen::Isometry3d& T_world_part,
+                                 std::span<const PlacedPart> explained = {});
+
 // splitmix64: seeds per hypothesis from (seed, part, index), and the samplers' generator.
 std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t a, std::uint64_t b);
 
