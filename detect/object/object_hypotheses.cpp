@@ -344,6 +344,8 @@ struct NearSurface {
   std::vector<Eigen::Vector3d> points;
   std::vector<double> distance;
   double median = 0.0;  // of the distances
+  // Their robust spread, 1.4826 median |d| (SizeEvidence::residual_mm).
+  double spread_mm() const { return 1.4826 * median; }
 };
 
 NearSurface near_surface(const HypothesisContext& ctx, const Superquadric& part,
@@ -372,6 +374,11 @@ std::vector<Eigen::Vector3d> points_within(const NearSurface& n, double band_mm)
     if (n.distance[i] <= band_mm) out.push_back(n.points[i]);
   }
   return out;
+}
+
+// The points a SizeCheck fits: within its band, or within kSizeBandSigmas x their spread.
+std::vector<Eigen::Vector3d> size_check_points(const NearSurface& n, const SizeCheck& check) {
+  return points_within(n, std::max(check.band_mm, kSizeBandSigmas * n.spread_mm()));
 }
 
 // The table as the size fit's support plane, n . x = offset, and how it bounds the part: both
@@ -446,7 +453,7 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
   // a larger part.
   const NearSurface n = near_surface(ctx, part, T, explained);
   if (n.points.size() < 3 * kMinPatchPoints) return e;
-  e.residual_mm = 1.4826 * n.median;
+  e.residual_mm = n.spread_mm();
   const std::vector<Eigen::Vector3d> sel = points_within(n, std::max(1.0, 3.0 * n.median));
   if (sel.size() < 3 * kMinPatchPoints) return e;
   PoseFitOptions fit;
@@ -467,9 +474,7 @@ SizeEvidence size_evidence(const HypothesisContext& ctx, const Superquadric& par
     for (const SizeCheck& check : kSizeChecks) {
       SizeFitOptions so = size_fit_options(check, e.residual_mm, bound);
       so.free_rotation = free_rotation;
-      const SizeFit free =
-          fit_size(part, points_within(n, std::max(check.band_mm, kSizeBandSigmas * e.residual_mm)),
-                   start, so);
+      const SizeFit free = fit_size(part, size_check_points(n, check), start, so);
       if (!free.ok) return std::optional<SizeVerdict>();
       const SizeVerdict w = size_verdict(free, noise, sigmas);
       // The second fit does not overrule a scale the first placed off by its standard error and
@@ -535,10 +540,9 @@ SectionEvidence section_evidence(const HypothesisContext& ctx, const Superquadri
   if (n.points.size() < 3 * kMinPatchPoints) return e;
   // The first size check's band and weights (size_evidence), the same for both sections.
   const SizeCheck& check = kSizeChecks[0];
-  const double residual = 1.4826 * n.median;
-  const SizeFitOptions so = size_fit_options(check, residual, table_bound(ctx, part, T, explained));
-  const std::vector<Eigen::Vector3d> near =
-      points_within(n, std::max(check.band_mm, kSizeBandSigmas * residual));
+  const SizeFitOptions so =
+      size_fit_options(check, n.spread_mm(), table_bound(ctx, part, T, explained));
+  const std::vector<Eigen::Vector3d> near = size_check_points(n, check);
   const SizeFit own = fit_size(part, near, T, so);
   const SizeFit alt = fit_size(other, near, T, so);
   if (!own.ok || !alt.ok) return e;
