@@ -13,6 +13,7 @@ namespace {
 constexpr std::size_t kMaxBins = std::size_t{1} << 22;
 constexpr std::size_t kExtentStride = 4;   // points read for the image's extent
 constexpr std::size_t kSampleStride = 64;  // points read for the typical distances
+constexpr double kColumnBins = 2.0;        // a column's width, in bins
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
@@ -27,7 +28,7 @@ bool sweep(const SensorView& v) {
 }  // namespace
 
 LaserShadow::LaserShadow(std::span<const Eigen::Vector3d> points, const SensorView& view,
-                         double bin_mm) {
+                         double bin_mm, std::span<const Eigen::Vector3d> beneath) {
   // Without a camera of its own the laser is the only eye, and its lines of sight are its rays.
   if (!sweep(view) || !valid(view) || view.camera_offset.squaredNorm() == 0.0 || !(bin_mm > 0.0) ||
       !std::isfinite(bin_mm)) {
@@ -56,6 +57,10 @@ LaserShadow::LaserShadow(std::span<const Eigen::Vector3d> points, const SensorVi
   ahead_ = ahead.normalized();
   mid_apex_from_pivot_ = at_mid.apex - view.pivot;
   across_ = at_mid.plane_normal.cross(ahead_);
+  int up = 0;
+  ahead_.cwiseAbs().maxCoeff(&up);
+  across_axes_ = {(up + 1) % 3, (up + 2) % 3};
+  mark_columns(beneath.empty() ? points : beneath, bin_mm);
 
   // Bins about bin_mm wide at the points' typical range (and, turning, distance from the axis).
   // Two passes over the points, the rays computed again in the second: a list of them would
@@ -142,8 +147,50 @@ std::optional<std::size_t> LaserShadow::bin_of(double s, double u) const {
   return static_cast<std::size_t>(i) * nu_ + static_cast<std::size_t>(j);
 }
 
+void LaserShadow::mark_columns(std::span<const Eigen::Vector3d> points, double bin_mm) {
+  const int a = across_axes_[0], b = across_axes_[1];
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::max()), hi = -lo;
+  for (const Eigen::Vector3d& p : points) {
+    if (!p.allFinite()) continue;
+    lo = lo.cwiseMin(Eigen::Vector2d(p[a], p[b]));
+    hi = hi.cwiseMax(Eigen::Vector2d(p[a], p[b]));
+  }
+  if (!(lo.x() <= hi.x())) return;
+  column_lo_ = lo, column_hi_ = hi;
+  column_mm_ = kColumnBins * bin_mm;
+  const auto count = [&](int k) {
+    return static_cast<std::size_t>(std::floor((hi[k] - lo[k]) / column_mm_)) + 1;
+  };
+  while (count(0) * count(1) > kMaxBins) column_mm_ *= 1.25;
+  columns_ = {count(0), count(1)};
+  column_seen_.assign(columns_[0] * columns_[1], false);
+  for (const Eigen::Vector3d& p : points) {
+    if (!p.allFinite()) continue;
+    const auto i = static_cast<std::size_t>((p[a] - lo.x()) / column_mm_);
+    const auto j = static_cast<std::size_t>((p[b] - lo.y()) / column_mm_);
+    column_seen_[std::min(i, columns_[0] - 1) * columns_[1] + std::min(j, columns_[1] - 1)] = true;
+  }
+}
+
+bool LaserShadow::unlit(const Eigen::Vector3d& p) const {
+  if (range_.empty() || !p.allFinite()) return false;
+  // Something standing beneath p (along the axis nearest the fan's direction) would have hidden
+  // the floor there or shown the laser some of its surface: a column with scan points in it
+  // holds nothing unmeasured that reaches up to p. Past the scan's edge nothing was measured.
+  const Eigen::Vector2d q(p[across_axes_[0]], p[across_axes_[1]]);
+  if (!column_seen_.empty() && (q.array() >= column_lo_.array()).all() &&
+      (q.array() <= column_hi_.array()).all()) {
+    const auto i = static_cast<std::size_t>((q.x() - column_lo_.x()) / column_mm_);
+    const auto j = static_cast<std::size_t>((q.y() - column_lo_.y()) / column_mm_);
+    if (column_seen_[std::min(i, columns_[0] - 1) * columns_[1] + std::min(j, columns_[1] - 1)]) {
+      return false;
+    }
+  }
+  return !sweep_position(view_, p);
+}
+
 bool LaserShadow::shadowed(const Eigen::Vector3d& p, double margin_mm, const Casts& casts) const {
-  if (range_.empty()) return false;
+  if (range_.empty() || !p.allFinite()) return false;
   const std::optional<Ray> r = ray_of(p);
   if (!r) return false;
   // A bin between two profiles (a step wider than the bins) has no return of its own: the
@@ -159,13 +206,25 @@ bool LaserShadow::shadowed(const Eigen::Vector3d& p, double margin_mm, const Cas
 
 double LaserShadow::first_shadowed(const Eigen::Vector3d& from, const Eigen::Vector3d& to,
                                    double skip_mm, double step_mm, double margin_mm,
-                                   const Casts& casts) const {
+                                   const Casts& casts, double unlit_reach_mm) const {
   if (range_.empty() || !(step_mm > 0.0)) return -1.0;
   // Only within the points' box: nothing was measured, so nothing cast a shadow, outside it.
   const std::optional<BoxWalk> w = walk_in_box(from, to, skip_mm, lo_, hi_);
   if (!w) return -1.0;
   for (double t = w->begin; t <= w->end; t += step_mm) {
-    if (shadowed(from + t * w->u, margin_mm, casts)) return t;
+    const Eigen::Vector3d p = from + t * w->u;
+    if ((t <= unlit_reach_mm && unlit(p)) || shadowed(p, margin_mm, casts)) return t;
+  }
+  // A line that leaves the box through a side, below the highest point measured, into space no
+  // laser plane of the sweep holds: the sweep stopped short of whatever stands there. Through
+  // the top or the bottom (the faces across the fan's direction), nothing measured stood.
+  if (w->end < (to - from).norm() && w->end + step_mm <= unlit_reach_mm) {
+    const Eigen::Vector3d exit = from + w->end * w->u;
+    const int up = 3 - across_axes_[0] - across_axes_[1];
+    const double tol = 1e-6 * (hi_ - lo_).norm();
+    const bool side = std::abs(exit[up] - lo_[up]) > tol && std::abs(exit[up] - hi_[up]) > tol;
+    const double past = w->end + step_mm;
+    if (side && unlit(from + past * w->u)) return past;
   }
   return -1.0;
 }

@@ -262,6 +262,7 @@ class SampleJudge {
         to_part_(T.inverse()),
         // G grows with the square of the radial scale: this is `tol` outside the smallest size.
         own_surface_(std::pow(1.0 + tol / m.model().min_size(), 2)),
+        unlit_reach_(o.unlit_reach_of_max_size * m.model().max_size()),
         casts_([this](const Eigen::Vector3d& w) { return m_.value(to_part_ * w) > own_surface_; }) {
   }
 
@@ -334,25 +335,33 @@ class SampleJudge {
         camera_clear = unblocked && (!o_.laser_shadow ||
                                      o_.laser_shadow->first_shadowed(
                                          p, at, skip[i], kShadowStepCells * o_.occupancy->cell_mm(),
-                                         tol_, casts_) < 0.0);
+                                         tol_, casts_, unlit_reach_) < 0.0);
       }
       // A line of sight through the laser's shadow alone is not known to be clear, but a scan
       // point at the sample says it was: the camera saw the lit spot there. A cone under an
       // overhang seen by a low camera across the overhang's shadow showed 1,641 points and not
       // one measurable sample without this.
-      if (!camera_clear)
-        return camera_unblocked && nearest_point() <= tol_ ? Sample::kCovered : Sample::kHidden;
+      if (!camera_clear) {
+        const double nearest = nearest_point();
+        if (camera_unblocked && nearest <= tol_) return Sample::kCovered;
+        // The laser's light went through it all the same, whatever the camera saw of it.
+        if (lit_past(p, eyes.at[0], skip[0], nearest)) return Sample::kSeenThrough;
+        return Sample::kHidden;
+      }
     }
     const double nearest = nearest_point();
     if (nearest <= tol_) return Sample::kCovered;
-    // The first eye (the laser, or the only one) lit everything along its ray until the first
-    // surface: a measured cell beyond the sample means the light went through it. A sample
-    // between scan lines (grazing surface, coarse step) is not: it has points within a cell.
-    if (o_.occupancy && nearest > tol_ + o_.occupancy->cell_mm()) {
-      const Eigen::Vector3d beyond = p + kFarEye * (p - eyes.at[0]).normalized();
-      if (o_.occupancy->first_hit(p, beyond, skip[0]) >= 0.0) return Sample::kSeenThrough;
-    }
-    return Sample::kUncovered;
+    return lit_past(p, eyes.at[0], skip[0], nearest) ? Sample::kSeenThrough : Sample::kUncovered;
+  }
+
+  // The first eye (the laser, or the only one) lit everything along its ray until the first
+  // surface: a measured cell beyond the sample means the light went through it. A sample
+  // between scan lines (grazing surface, coarse step) is not: it has points within a cell.
+  bool lit_past(const Eigen::Vector3d& p, const Eigen::Vector3d& laser, double skip,
+                double nearest) const {
+    if (!o_.occupancy || nearest <= tol_ + o_.occupancy->cell_mm()) return false;
+    const Eigen::Vector3d beyond = p + kFarEye * (p - laser).normalized();
+    return o_.occupancy->first_hit(p, beyond, skip) >= 0.0;
   }
 
   const SuperquadricMetric& m_;
@@ -366,6 +375,7 @@ class SampleJudge {
   // The scan's surface on or inside the posed part casts no shadow over it (LaserShadow::Casts).
   Eigen::Isometry3d to_part_;
   double own_surface_;
+  double unlit_reach_;
   LaserShadow::Casts casts_;
   std::vector<std::uint32_t> nbr_;
 };

@@ -1533,7 +1533,7 @@ ObjectDetectResult detect_object(const ObjectModel& model, std::span<const Eigen
   CoverageOptions cover = coverage_options(options, result.plane, scan.cloud, occupancy);
   // A stripe ranger's camera looks along another line than its laser (laser_shadow.hpp). The
   // table shades only what lies below it: the shadow is cast by the rest of the scan.
-  const LaserShadow shadow(scan.cloud, cover.sensor, occupancy.cell_mm());
+  const LaserShadow shadow(scan.cloud, cover.sensor, occupancy.cell_mm(), scan.whole());
   if (!shadow.empty()) cover.laser_shadow = &shadow;
   result.time.search_index_ms = ms_since(t0);
   // The scan's range noise, as the table shows it (0 without a plane: the floor alone).

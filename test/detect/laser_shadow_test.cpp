@@ -22,6 +22,19 @@ SensorView stripe() {
   return v;
 }
 
+// A pan-tilt head: its laser fan, apex at the pivot 600 mm above the table, turns about the
+// y-axis over -turn..turn rad, its camera 300 mm off the fan's plane.
+SensorView pan_tilt(double turn) {
+  SensorView v;
+  v.kind = SensorView::Kind::kRotarySweep;
+  v.pivot = v.origin = {0, 0, 600};
+  v.direction = Eigen::Vector3d::UnitY();
+  v.plane_normal = Eigen::Vector3d::UnitX();
+  v.camera_offset = {-300, 0, 0};
+  v.sweep_min = -turn, v.sweep_max = turn;
+  return v;
+}
+
 std::vector<Eigen::Vector3d> table_and_wall_top() {
   std::vector<Eigen::Vector3d> pts;
   for (double x = -100; x <= 100; x += 1.0) {
@@ -52,17 +65,10 @@ TEST(LaserShadow, SpaceUnderAGrazedWallsTopIsInShadow) {
   EXPECT_LT(shadow.first_shadowed(from, {0, -300, 600}, 2.0, 1.0, 3.0), 0.0);
 }
 
-// A pan-tilt head: its laser fan, apex at the pivot 600 mm above the table, turns about the
-// y-axis from -0.3 to 0.3 rad, its camera 300 mm off the fan's plane. Over the same table and
-// wall, space under the wall's top is in shadow wherever along the turn it is.
+// A pan-tilt head turning over -0.3..0.3 rad: over the same table and wall, space under the
+// wall's top is in shadow wherever along the turn it is.
 TEST(LaserShadow, ATurningFansShadowUnderAGrazedWall) {
-  SensorView head;
-  head.kind = SensorView::Kind::kRotarySweep;
-  head.pivot = head.origin = {0, 0, 600};
-  head.direction = Eigen::Vector3d::UnitY();
-  head.plane_normal = Eigen::Vector3d::UnitX();
-  head.camera_offset = {-300, 0, 0};
-  head.sweep_min = -0.3, head.sweep_max = 0.3;
+  const SensorView head = pan_tilt(0.3);
   const std::vector<Eigen::Vector3d> pts = table_and_wall_top();  // the shadow borrows them
   // Bins of 3 mm: the wall's top, 100 mm nearer the apex than the table, holds two returns in each.
   const LaserShadow shadow(pts, head, 3.0);
@@ -78,6 +84,53 @@ TEST(LaserShadow, ATurningFansShadowUnderAGrazedWall) {
   ASSERT_GT(t, 0.0);
   EXPECT_NEAR((from + t * (to - from).normalized()).y(), 50.0, 3.0);
   EXPECT_LT(shadow.first_shadowed(from, {30, -300, 600}, 2.0, 1.0, 3.0), 0.0);
+}
+
+// A stripe sweep that stopped at x = 0, over the table and the wall's top left of it: space past
+// the sweep's end was never lit. A camera on that side looks at a part's face by the end through
+// it, and a wall standing there would leave no point; one on the other side looks across the
+// lit space, and its line leaves the points' box through the top, above all that was measured.
+TEST(LaserShadow, SpaceASweepNeverReachedIsUnlit) {
+  SensorView v = stripe();
+  v.sweep_max = 0.0;
+  v.camera_offset = {300, 0, 0};
+  std::vector<Eigen::Vector3d> pts;
+  for (const Eigen::Vector3d& p : table_and_wall_top()) {
+    if (p.x() <= 0.0) pts.push_back(p);
+  }
+  const LaserShadow shadow(pts, v, 2.0);
+  ASSERT_FALSE(shadow.empty());
+  EXPECT_FALSE(shadow.unlit({-50, 0, 50}));  // over the lit table
+  EXPECT_TRUE(shadow.unlit({0.5, 0, 50}));   // past the sweep's end
+  EXPECT_FALSE(shadow.unlit({std::nan(""), 0, 50}));
+  // From a face 5 mm before the end, 10 mm up: to the camera past the end the line leaves the
+  // points' box through its side at x = 0, into space the sweep never reached.
+  const Eigen::Vector3d from(-5, 0, 10), camera(295, 0, 600);
+  const double t = shadow.first_shadowed(from, camera, 2.0, 1.0, 3.0);
+  ASSERT_GT(t, 0.0);
+  EXPECT_NEAR((from + t * (camera - from).normalized()).x(), 0.0, 1.5);
+  // Unless unlit space that far from `from` is taken as clear.
+  EXPECT_LT(shadow.first_shadowed(from, camera, 2.0, 1.0, 3.0, nullptr, 4.0), 0.0);
+  // Back across the lit space: clear.
+  EXPECT_LT(shadow.first_shadowed(from, {-305, 0, 600}, 2.0, 1.0, 3.0), 0.0);
+}
+
+// A pan-tilt head's fan turned over -0.1..0.1 rad: its wedge narrows towards the apex, so the
+// points' box holds space beside it the laser never lit. Over the lit table beneath, though,
+// anything standing there would have hidden the table or shown the laser its surface; beside the
+// wall's top, whose ends the wedge cut off, nothing was measured in the column at all.
+TEST(LaserShadow, SpaceBesideATurningFansWedgeIsUnlitWhereNothingBeneathWasMeasured) {
+  const SensorView head = pan_tilt(0.1);
+  std::vector<Eigen::Vector3d> pts;
+  for (const Eigen::Vector3d& p : table_and_wall_top()) {
+    // What the wedge lit: |x| <= (600 - z) tan 0.1.
+    if (std::abs(p.x()) <= (600.0 - p.z()) * std::tan(0.1)) pts.push_back(p);
+  }
+  const LaserShadow shadow(pts, head, 3.0);
+  ASSERT_FALSE(shadow.empty());
+  EXPECT_FALSE(shadow.unlit({45, 0, 99}));  // inside the wedge (|x| <= 50.2 at z = 99)
+  EXPECT_FALSE(shadow.unlit({57, 0, 99}));  // beside it, over the lit table
+  EXPECT_TRUE(shadow.unlit({57, 55, 99}));  // beside it, where the wall's top was cut off
 }
 
 // A lone return in the air before the surface (an outlier along its ray) casts no shadow column:
