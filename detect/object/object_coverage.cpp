@@ -341,27 +341,19 @@ class SampleJudge {
       // point at the sample says it was: the camera saw the lit spot there. A cone under an
       // overhang seen by a low camera across the overhang's shadow showed 1,641 points and not
       // one measurable sample without this.
-      if (!camera_clear) {
-        const double nearest = nearest_point();
-        if (camera_unblocked && nearest <= tol_) return Sample::kCovered;
-        // The laser's light went through it all the same, whatever the camera saw of it.
-        if (lit_past(p, eyes.at[0], skip[0], nearest)) return Sample::kSeenThrough;
-        return Sample::kHidden;
-      }
+      if (!camera_clear)
+        return camera_unblocked && nearest_point() <= tol_ ? Sample::kCovered : Sample::kHidden;
     }
     const double nearest = nearest_point();
     if (nearest <= tol_) return Sample::kCovered;
-    return lit_past(p, eyes.at[0], skip[0], nearest) ? Sample::kSeenThrough : Sample::kUncovered;
-  }
-
-  // The first eye (the laser, or the only one) lit everything along its ray until the first
-  // surface: a measured cell beyond the sample means the light went through it. A sample
-  // between scan lines (grazing surface, coarse step) is not: it has points within a cell.
-  bool lit_past(const Eigen::Vector3d& p, const Eigen::Vector3d& laser, double skip,
-                double nearest) const {
-    if (!o_.occupancy || nearest <= tol_ + o_.occupancy->cell_mm()) return false;
-    const Eigen::Vector3d beyond = p + kFarEye * (p - laser).normalized();
-    return o_.occupancy->first_hit(p, beyond, skip) >= 0.0;
+    // The first eye (the laser, or the only one) lit everything along its ray until the first
+    // surface: a measured cell beyond the sample means the light went through it. A sample
+    // between scan lines (grazing surface, coarse step) is not: it has points within a cell.
+    if (o_.occupancy && nearest > tol_ + o_.occupancy->cell_mm()) {
+      const Eigen::Vector3d beyond = p + kFarEye * (p - eyes.at[0]).normalized();
+      if (o_.occupancy->first_hit(p, beyond, skip[0]) >= 0.0) return Sample::kSeenThrough;
+    }
+    return Sample::kUncovered;
   }
 
   const SuperquadricMetric& m_;
