@@ -165,11 +165,14 @@ void LaserShadow::mark_columns(std::span<const Eigen::Vector3d> points, double b
   columns_ = {count(0), count(1)};
   column_seen_.assign(columns_[0] * columns_[1], false);
   for (const Eigen::Vector3d& p : points) {
-    if (!p.allFinite()) continue;
-    const auto i = static_cast<std::size_t>((p[a] - lo.x()) / column_mm_);
-    const auto j = static_cast<std::size_t>((p[b] - lo.y()) / column_mm_);
-    column_seen_[std::min(i, columns_[0] - 1) * columns_[1] + std::min(j, columns_[1] - 1)] = true;
+    if (p.allFinite()) column_seen_[column_of({p[a], p[b]})] = true;
   }
+}
+
+std::size_t LaserShadow::column_of(const Eigen::Vector2d& q) const {
+  const auto i = static_cast<std::size_t>((q.x() - column_lo_.x()) / column_mm_);
+  const auto j = static_cast<std::size_t>((q.y() - column_lo_.y()) / column_mm_);
+  return std::min(i, columns_[0] - 1) * columns_[1] + std::min(j, columns_[1] - 1);
 }
 
 bool LaserShadow::unlit(const Eigen::Vector3d& p) const {
@@ -179,12 +182,8 @@ bool LaserShadow::unlit(const Eigen::Vector3d& p) const {
   // holds nothing unmeasured that reaches up to p. Past the scan's edge nothing was measured.
   const Eigen::Vector2d q(p[across_axes_[0]], p[across_axes_[1]]);
   if (!column_seen_.empty() && (q.array() >= column_lo_.array()).all() &&
-      (q.array() <= column_hi_.array()).all()) {
-    const auto i = static_cast<std::size_t>((q.x() - column_lo_.x()) / column_mm_);
-    const auto j = static_cast<std::size_t>((q.y() - column_lo_.y()) / column_mm_);
-    if (column_seen_[std::min(i, columns_[0] - 1) * columns_[1] + std::min(j, columns_[1] - 1)]) {
-      return false;
-    }
+      (q.array() <= column_hi_.array()).all() && column_seen_[column_of(q)]) {
+    return false;
   }
   return !sweep_position(view_, p);
 }

@@ -76,6 +76,7 @@ class LaserShadow {
   // Columns along the axis nearest the fan's direction, column_mm_ wide, over the extent of the
   // points beneath (across_axes_ the other two): which hold a scan point.
   void mark_columns(std::span<const Eigen::Vector3d> beneath, double bin_mm);
+  std::size_t column_of(const Eigen::Vector2d& q) const;  // q within [column_lo_, column_hi_]
   std::array<int, 2> across_axes_{0, 1};
   Eigen::Vector2d column_lo_ = Eigen::Vector2d::Zero(), column_hi_ = Eigen::Vector2d::Zero();
   double column_mm_ = 1.0;
