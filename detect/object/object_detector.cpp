@@ -66,10 +66,11 @@ bool options_ok(const ObjectDetectOptions& o) {
          o.iterations >= 1 && o.init_iterations >= 1 && o.refine_rounds >= 0 && o.gamma > 0.0 &&
          o.gamma < 1.0 && o.neighbourhood_factor > 0.0 && o.instances >= 1 && o.batch >= 1 &&
          o.compound_batch >= 1 && o.linked_places >= 0 && o.linked_hypotheses >= 0 &&
-         o.max_settle_rad >= 0.0 && o.confirmations >= 1 && o.refine_trim >= 0.0 &&
-         o.max_measure > 0.0 && o.max_interior_ratio >= 0.0 && o.min_coverage >= 0.0 &&
-         o.min_coverage_unknown_sensor >= 0.0 && o.min_coverage_compound_part >= 0.0 &&
-         o.max_seen_through >= 0.0 && o.compound_screen_slack >= 1.0 && o.max_open_end >= 0.0 &&
+         o.max_settle_rad >= 0.0 && o.confirmations >= 1 && o.confirmations_covered >= 1 &&
+         o.refine_trim >= 0.0 && o.max_measure > 0.0 && o.max_interior_ratio >= 0.0 &&
+         o.min_coverage >= 0.0 && o.min_coverage_unknown_sensor >= 0.0 &&
+         o.min_coverage_compound_part >= 0.0 && o.max_seen_through >= 0.0 &&
+         o.compound_screen_slack >= 1.0 && o.max_open_end >= 0.0 &&
          o.max_open_end_compound >= 0.0 && o.max_open_rim >= 0.0 &&
          o.min_measurable_share_covered >= 0.0 && o.full_coverage >= 0.0 &&
          o.max_size_deviation > 0.0 && o.size_deviation_sigmas >= 0.0 && o.max_candidates >= 1 &&
@@ -485,9 +486,9 @@ std::optional<Rejection> judge_part(const HypothesisContext& ctx, const Superqua
 // vote, but a look-alike of the part is not fitted again and again while the real part waits;
 // and for a single-part model asked for K instances, each of the first K - 1 established).
 // A set-aside place's points are no longer drawn as RANSAC seeds, unless it failed by a near
-// miss (near_miss). A single-part model stops
-// once K leaders have passed and been found again by `confirmations` hypotheses each. Batches are
-// fixed, so the stop and the set-aside points are deterministic.
+// miss (near_miss). A single-part model stops once K leaders have passed and been found again by
+// `confirmations` hypotheses each (`confirmations_covered` for a leader the scan covers fully).
+// Batches are fixed, so the stop and the set-aside points are deterministic.
 // A place judged during the search: its pose, scores and verdict, so that the final candidates
 // do not judge it again.
 struct Judged {
@@ -590,9 +591,12 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Sup
     const PartScores& ls = valid[lead].scores;
     const bool clean = static_cast<double>(ls.interior) <=
                        kCleanInteriorRatio * static_cast<double>(ls.interior + ls.surface);
+    const bool covered =
+        verdict.scores.coverage >= o.full_coverage && verdict.scores.seen_through == 0.0;
+    const int needed =
+        covered ? std::min(o.confirmations, o.confirmations_covered) : o.confirmations;
     // A leader whose length the points leave open does not end the search (size_unverified).
-    if (agree < o.confirmations || !clean ||
-        (!compound && size_unverified(part, verdict.scores))) {
+    if (agree < needed || !clean || (!compound && size_unverified(part, verdict.scores))) {
       continue;
     }
     // One more place established: a single-part model stops once it has its K instances.
