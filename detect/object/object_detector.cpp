@@ -591,8 +591,8 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Sup
     const PartScores& ls = valid[lead].scores;
     const bool clean = static_cast<double>(ls.interior) <=
                        kCleanInteriorRatio * static_cast<double>(ls.interior + ls.surface);
-    const bool covered =
-        verdict.scores.coverage >= o.full_coverage && verdict.scores.seen_through == 0.0;
+    const bool covered = !compound && verdict.scores.coverage >= o.full_coverage &&
+                         verdict.scores.seen_through == 0.0;
     const int needed =
         covered ? std::min(o.confirmations, o.confirmations_covered) : o.confirmations;
     // A leader whose length the points leave open does not end the search (size_unverified).

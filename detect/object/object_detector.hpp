@@ -186,11 +186,13 @@ struct ObjectDetectOptions {
   int instances = 1;  // K instances wanted, best first, no two sharing a part position
   bool early_stop = true;
   int confirmations = 3;  // early stop: hypotheses agreeing with the leader (single-part models)
-  // ... or this many when the scan covers at least full_coverage of what the sensor could have
-  // measured of the leader and saw past none of it: placed by its own surface, it is not waited
-  // on (the fig. 5.18 cone 19 -> 12 hypotheses). A leader whose hidden side leaves it free to
-  // slide is still waited on: a box behind a wall fitted 9 mm along it, covered to 0.88, was taken
-  // after two agreeing hypotheses where the third found the box (stripe tuning seed 160).
+  // ... or, for a single-part model, this many when the scan covers at least full_coverage of
+  // what the sensor could have measured of the leader and saw past none of it: placed by its own
+  // surface, it is not waited on (the fig. 5.18 cone 19 -> 12 hypotheses). A compound model's
+  // parts, set aside once established, keep `confirmations` (at 2 a stripe mallet was lost). A
+  // leader whose hidden side leaves it free to slide is still waited on: a box behind a wall fitted
+  // 9 mm along it, covered to 0.88, was taken after two agreeing hypotheses where the third found
+  // the box (stripe tuning seed 160).
   int confirmations_covered = 2;
   int batch = 4;          // hypotheses per parallel batch (fixed: results do not depend on threads)
   // ... for a compound model's parts, which run all their hypotheses: a leader judged after every
