@@ -101,6 +101,12 @@ bool plausible(const PartHypothesis& h, const ObjectDetectOptions& o) {
   return h.valid && !implausible(h, o);
 }
 
+// The scan covers (nearly) all the sensor could have measured of a part and saw past none of it
+// (ObjectDetectOptions::full_coverage): its own surface places it.
+bool fully_covered(double covered, double seen_through, const ObjectDetectOptions& o) {
+  return covered >= o.full_coverage && seen_through == 0.0;
+}
+
 // Confirmation by the surface evidence (see ObjectDetectOptions::min_coverage): the samples over
 // the surface and the part's place against the table, not its ends (open_ended). For a part of
 // a compound object the measurable share is judged over the whole object (its siblings hide
@@ -123,8 +129,8 @@ std::optional<Rejection> unconfirmed(const SurfaceCoverage& c, const ObjectDetec
   const double share = c.facing > 0 ? static_cast<double>(evidence) / c.facing : 0.0;
   // Less of it measurable, more of that must be there: below min_measurable_share only a part
   // whose measurable surface is (nearly) all covered is judged on.
-  const bool all_there = share >= o.min_measurable_share_covered &&
-                         c.covered >= o.full_coverage && c.seen_through == 0.0;
+  const bool all_there =
+      share >= o.min_measurable_share_covered && fully_covered(c.covered, c.seen_through, o);
   if (judge_share && share < o.min_measurable_share && !all_there) {
     return Rejection{0, Check::kHidden, share, o.min_measurable_share, Eigen::Vector3d::Zero()};
   }
@@ -591,8 +597,8 @@ std::vector<PartHypothesis> search_part(const HypothesisContext& base, const Sup
     const PartScores& ls = valid[lead].scores;
     const bool clean = static_cast<double>(ls.interior) <=
                        kCleanInteriorRatio * static_cast<double>(ls.interior + ls.surface);
-    const bool covered = !compound && verdict.scores.coverage >= o.full_coverage &&
-                         verdict.scores.seen_through == 0.0;
+    const bool covered =
+        !compound && fully_covered(verdict.scores.coverage, verdict.scores.seen_through, o);
     const int needed =
         covered ? std::min(o.confirmations, o.confirmations_covered) : o.confirmations;
     // A leader whose length the points leave open does not end the search (size_unverified).
