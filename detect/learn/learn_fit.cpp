@@ -226,6 +226,10 @@ struct Problem {
 
 }  // namespace
 
+double support_height(const PosedSuperquadric& part, const Eigen::Vector4d& plane) {
+  return support_height(part, plane.head<3>(), plane[3]);
+}
+
 ShapeFitResult fit_superquadric(std::span<const Eigen::Vector3d> points,
                                 const PosedSuperquadric& initial, const ShapeFitOptions& options) {
   ShapeFitResult result;

@@ -74,6 +74,10 @@ struct ShapeFitResult {
   bool ok = false;  // false: fewer than 13 points or invalid input
 };
 
+// Height of the part's lowest point above the plane n . x = offset (unit n towards the part),
+// exact as for ShapeFitOptions::support_plane.
+double support_height(const PosedSuperquadric& part, const Eigen::Vector4d& plane);
+
 // Fits the part to the points (world frame, mm) from `initial`.
 ShapeFitResult fit_superquadric(std::span<const Eigen::Vector3d> points,
                                 const PosedSuperquadric& initial,
