@@ -27,6 +27,9 @@ constexpr int kSplitCandidates = 4;
 constexpr double kMinOffMainMm = 1.0;
 // Reassignments of a compound object's points to the nearer part, each followed by refits.
 constexpr int kReassignRounds = 3;
+// A compound object's part whose points lie this many times as far off it (rms) as the other
+// part's is learnt again from all its starts.
+constexpr double kWrongShapeRms = 1.5;
 
 // At most `target` points spread evenly over the surface the points cover.
 std::vector<Eigen::Vector3d> spread(std::span<const Eigen::Vector3d> points, std::size_t target) {
@@ -482,29 +485,55 @@ LearnReason learn_two_parts(std::span<const Eigen::Vector3d> points,
   // fitted from a cut that held some of the body's points reaches its shape only once they have
   // gone back to the body).
   const std::optional<Eigen::Vector4d> table = table_support(plane, object, options);
-  std::vector<std::uint8_t> owner(object.size(), 2), last;
-  for (int round = 0; round < kReassignRounds; ++round) {
-    last = owner;
-    const PartDistance d0(fits[0].part), d1(fits[1].part);
-    side[0].clear();
-    side[1].clear();
-    for (std::size_t i = 0; i < object.size(); ++i) {
-      owner[i] = d0(object[i]) <= d1(object[i]) ? 0 : 1;
-      side[owner[i]].push_back(object[i]);
+  const auto settle = [&]() {
+    std::vector<std::uint8_t> owner(object.size(), 2), last;
+    for (int round = 0; round < kReassignRounds; ++round) {
+      last = owner;
+      const PartDistance d0(fits[0].part), d1(fits[1].part);
+      side[0].clear();
+      side[1].clear();
+      for (std::size_t i = 0; i < object.size(); ++i) {
+        owner[i] = d0(object[i]) <= d1(object[i]) ? 0 : 1;
+        side[owner[i]].push_back(object[i]);
+      }
+      if (owner == last) break;  // the parts kept their points: the fits are where they were
+      for (int k = 0; k < 2; ++k) {
+        if (side[k].size() < kMinLearnPoints) return false;
+        const Superquadric& s = fits[k].part.shape;
+        const double v0 = s.a1 * s.a2 * s.a3;
+        const std::vector<Eigen::Vector3d> fine = spread(side[k], options.fit_points);
+        const ShapeFitResult f =
+            fit_superquadric(fine, fits[k].part, fit_options(options, v0, options.iterations));
+        if (!f.ok) continue;
+        fits[k] = f;
+        if (table) grow_to_table(fine, *table, options, v0, fits[k]);
+      }
     }
-    if (owner == last) break;  // the parts kept their points: the fits are where they were
-    for (int k = 0; k < 2; ++k) {
-      if (side[k].size() < kMinLearnPoints) return LearnReason::kTooFewPoints;
-      const Superquadric& s = fits[k].part.shape;
-      const double v0 = s.a1 * s.a2 * s.a3;
-      const std::vector<Eigen::Vector3d> fine = spread(side[k], options.fit_points);
-      const ShapeFitResult f =
-          fit_superquadric(fine, fits[k].part, fit_options(options, v0, options.iterations));
-      if (!f.ok) continue;
-      fits[k] = f;
-      if (table) grow_to_table(fine, *table, options, v0, fits[k]);
+    return true;
+  };
+  if (!settle()) return LearnReason::kTooFewPoints;
+  // Both parts are seen by the same scan with the same noise: a part whose points lie
+  // kWrongShapeRms times as far off it as the other's is in a wrong shape (a handle turned so that
+  // its thin axis is another, which no shape exponents make up for). It is learnt again from all
+  // its starts, each fitted to convergence, on the points it now has, and kept when its points lie
+  // nearer; then the points are reassigned once more.
+  std::array<double, 2> rms;
+  for (int k = 0; k < 2; ++k) {
+    rms[k] = surface_rms_mm(fits[k].part.shape, fits[k].part.T_world_part, side[k]);
+  }
+  bool relearnt = false;
+  for (int k = 0; k < 2; ++k) {
+    if (!(rms[k] > kWrongShapeRms * rms[1 - k])) continue;
+    LearnOptions all_starts = options;
+    all_starts.retry_residual_mm = std::numeric_limits<double>::min();
+    const PartFit f = learn_part(side[k], plane, all_starts);
+    r.starts += f.starts;
+    if (f.fit.ok && surface_rms_mm(f.fit.part.shape, f.fit.part.T_world_part, side[k]) < rms[k]) {
+      fits[k] = f.fit;
+      relearnt = true;
     }
   }
+  if (relearnt && !settle()) return LearnReason::kTooFewPoints;
   // The larger part first, so the order does not depend on the direction of the moments.
   auto volume = [](const Superquadric& s) { return s.a1 * s.a2 * s.a3; };
   if (volume(fits[1].part.shape) > volume(fits[0].part.shape)) {

@@ -94,13 +94,14 @@ namespace rangefit {
 namespace learn_daily_test {
 
 // The two-part mug of table 5.7 (body 38 38 48, handle 30 23 8 on its side, 90 deg, 50 mm)
-// from two views (tuning seeds 1, 2, 4). Its handle joins the body, so the two are one cluster
-// (or the views leave the body in two pieces): the cut across the main moment axis found no
-// handle, and a cut through the half-seen body gave two halves of it.
+// from two views (tuning seeds 1, 2, 3, 4). Its handle joins the body, so the two are one
+// cluster (or the views leave the body in two pieces): the cut across the main moment axis found
+// no handle, and a cut through the half-seen body gave two halves of it. Seed 3's handle was fitted
+// in a wrong shape (its points 0.19 mm off it, the body's 0.023) until it was learnt again.
 TEST(LearnDaily, TheMugFromTwoViewsAsBodyAndHandle) {
   const sim::DailyObject mug = sim::daily_life_objects().back();
   ASSERT_EQ(mug.name, "mug-2");
-  for (std::uint64_t seed : {1u, 2u, 4u}) {
+  for (std::uint64_t seed : {1u, 2u, 3u, 4u}) {
     const test::DailyLearnt l = test::learn_daily(mug, seed, 2);
     ASSERT_TRUE(l.result.learnt()) << seed << ": " << to_string(l.result.reason);
     ASSERT_EQ(l.result.parts.size(), 2u);
@@ -117,14 +118,16 @@ TEST(LearnDaily, TheMugFromTwoViewsAsBodyAndHandle) {
   }
 }
 
-// The two-part mug from one oblique view (tuning seeds 4 and 40), within the one-view goals.
+// The two-part mug from one oblique view (tuning seeds 4, 29 and 40), within the one-view goals.
 // Seed 4: the handle's first fit came from a cut that held some of the body's points; after one
 // reassignment it stayed 7.5 % too large (its points 0.061 mm off it, the true handle's 0.022).
+// Seed 29: the handle's fit ended with its thin axis across the handle (8.5 x 45 x 33 mm, its
+// points 0.066 mm off it, the body's 0.024), and is learnt again from all its starts.
 // Seed 40: the view shows the body's rim and top but not its foot; its fit ended 7 mm above the
 // table, 7.4 % short, with its points explained as well as by the true body. The body stands on
 // the table, so it is grown down to it.
 TEST(LearnDaily, TheMugFromOneViewHasItsHandlesShapeAndStandsOnTheTable) {
-  expect_learnt_from_one_view("mug-2", {4, 40});
+  expect_learnt_from_one_view("mug-2", {4, 29, 40});
 }
 
 // One view of the mug with its handle behind the body (tuning seed 3: no scan point within
