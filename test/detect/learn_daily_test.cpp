@@ -6,6 +6,8 @@
 // each here; test/bench/learn_benchmark --daily reports many, tuning and held-out apart.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <initializer_list>
 #include <span>
@@ -85,6 +87,23 @@ TEST(LearnDaily, TheSphereFromOneViewIsNotAnEgg) { expect_learnt_from_one_view("
 // learnt pyramid is the true one.
 TEST(LearnDaily, APyramidsTipIsNotBluntedByTheNoiseAroundIt) {
   expect_learnt_from_one_view("pyramid", {12, 17});
+}
+
+// The same pyramid from two views (tuning seed 14): its free fit was right (0.9 % long), and its
+// taper, 0.91 from the bound, was then held on the bound as a cone's is, which made it 5.5 % long
+// with its base 5 % narrow: on the spread points the fit runs on that cost 0.7 % more, but the
+// points on the blunt tip lie twice as far off it.
+TEST(LearnDaily, APyramidsBluntTipIsNotSharpenedFromTwoViews) {
+  for (const sim::DailyObject& o : sim::daily_life_objects()) {
+    if (o.name != "pyramid") continue;
+    const test::DailyLearnt l = test::learn_daily(o, 14, 2);
+    print(o, 2, l);
+    ASSERT_TRUE(l.result.learnt()) << to_string(l.result.reason);
+    EXPECT_LE(l.size, 0.01);
+    EXPECT_LE(l.shape, 0.05);
+    const Superquadric& q = l.result.parts.at(0).shape;
+    EXPECT_LT(std::max(std::abs(q.kx), std::abs(q.ky)), 0.99) << "the taper is held on its bound";
+  }
 }
 
 }  // namespace learn_daily_test
