@@ -9,9 +9,10 @@
 // of the best few cuts, and the points off a rough fit of its larger side, are tried as the two
 // parts, and the try whose rough fits explain the object best is kept (a handle on the side of
 // a mug: a one-sided view makes width steps of its own). Each side is fitted as one part, points
-// reassigned to the nearer part and refitted (three times), a part whose foot floats just above
-// the table grown down to it, and the link between them (eq. 5.5-5.6: angle between the z-axes,
-// centre distance) measured.
+// reassigned to the nearer part and refitted (up to three times), a part whose foot floats just
+// above the table grown down to it, a part whose points lie much farther off it than the other's
+// learnt again from all its starts, and the link between them (eq. 5.5-5.6: angle between the
+// z-axes, centre distance) measured.
 //
 // Several views of the object (already in one world frame) are fused by passing all their
 // points: the fit's point budget is spread over the surface area (detect/spread_subset), so a
