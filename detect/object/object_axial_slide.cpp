@@ -69,12 +69,14 @@ std::vector<double> around_the_axis(const std::vector<double>& u, const std::vec
 
 }  // namespace
 
-Eigen::Isometry3d slide_to_wall(const Superquadric& sq, const Eigen::Isometry3d& T,
-                                std::span<const Eigen::Vector3d> points, const KdTree& tree,
-                                const AxialSlideOptions& o,
-                                const std::function<bool(const Eigen::Vector3d&)>& skip) {
+WallRuns wall_runs(const Superquadric& sq, const Eigen::Isometry3d& T,
+                   std::span<const Eigen::Vector3d> points, const KdTree& tree,
+                   const AxialSlideOptions& o,
+                   const std::function<bool(const Eigen::Vector3d&)>& skip) {
+  WallRuns runs;
+  runs.T_world_part = T;
   if (!sq.valid() || points.empty() || sq.kx != 0.0 || sq.ky != 0.0 || sq.eps1 > kFlatExponent) {
-    return T;
+    return runs;
   }
   std::vector<int> axes{2};
   if (sq.eps2 <= kFlatExponent) axes = {2, 0, 1};
@@ -91,13 +93,13 @@ Eigen::Isometry3d slide_to_wall(const Superquadric& sq, const Eigen::Isometry3d&
     if (skip && skip(p)) continue;
     q.push_back(T.inverse() * p);
   }
-  Eigen::Vector3d shift = Eigen::Vector3d::Zero();
   for (int k : axes) {
     Superquadric endless = sq;
     (k == 0 ? endless.a1 : k == 1 ? endless.a2 : endless.a3) *= kEndless;
     const SuperquadricMetric wall(endless);
     const double a = size[k];
-    std::vector<double> u, around;
+    std::vector<double>& u = runs.along[static_cast<std::size_t>(k)];
+    std::vector<double> around;
     for (const Eigen::Vector3d& x : q) {
       if (std::abs(x[k]) > r * a) continue;
       // On the wall along axis k: near the endless part's surface, and not on one of the other
@@ -111,12 +113,29 @@ Eigen::Isometry3d slide_to_wall(const Superquadric& sq, const Eigen::Isometry3d&
     } else {
       std::sort(u.begin(), u.end());
     }
-    shift[k] = shift_for(u, a, o.prefer[k], o);
   }
-  if (shift.isZero()) return T;
-  Eigen::Isometry3d out = T;
-  out.translation() += T.linear() * shift;
+  return runs;
+}
+
+Eigen::Isometry3d slide_to_wall(const Superquadric& sq, const WallRuns& runs,
+                                const AxialSlideOptions& o) {
+  const Eigen::Vector3d size(sq.a1, sq.a2, sq.a3);
+  Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 3; ++k) {
+    const std::vector<double>& u = runs.along[static_cast<std::size_t>(k)];
+    if (!u.empty()) shift[k] = shift_for(u, size[k], o.prefer[k], o);
+  }
+  if (shift.isZero()) return runs.T_world_part;
+  Eigen::Isometry3d out = runs.T_world_part;
+  out.translation() += runs.T_world_part.linear() * shift;
   return out;
+}
+
+Eigen::Isometry3d slide_to_wall(const Superquadric& sq, const Eigen::Isometry3d& T,
+                                std::span<const Eigen::Vector3d> points, const KdTree& tree,
+                                const AxialSlideOptions& o,
+                                const std::function<bool(const Eigen::Vector3d&)>& skip) {
+  return slide_to_wall(sq, wall_runs(sq, T, points, tree, o, skip), o);
 }
 
 }  // namespace rangefit

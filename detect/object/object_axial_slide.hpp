@@ -16,9 +16,11 @@
 // varied tuning scenes, slid onto a run of a longer can's wall that a shadow cut short).
 
 #include <Eigen/Geometry>
+#include <array>
 #include <functional>
 #include <optional>
 #include <span>
+#include <vector>
 
 #include "detect/common/kdtree.hpp"
 #include "detect/common/pca.hpp"
@@ -52,6 +54,27 @@ struct AxialSlideOptions {
   // its sibling): taken as far as the wall's run allows. Zero: move as little as possible.
   Eigen::Vector3d prefer = Eigen::Vector3d::Zero();
 };
+
+// The wall's points of a part at one pose, by the axes it may slide along: their coordinates
+// along each axis, sorted (along z only where the wall surrounds the axis; empty along an axis
+// not asked). Gathering them is the slide's cost; the shift for any `prefer` follows from them,
+// so a part slid several ways from one pose gathers them once.
+struct WallRuns {
+  Eigen::Isometry3d T_world_part = Eigen::Isometry3d::Identity();
+  std::array<std::vector<double>, 3> along;
+};
+
+// The wall's points around pose T (the gathering half of slide_to_wall). `skip`: points explained
+// by other parts of the same object (may be empty).
+WallRuns wall_runs(const Superquadric& sq, const Eigen::Isometry3d& T_world_part,
+                   std::span<const Eigen::Vector3d> points, const KdTree& tree,
+                   const AxialSlideOptions& options = {},
+                   const std::function<bool(const Eigen::Vector3d&)>& skip = {});
+
+// The pose the runs were gathered at, slid as far as they allow towards options.prefer (the
+// gathering options are not read again).
+Eigen::Isometry3d slide_to_wall(const Superquadric& sq, const WallRuns& runs,
+                                const AxialSlideOptions& options = {});
 
 // The pose slid along the part's axes to where its wall's points end (T itself when they give no
 // reason to move), or as close to options.prefer as the wall's run allows. `skip`: points explained

@@ -506,12 +506,22 @@ struct Judged {
 
 // slide_pose along the part's own z-axis only (a box slid along x or y would leave the table).
 Eigen::Isometry3d slide_along_axis(const HypothesisContext& ctx, const Superquadric& part,
-                                   const Eigen::Isometry3d& T, const Eigen::Vector3d& prefer) {
-  const Eigen::Isometry3d to = slide_pose(ctx, part, T, prefer);
+                                   const WallRuns& wall, const Eigen::Vector3d& prefer) {
+  const Eigen::Isometry3d& T = wall.T_world_part;
+  const Eigen::Isometry3d to = slide_pose(ctx, part, wall, prefer);
   const Eigen::Vector3d z = T.linear().col(2);
   Eigen::Isometry3d along = T;
   along.translation() += z * z.dot(to.translation() - T.translation());
   return along;
+}
+
+// A single part slid towards `prefer` from the pose its wall's points were gathered at: along its
+// axis only when asked that way (an end is open: the part rests on its other faces); a box asked
+// across its flanks slides across them as well.
+Eigen::Isometry3d slide_single(const HypothesisContext& ctx, const Superquadric& part,
+                               const WallRuns& wall, const Eigen::Vector3d& prefer) {
+  return prefer.z() == 0.0 ? slide_pose(ctx, part, wall, prefer)
+                           : slide_along_axis(ctx, part, wall, prefer);
 }
 
 // A single part's candidate rejected because the scan carries on past one of its flat faces may
@@ -521,23 +531,19 @@ Eigen::Isometry3d slide_along_axis(const HypothesisContext& ctx, const Superquad
 // is judged as a candidate of its own (select_instances). A longer look-alike's wall is not slid
 // along. The same for one rejected because the scan shows no side wall by one of its ends: the
 // fit placed it past where its wall ends on that side (its other end hidden), and `prefer` slides
-// it back as far as the wall's run allows.
-std::optional<PartHypothesis> slid_along_wall(const HypothesisContext& ctx,
-                                              const Superquadric& part, const Eigen::Isometry3d& T,
-                                              const Eigen::Vector3d& prefer) {
-  // Along its axis only when asked that way (an end is open: the part rests on its other faces);
-  // a box asked across its flanks slides across them as well.
-  const auto slide = [&](const Eigen::Isometry3d& from) {
-    return prefer.z() == 0.0 ? slide_pose(ctx, part, from, prefer)
-                             : slide_along_axis(ctx, part, from, prefer);
-  };
-  const Eigen::Isometry3d slid = slide(T);
-  if (same_place(slid, T, part)) return std::nullopt;
+// it back as far as the wall's run allows. `slid`: the candidate T slid towards `prefer`
+// (slide_single), already known to have moved.
+std::optional<PartHypothesis> refined_slide(const HypothesisContext& ctx, const Superquadric& part,
+                                            const Eigen::Isometry3d& T,
+                                            const Eigen::Isometry3d& slid,
+                                            const Eigen::Vector3d& prefer) {
   PartHypothesis h;
   h.valid = true;
   // The refinement leaves the part free along its wall, and may take it back: slid once more.
   h.T_world_part = refine_pose(ctx, part, slid);
-  if (!prefer.isZero()) h.T_world_part = slide(h.T_world_part);
+  if (!prefer.isZero()) {
+    h.T_world_part = slide_single(ctx, part, wall_at(ctx, part, h.T_world_part), prefer);
+  }
   if (same_place(h.T_world_part, T, part)) return std::nullopt;
   h.scores = verify_pose(ctx, part, h.T_world_part);
   return h;
@@ -848,9 +854,9 @@ void refine_jointly(const HypothesisContext& ctx, const ObjectModel& model,
       prefer = link_prefer(T, inst.parts[q].T_world_part.translation(), link, link.first == p);
     }
     const std::vector<PlacedPart> others = siblings(p);
-    const Eigen::Isometry3d least = slide_pose(ctx, shape, T, Eigen::Vector3d::Zero(), others);
-    const Eigen::Isometry3d linked =
-        prefer.isZero() ? least : slide_pose(ctx, shape, T, prefer, others);
+    const WallRuns wall = wall_at(ctx, shape, T, others);
+    const Eigen::Isometry3d least = slide_pose(ctx, shape, wall, Eigen::Vector3d::Zero());
+    const Eigen::Isometry3d linked = prefer.isZero() ? least : slide_pose(ctx, shape, wall, prefer);
     const auto open_at = [&](const Eigen::Isometry3d& at) {
       const SurfaceCoverage c =
           surface_coverage(shape, at, ctx.points, *ctx.tree, cover, kEndsOnly);
@@ -1231,7 +1237,7 @@ bool move_if_confirmed(const HypothesisContext& ctx, const ObjectModel& model,
 // A single part rejected for carrying on past a flat face, for an open end, for a cap whose
 // rim reaches past the face the scan shows or for space the sensor saw through (all four: posed
 // off along its wall; a box beside an overhang's leg stood 14 mm along its axis, its end where
-// the laser saw the table), slid along its wall (slid_along_wall) and confirmed there: `inst` is
+// the laser saw the table), slid along its wall (refined_slide) and confirmed there: `inst` is
 // moved to the slid pose and true is returned.
 bool slide_to_confirm(const HypothesisContext& ctx, const ObjectModel& model,
                       const CoverageOptions& cover, double noise_mm, Check failed,
@@ -1264,13 +1270,20 @@ bool slide_to_confirm(const HypothesisContext& ctx, const ObjectModel& model,
       }
     }
   }
-  // Slid and refined as many at once as there are threads, then judged in order: the first that
-  // is confirmed is taken, as when each was slid in turn.
+  // The wall's points gathered once; the ways that move the part at all refined as many at once
+  // as there are threads, then judged in order: the first that is confirmed is taken, as when
+  // each was slid in turn.
+  const WallRuns wall = wall_at(ctx, part, T);
+  std::vector<std::pair<Eigen::Isometry3d, Eigen::Vector3d>> moves;  // (slid pose, prefer)
+  for (const Eigen::Vector3d& towards : prefer) {
+    const Eigen::Isometry3d slid = slide_single(ctx, part, wall, towards);
+    if (!same_place(slid, T, part)) moves.emplace_back(slid, towards);
+  }
   const std::size_t batch = thread_count(ctx.options->threads);
-  for (std::size_t first = 0; first < prefer.size(); first += batch) {
-    std::vector<std::optional<PartHypothesis>> slid(std::min(batch, prefer.size() - first));
+  for (std::size_t first = 0; first < moves.size(); first += batch) {
+    std::vector<std::optional<PartHypothesis>> slid(std::min(batch, moves.size() - first));
     parallel_for(slid.size(), ctx.options->threads, [&](std::size_t k) {
-      slid[k] = slid_along_wall(ctx, part, T, prefer[first + k]);
+      slid[k] = refined_slide(ctx, part, T, moves[first + k].first, moves[first + k].second);
     });
     for (const std::optional<PartHypothesis>& h : slid) {
       if (h && move_if_confirmed(ctx, model, cover, noise_mm, h->T_world_part, h->scores, inst)) {
@@ -1332,7 +1345,8 @@ void settle_along_wall(const HypothesisContext& ctx, const ObjectModel& model,
   const Superquadric& part = model.parts[0].shape;
   const Eigen::Isometry3d& T = inst.parts[0].T_world_part;
   constexpr double kMinMoveMm = 0.5;
-  const Eigen::Isometry3d along = slide_along_axis(ctx, part, T, Eigen::Vector3d::Zero());
+  const Eigen::Isometry3d along =
+      slide_along_axis(ctx, part, wall_at(ctx, part, T), Eigen::Vector3d::Zero());
   if ((along.translation() - T.translation()).norm() < kMinMoveMm) return;
   move_if_confirmed(ctx, model, cover, noise_mm, along, verify_pose(ctx, part, along), inst);
 }

@@ -244,17 +244,37 @@ Eigen::Isometry3d refine_pose(const HypothesisContext& ctx, const Superquadric& 
   return refine(ctx, part, T, ExplainedBy(explained, *ctx.options), scratch);
 }
 
-Eigen::Isometry3d slide_pose(const HypothesisContext& ctx, const Superquadric& part,
-                             const Eigen::Isometry3d& T, const Eigen::Vector3d& prefer,
-                             std::span<const PlacedPart> explained) {
-  const ExplainedBy explained_by(explained, *ctx.options);
+namespace {
+
+// What the wall's points are, for the scan at hand: within its noise of the wall, off the table.
+AxialSlideOptions slide_options(const HypothesisContext& ctx, const Superquadric& part) {
   AxialSlideOptions so;
   so.band_mm = std::max(1.0, 3.0 * ctx.table_noise_mm);
   so.table = ctx.table;
   so.table_margin_mm = table_margin_mm(*ctx.options, part.min_size(), ctx.table_noise_mm);
+  return so;
+}
+
+}  // namespace
+
+WallRuns wall_at(const HypothesisContext& ctx, const Superquadric& part, const Eigen::Isometry3d& T,
+                 std::span<const PlacedPart> explained) {
+  const ExplainedBy explained_by(explained, *ctx.options);
+  return wall_runs(part, T, ctx.points, *ctx.tree, slide_options(ctx, part),
+                   [&](const Eigen::Vector3d& p) { return explained_by(p); });
+}
+
+Eigen::Isometry3d slide_pose(const HypothesisContext& ctx, const Superquadric& part,
+                             const WallRuns& wall, const Eigen::Vector3d& prefer) {
+  AxialSlideOptions so = slide_options(ctx, part);
   so.prefer = prefer;
-  return slide_to_wall(part, T, ctx.points, *ctx.tree, so,
-                       [&](const Eigen::Vector3d& p) { return explained_by(p); });
+  return slide_to_wall(part, wall, so);
+}
+
+Eigen::Isometry3d slide_pose(const HypothesisContext& ctx, const Superquadric& part,
+                             const Eigen::Isometry3d& T, const Eigen::Vector3d& prefer,
+                             std::span<const PlacedPart> explained) {
+  return slide_pose(ctx, part, wall_at(ctx, part, T, explained), prefer);
 }
 
 PartScores verify_pose(const HypothesisContext& ctx, const Superquadric& part,

@@ -9,8 +9,9 @@
 #include <span>
 
 #include "detect/common/kdtree.hpp"
-#include "detect/object/object_detector.hpp"
 #include "detect/common/pca.hpp"
+#include "detect/object/object_axial_slide.hpp"
+#include "detect/object/object_detector.hpp"
 #include "detect/object/superquadric.hpp"
 
 namespace rangefit {
@@ -91,6 +92,13 @@ Eigen::Isometry3d refine_pose(const HypothesisContext& ctx, const Superquadric& 
 Eigen::Isometry3d slide_pose(const HypothesisContext& ctx, const Superquadric& part,
                              const Eigen::Isometry3d& T_world_part, const Eigen::Vector3d& prefer,
                              std::span<const PlacedPart> explained = {});
+
+// The same in two halves, for a part slid several ways from one pose: its wall's points gathered
+// once (`explained`: points of the object's other parts, left out), then slid towards `prefer`.
+WallRuns wall_at(const HypothesisContext& ctx, const Superquadric& part,
+                 const Eigen::Isometry3d& T_world_part, std::span<const PlacedPart> explained = {});
+Eigen::Isometry3d slide_pose(const HypothesisContext& ctx, const Superquadric& part,
+                             const WallRuns& wall, const Eigen::Vector3d& prefer);
 
 // M over the refinement selection, I and S over the neighbourhood within the verification radius.
 PartScores verify_pose(const HypothesisContext& ctx, const Superquadric& part,
