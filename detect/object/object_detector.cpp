@@ -70,8 +70,8 @@ bool options_ok(const ObjectDetectOptions& o) {
          o.refine_trim >= 0.0 && o.max_measure > 0.0 && o.max_interior_ratio >= 0.0 &&
          o.min_coverage >= 0.0 && o.min_coverage_unknown_sensor >= 0.0 &&
          o.min_coverage_compound_part >= 0.0 && o.max_seen_through >= 0.0 &&
-         o.compound_screen_slack >= 1.0 && o.max_open_end >= 0.0 &&
-         o.max_open_end_compound >= 0.0 && o.max_open_rim >= 0.0 &&
+         o.compound_screen_slack >= 1.0 && o.max_seen_through_posed_off >= 0.0 &&
+         o.max_open_end >= 0.0 && o.max_open_end_compound >= 0.0 && o.max_open_rim >= 0.0 &&
          o.min_measurable_share_covered >= 0.0 && o.full_coverage >= 0.0 &&
          o.max_size_deviation > 0.0 && o.size_deviation_sigmas >= 0.0 && o.max_candidates >= 1 &&
          o.min_measurable_samples >= 0 && o.min_measurable_share >= 0.0 &&
@@ -1214,10 +1214,13 @@ const Judged* judged_before(const ObjectModel& model, const Hypotheses& hyps,
 }
 
 // The checks a single part fails when it is posed off (along or across its wall, or turned about
-// the table's normal) rather than absent: slide_to_confirm and turn_to_confirm answer them.
-bool posed_off(Check failed) {
-  return failed == Check::kContinues || failed == Check::kOpenEnd || failed == Check::kOpenRim ||
-         failed == Check::kSeenThrough;
+// the table's normal) rather than absent: slide_to_confirm and turn_to_confirm answer them. Space
+// seen through half of what the sensor should see of it is not a part posed off but a part where
+// nothing is (max_seen_through_posed_off).
+bool posed_off(const Rejection& why, const ObjectDetectOptions& o) {
+  if (why.check == Check::kSeenThrough) return why.value < o.max_seen_through_posed_off;
+  return why.check == Check::kContinues || why.check == Check::kOpenEnd ||
+         why.check == Check::kOpenRim;
 }
 
 // `inst`, a single part, moved to pose T with the fit scores there (its vote's rank kept) when it
@@ -1240,9 +1243,9 @@ bool move_if_confirmed(const HypothesisContext& ctx, const ObjectModel& model,
 // the laser saw the table), slid along its wall (refined_slide) and confirmed there: `inst` is
 // moved to the slid pose and true is returned.
 bool slide_to_confirm(const HypothesisContext& ctx, const ObjectModel& model,
-                      const CoverageOptions& cover, double noise_mm, Check failed,
+                      const CoverageOptions& cover, double noise_mm, const Rejection& failed,
                       DetectedInstance& inst) {
-  if (model.parts.size() != 1 || !posed_off(failed)) return false;
+  if (model.parts.size() != 1 || !posed_off(failed, *ctx.options)) return false;
   const Superquadric& part = model.parts[0].shape;
   const Eigen::Isometry3d& T = inst.parts[0].T_world_part;
   // Where along the wall: as little as possible; from an open end, back towards the other; from
@@ -1255,7 +1258,7 @@ bool slide_to_confirm(const HypothesisContext& ctx, const ObjectModel& model,
   // wall hid the rest) was fitted 15 mm across, where the laser saw the table past it (pan-tilt
   // tuning seed 86).
   std::vector<Eigen::Vector3d> prefer{Eigen::Vector3d::Zero()};
-  if (failed == Check::kOpenEnd) {
+  if (failed.check == Check::kOpenEnd) {
     const SurfaceCoverage c = surface_coverage(part, T, ctx.points, *ctx.tree, cover, kEndsOnly);
     const double minus = std::max(c.open_end_at[0], c.open_end_far_at[0]);
     const double plus = std::max(c.open_end_at[1], c.open_end_far_at[1]);
@@ -1306,9 +1309,9 @@ bool slide_to_confirm(const HypothesisContext& ctx, const ObjectModel& model,
 // time. Cylinders are still turned: without it their tuning rates were the same, but one held-out
 // pan-tilt cylinder (each part lost <= 40 %) was lost.
 bool turn_to_confirm(const HypothesisContext& ctx, const ObjectModel& model,
-                     const CoverageOptions& cover, double noise_mm, Check failed,
+                     const CoverageOptions& cover, double noise_mm, const Rejection& failed,
                      DetectedInstance& inst) {
-  if (model.parts.size() != 1 || !posed_off(failed) || !ctx.table) return false;
+  if (model.parts.size() != 1 || !posed_off(failed, *ctx.options) || !ctx.table) return false;
   const Superquadric& part = model.parts[0].shape;
   if (part.ball() || (part.has_taper() && part.eps2 > kFlatExponent)) return false;
   const Eigen::Isometry3d& T = inst.parts[0].T_world_part;
@@ -1397,8 +1400,8 @@ void select_instances(const HypothesisContext& ctx, const ObjectModel& model,
             confirm(ctx, model, cover, noise_mm, judged_before(model, hyps, inst), inst)) {
       result.rejections.push_back(*why);
       rejected.push_back(std::move(centres));
-      if (!slide_to_confirm(ctx, model, cover, noise_mm, why->check, inst) &&
-          !turn_to_confirm(ctx, model, cover, noise_mm, why->check, inst)) {
+      if (!slide_to_confirm(ctx, model, cover, noise_mm, *why, inst) &&
+          !turn_to_confirm(ctx, model, cover, noise_mm, *why, inst)) {
         continue;
       }
       centres = {inst.parts[0].center()};
