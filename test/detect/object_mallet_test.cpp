@@ -64,6 +64,25 @@ TEST(AxialSlide, LeavesLongerAndHiddenWallsAlone) {
   EXPECT_NEAR(slide_to_wall(kCan, at_z(5.0), hidden, hidden_tree, o).translation().z(), 20.0, 0.5);
 }
 
+// The wall's points gathered once at a pose answer every preference as the whole slide does: a
+// part slid several ways from one pose (a rejected candidate's rescue) gathers them once.
+TEST(AxialSlide, TheWallGatheredOnceAnswersEveryPreference) {
+  const std::vector<Eigen::Vector3d> hidden = wall(-30.0, 30.0);
+  const KdTree tree(hidden);
+  const WallRuns runs = wall_runs(kCan, at_z(5.0), hidden, tree);
+  EXPECT_FALSE(runs.along[2].empty());
+  EXPECT_TRUE(runs.along[0].empty());  // a round section is not slid across
+  for (double prefer : {0.0, 12.0, -12.0, 40.0}) {
+    AxialSlideOptions o;
+    o.prefer.z() = prefer;
+    const Eigen::Isometry3d whole = slide_to_wall(kCan, at_z(5.0), hidden, tree, o);
+    EXPECT_TRUE(slide_to_wall(kCan, runs, o).isApprox(whole, 1e-12)) << "prefer " << prefer;
+  }
+  AxialSlideOptions o;
+  o.prefer.z() = -12.0;  // within the 20 mm the hidden wall leaves free, the other way
+  EXPECT_NEAR(slide_to_wall(kCan, runs, o).translation().z(), -7.0, 1e-9);
+}
+
 // A few stray points on the wall's line within the part's length but apart from its run (another
 // object's, a shadow's edge) do not stand for the wall: the part, posed 19 mm past its wall's end
 // with its other end hidden, is slid onto the run, as far as `prefer` asks and the run allows.
