@@ -1297,17 +1297,6 @@ bool slide_to_confirm(const HypothesisContext& ctx, const ObjectModel& model,
   return false;
 }
 
-// A single part rejected as slide_to_confirm's are, turned about the table's normal by an eighth
-// of a turn either way and by a quarter, each turn fitted again (refine_pose); the best fit is
-// kept when it fits the points better than the candidate did and is confirmed: `inst` is moved
-// there and true is returned. A start on a patch of a top face turns the part about the table's
-// normal by chance (the moments of a round patch of a plane), and the refinement settles in the
-// nearest minimum: lying boxes seen from above were rejected turned by 11, 20 and 90 deg, M
-// 0.11-0.17 against 0.02-0.07 where they lay (pan-tilt tuning seeds 225, 195, 197). A ball has no
-// turn to find, and a tapered round part (a cone) is not turned either: none of 572 turns of the
-// cone passed (tuning 1..300, stripe and pan-tilt), and they took a third of an absent cone's
-// time. Cylinders are still turned: without it their tuning rates were the same, but one held-out
-// pan-tilt cylinder (each part lost <= 40 %) was lost.
 // The turns about the table's normal (deg) worth trying for a part at pose T. Lying (its axis
 // within 10 deg of the table's plane): an eighth and a quarter turn either way, the turns a start
 // on a patch of its top gets wrong. Standing (within 10 deg of the normal): the turn is about its
@@ -1325,6 +1314,17 @@ std::span<const double> turns_to_try(const Superquadric& part, const Eigen::Isom
   return part.eps2 > kFlatExponent ? std::span<const double>{} : std::span(kAll).first(1);
 }
 
+// A single part rejected as slide_to_confirm's are, turned about the table's normal by the turns
+// that can change what the scan sees of it (turns_to_try), each turn fitted again (refine_pose);
+// the best fit is kept when it fits the points better than the candidate did and is confirmed:
+// `inst` is moved there and true is returned. A start on a patch of a top face turns the part
+// about the table's normal by chance (the moments of a round patch of a plane), and the
+// refinement settles in the nearest minimum: lying boxes seen from above were rejected turned by
+// 11, 20 and 90 deg, M 0.11-0.17 against 0.02-0.07 where they lay (pan-tilt tuning seeds 225,
+// 195, 197). A ball has no turn to find, and a tapered round part (a cone) is not turned either:
+// none of 572 turns of the cone passed (tuning 1..300, stripe and pan-tilt), and they took a third
+// of an absent cone's time. Lying cylinders are still turned: without it their tuning rates were
+// the same, but one held-out pan-tilt cylinder (each part lost <= 40 %) was lost.
 bool turn_to_confirm(const HypothesisContext& ctx, const ObjectModel& model,
                      const CoverageOptions& cover, double noise_mm, const Rejection& failed,
                      DetectedInstance& inst) {
