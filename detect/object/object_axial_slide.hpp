@@ -55,10 +55,18 @@ struct AxialSlideOptions {
   Eigen::Vector3d prefer = Eigen::Vector3d::Zero();
 };
 
-// The wall's points of a part at one pose, by the axes it may slide along: their coordinates
-// along each axis, sorted (along z only where the wall surrounds the axis; empty along an axis
-// not asked). Gathering them is the slide's cost; the shift for any `prefer` follows from them,
-// so a part slid several ways from one pose gathers them once.
+// The pose slid along the part's axes to where its wall's points end (T itself when they give no
+// reason to move), or as close to options.prefer as the wall's run allows. `skip`: points explained
+// by other parts of the same object (may be empty).
+Eigen::Isometry3d slide_to_wall(const Superquadric& sq, const Eigen::Isometry3d& T_world_part,
+                                std::span<const Eigen::Vector3d> points, const KdTree& tree,
+                                const AxialSlideOptions& options = {},
+                                const std::function<bool(const Eigen::Vector3d&)>& skip = {});
+
+// The same in two halves. The wall's points of a part at one pose, by the axes it may slide
+// along: their coordinates along each axis, sorted (along z only where the wall surrounds the
+// axis; empty along an axis not asked). Gathering them is the slide's cost; the shift for any
+// `prefer` follows from them, so a part slid several ways from one pose gathers them once.
 struct WallRuns {
   Eigen::Isometry3d T_world_part = Eigen::Isometry3d::Identity();
   std::array<std::vector<double>, 3> along;
@@ -75,13 +83,5 @@ WallRuns wall_runs(const Superquadric& sq, const Eigen::Isometry3d& T_world_part
 // gathering options are not read again).
 Eigen::Isometry3d slide_to_wall(const Superquadric& sq, const WallRuns& runs,
                                 const AxialSlideOptions& options = {});
-
-// The pose slid along the part's axes to where its wall's points end (T itself when they give no
-// reason to move), or as close to options.prefer as the wall's run allows. `skip`: points explained
-// by other parts of the same object (may be empty).
-Eigen::Isometry3d slide_to_wall(const Superquadric& sq, const Eigen::Isometry3d& T_world_part,
-                                std::span<const Eigen::Vector3d> points, const KdTree& tree,
-                                const AxialSlideOptions& options = {},
-                                const std::function<bool(const Eigen::Vector3d&)>& skip = {});
 
 }  // namespace rangefit
