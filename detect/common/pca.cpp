@@ -69,6 +69,11 @@ Plane fit_plane(std::span<const Eigen::Vector3d> points) {
   return plane;
 }
 
+Eigen::Vector3d normal_towards(const Plane& plane, const Eigen::Vector3d& point) {
+  const Eigen::Vector3d n = plane.normal.normalized();
+  return n.dot(point - plane.point) < 0.0 ? Eigen::Vector3d(-n) : n;
+}
+
 Line fit_line(std::span<const Eigen::Vector3d> points) {
   Line line;
   if (points.size() < 2) return line;

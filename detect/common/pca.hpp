@@ -63,6 +63,9 @@ struct Plane {
 // Total least-squares plane through the points (smallest eigenvector of the covariance).
 Plane fit_plane(std::span<const Eigen::Vector3d> points);
 
+// The plane's unit normal turned towards `point` (to the side of a table the object is on).
+Eigen::Vector3d normal_towards(const Plane& plane, const Eigen::Vector3d& point);
+
 // Line through the points: centroid and largest eigenvector (thesis 4.1.3, axis pose).
 struct Line {
   bool valid = false;  // false: fewer than 2 points or all coincident

@@ -49,7 +49,7 @@ MomentFrame moment_frame(std::span<const Eigen::Vector3d> points,
   MomentFrame f;
   const Eigen::Vector3d c = pca::centroid(points);
   if (plane && plane->valid) {
-    const Eigen::Vector3d n = normal_towards(*plane, c);
+    const Eigen::Vector3d n = pca::normal_towards(*plane, c);
     Eigen::Matrix3d cov = pca::covariance(points, c);
     const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - n * n.transpose();
     const pca::Eigen3 e = pca::eigen_symmetric(P * cov * P);
@@ -68,11 +68,6 @@ MomentFrame moment_frame(std::span<const Eigen::Vector3d> points,
 }
 
 }  // namespace
-
-Eigen::Vector3d normal_towards(const pca::Plane& plane, const Eigen::Vector3d& point) {
-  const Eigen::Vector3d n = plane.normal.normalized();
-  return n.dot(point - plane.point) < 0.0 ? Eigen::Vector3d(-n) : n;
-}
 
 std::vector<PosedSuperquadric> learn_starts(std::span<const Eigen::Vector3d> points,
                                             const std::optional<pca::Plane>& plane,

@@ -25,9 +25,6 @@ struct StartShape {
   double taper = 0.0;
 };
 
-// The plane's unit normal turned towards `point` (to the side of the table the object is on).
-Eigen::Vector3d normal_towards(const pca::Plane& plane, const Eigen::Vector3d& point);
-
 // `plane` (when valid) is the surface the object rests on; `shapes` the eps pairs to try.
 std::vector<PosedSuperquadric> learn_starts(std::span<const Eigen::Vector3d> points,
                                             const std::optional<pca::Plane>& plane,

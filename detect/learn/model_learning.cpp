@@ -233,7 +233,7 @@ std::optional<Eigen::Vector4d> table_support(const std::optional<pca::Plane>& pl
                                              std::span<const Eigen::Vector3d> object,
                                              const LearnOptions& options) {
   if (!plane || !plane->valid || options.support_weight <= 0.0) return std::nullopt;
-  const Eigen::Vector3d n = normal_towards(*plane, pca::centroid(object));
+  const Eigen::Vector3d n = pca::normal_towards(*plane, pca::centroid(object));
   return Eigen::Vector4d(n.x(), n.y(), n.z(), n.dot(plane->point));
 }
 

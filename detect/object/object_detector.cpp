@@ -945,11 +945,7 @@ CoverageOptions coverage_options(const ObjectDetectOptions& options,
   cover.occupancy = &occupancy;
   if (plane.removed()) {
     pca::Plane up = plane.plane;
-    up.normal.normalize();
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (const Eigen::Vector3d& p : cloud) mean += p;
-    mean /= static_cast<double>(cloud.size());
-    if (up.normal.dot(mean - up.point) < 0.0) up.normal = -up.normal;
+    up.normal = pca::normal_towards(up, pca::centroid(cloud));
     cover.removed_plane = up;
   }
   cover.plane_margin_mm = options.plane_margin_mm;
